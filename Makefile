@@ -1,0 +1,28 @@
+# Entry points for a fresh Debian 12 machine: `make demo` and `make test` do all set-up.
+BUILD ?= build
+JOBS ?= 2
+CMAKE_FLAGS ?=
+
+.PHONY: all setup configure build test demo bench clean
+
+all: build
+
+setup:
+	bash scripts/setup.sh $(BUILD)/cgal-data
+
+configure: setup
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
+
+demo: build
+	mkdir -p $(BUILD)/demo
+	$(BUILD)/lrvd compute $(BUILD)/cgal-data/elk.off -n 300 --seed 1 \
+	  -o $(BUILD)/demo/elk_lrvd_cells.ply --report $(BUILD)/demo/elk_lrvd_report.json
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,94 @@
+// Filtered exact predicates that classify restricted power/Voronoi vertices against a bisector
+// (paper §3.6), with one symbolic perturbation of the weights for every predicate.
+// Formulas, degrees and the perturbation rule: docs/predicates.md.
+#pragma once
+
+#include <cstdint>
+
+#include "predicates/vec3.h"
+
+namespace lrvd {
+
+//! Sign of an exact quantity. Values are those of CGAL::Sign, so casts between them are safe.
+enum class Sign : int { Negative = -1, Zero = 0, Positive = 1 };
+
+inline Sign operator-(Sign s) { return static_cast<Sign>(-static_cast<int>(s)); }
+inline Sign operator*(Sign a, Sign b) { return static_cast<Sign>(static_cast<int>(a) * static_cast<int>(b)); }
+
+//! A sample of the diagram: position, power weight (0 for Voronoi) and sample index. The power
+//! distance is d(q) = |q - p|^2 - w. `id` orders the symbolic perturbation: on an exact tie the
+//! site with the lower id is the closer one.
+struct Site {
+  Vec3 p;
+  double w = 0;
+  int id = -1;
+};
+
+//! How often one kind of predicate ran and how it was decided.
+struct PredicateCounters {
+  std::uint64_t calls = 0;            //!< predicate evaluations
+  std::uint64_t filter_failures = 0;  //!< interval filter could not decide (or input out of its range)
+  std::uint64_t exact = 0;            //!< evaluations that reached exact (Mpzf) arithmetic
+  std::uint64_t perturbations = 0;    //!< exact zeros resolved by the symbolic perturbation
+
+  PredicateCounters& operator+=(const PredicateCounters& o) {
+    calls += o.calls;
+    filter_failures += o.filter_failures;
+    exact += o.exact;
+    perturbations += o.perturbations;
+    return *this;
+  }
+};
+
+//! Counters per predicate kind and their sum, over all threads since the last reset.
+struct PredicateStats {
+  PredicateCounters side1, side2, side3, other;  //!< other: collinear / orientation helpers
+  PredicateCounters total;
+};
+
+//! Sum of the counters of every thread (live and finished) since the last reset.
+PredicateStats predicate_stats();
+//! Zeroes all counters. Exact when no other thread runs predicates meanwhile.
+void reset_predicate_stats();
+
+namespace predicates {
+
+// Conventions: f_ab(q) = d_a(q) - d_b(q) (negative when q is closer to a). Every side predicate
+// returns sign(-f_il(q)) for the perturbed weights w' = w + delta_id, delta_0 >> delta_1 >> ... > 0:
+// Positive when q is strictly closer to i, Negative when strictly closer to l. It returns Zero
+// only if i.id == l.id, or if l repeats a site that defines q (then q lies on bisector(i,l)).
+// Inputs: finite doubles of any magnitude.
+
+//! Type (a): q is a mesh vertex. Degree 2.
+Sign side1(const Site& i, const Site& l, const Vec3& q);
+
+//! Type (b): q is the point of line (q1,q2) on bisector(i,j).
+//! \pre (q1 - q2).(p_j - p_i) != 0 (the vertex exists); otherwise returns Zero.
+//! Degree 4 (numerator) times degree 2 (weight-free denominator).
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2);
+
+//! Type (c): q = plane(p1,p2,p3) ∩ bisector(i,j) ∩ bisector(i,k).
+//! \pre n, p_j - p_i, p_k - p_i are linearly independent, n = (p2-p1)x(p3-p1) (the vertex
+//!      exists); otherwise returns Zero. Degree 6 times degree 4 (weight-free det M).
+Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,
+           const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
+//! Exact: (b - a) x (c - a) == 0 (includes coincident points). No perturbation.
+bool collinear(const Vec3& a, const Vec3& b, const Vec3& c);
+
+//! Exact sign of det(b - a, c - a, d - a): Positive when d is above the plane (a,b,c) oriented
+//! counterclockwise. No perturbation.
+Sign orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+//! Exact orientation of a, b, c projected on the coordinate plane that drops axis `drop` (0,1,2),
+//! with axes (drop+1)%3, (drop+2)%3 as (x, y): Positive for a counterclockwise turn.
+//! No perturbation.
+Sign orient2d(const Vec3& a, const Vec3& b, const Vec3& c, int drop);
+
+//! The triangle's own 2D frame: an axis to drop such that orient2d(a, b, c, axis) != Zero
+//! (the largest normal component when the double normal shows it, checked exactly), or -1 when
+//! a, b, c are exactly collinear.
+int projection_axis(const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace predicates
+}  // namespace lrvd

@@ -1,0 +1,85 @@
+// Symbolic vertices of clipped restricted-Voronoi polygons (paper §3.4, §3.6, after [8]): a mesh
+// vertex, a mesh edge ∩ bisector, or a triangle ∩ two bisectors; their side tests and birth rule.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+
+#include "predicates/predicates.h"
+#include "predicates/vec3.h"
+
+namespace lrvd {
+
+//! A polygon vertex stored by what defines it, never by coordinates. Labels are sample ids
+//! (== Site::id). Unused fields are -1, so == compares the defining data exactly; two polygons
+//! in the same triangle (or across a mesh edge, for type B) that share a vertex build equal ones.
+struct SymbolicVertex {
+  enum class Type : std::uint8_t {
+    A,  //!< mesh vertex v[0]
+    B,  //!< mesh edge (v[0] < v[1]) ∩ bisector(label[0] < label[1])
+    C   //!< plane of triangle (v[0], v[1], v[2]) in the triangle's own order ∩ bisectors of
+        //!< label[0] < label[1] < label[2] (the point equidistant from all three)
+  };
+
+  Type type = Type::A;
+  std::array<int, 3> v{{-1, -1, -1}};
+  std::array<int, 3> label{{-1, -1, -1}};
+
+  static SymbolicVertex mesh_vertex(int vertex);
+  //! Edge endpoints and labels in any order; they are stored sorted.
+  static SymbolicVertex on_edge(int v0, int v1, int a, int b);
+  //! Triangle corners in the triangle's order; labels in any order (stored sorted).
+  static SymbolicVertex in_triangle(const std::array<int, 3>& triangle, int a, int b, int c);
+
+  int num_labels() const { return type == Type::A ? 0 : (type == Type::B ? 2 : 3); }
+  bool has_label(int s) const {
+    return (type != Type::A && (label[0] == s || label[1] == s)) || (type == Type::C && label[2] == s);
+  }
+  //! True if the vertex lies on mesh edge {a, b} (type A at a or b, or type B on that edge).
+  bool on_mesh_edge(int a, int b) const;
+};
+
+inline bool operator==(const SymbolicVertex& a, const SymbolicVertex& b) {
+  return a.type == b.type && a.v == b.v && a.label == b.label;
+}
+inline bool operator!=(const SymbolicVertex& a, const SymbolicVertex& b) { return !(a == b); }
+
+//! What the symbolic predicates read: mesh vertex positions by vertex index and sites by sample
+//! id (sites[s].id == s).
+struct SymbolicContext {
+  const Vec3* vertices = nullptr;
+  const Site* sites = nullptr;
+};
+
+//! side(q; i, l): Positive when q is strictly closer (perturbed power distance) to site i than to
+//! site l, Negative when closer to l. Never Zero for i != l unless l is one of q's labels (then q
+//! lies on bisector(i, l) and the answer is Zero). The answer does not depend on which of q's
+//! labels is i: the point is equidistant from all of them.
+//! \pre type A: any i. Types B and C: q.has_label(i).
+Sign side(const SymbolicVertex& q, int i, int l, const SymbolicContext& ctx);
+
+//! The birth rule: the vertex where edge (u, w) of cell i's polygon inside `triangle` (its corners
+//! in the triangle's order) is cut by bisector(i, l). If u and w lie on one mesh edge of the
+//! triangle, the new vertex is type B on that edge with labels {i, l}; otherwise the edge lies on
+//! bisector(i, m), m the label u and w share besides i, and the new vertex is type C {i, m, l}.
+//! \throw std::logic_error if (u, w) is on no mesh edge and u, w share no label besides i.
+SymbolicVertex intersect(const SymbolicVertex& u, const SymbolicVertex& w, int i, int l,
+                         const std::array<int, 3>& triangle);
+
+//! Double position for output and integration. Type B: parameter F1/(F1 - F2) clamped to [0, 1];
+//! type C: Cramer's rule; falls back to the rounded exact position when doubles overflow or the
+//! double system is singular.
+Vec3 position(const SymbolicVertex& q, const SymbolicContext& ctx);
+
+//! Hash for unordered containers of vertices.
+struct SymbolicVertexHash {
+  std::size_t operator()(const SymbolicVertex& q) const {
+    std::size_t h = static_cast<std::size_t>(q.type);
+    for (int x : q.v) h = h * 1000003u ^ std::hash<int>()(x);
+    for (int x : q.label) h = h * 1000003u ^ std::hash<int>()(x);
+    return h;
+  }
+};
+
+}  // namespace lrvd

@@ -1,0 +1,109 @@
+// `lrvd compute` and `lrvd verify`: one diagram (LRVD, RVD, LRPD, RPD) of samples on a mesh, its
+// cells as a PLY and its verification as a JSON report.
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "common/error.h"
+#include "predicates/predicates.h"
+#include "verification/diagram_check.h"
+#include "voronoi/cells_output.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd::cli {
+
+namespace {
+
+struct ComputeOptions {
+  InputOptions input;
+  std::string kind = "lrvd";
+  std::string output, report;
+  bool no_verify = false;
+};
+
+int run_diagram(const ComputeOptions& opt, bool write_cells) {
+  const DiagramKind kind = diagram_kind_from_string(opt.kind);
+  Input input = load_input(opt.input);
+  if (is_power(kind) && !input.samples.weighted())
+    throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", opt.kind));
+  if (!is_power(kind) && input.samples.weighted())
+    throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", opt.kind));
+  if (input.refined_from >= 0)
+    progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+
+  reset_predicate_stats();
+  progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
+  const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
+  nlohmann::json report;
+  report["input"] = input_json(input);
+  report["input"]["path"] = opt.input.mesh_path;
+  const CellComponents components = cell_components(diagram, input.mesh);
+  int multiple = 0;
+  for (int c : components.count) multiple += c > 1;
+  report["diagram"] = {{"kind", opt.kind},
+                       {"samples", input.samples.size()},
+                       {"polygons", diagram.polygons.size()},
+                       {"cells_with_multiple_components", multiple},
+                       {"time_s", diagram.stats.time_s},
+                       {"clipped_triangles", diagram.stats.clipped_triangles},
+                       {"connectivity_rounds", diagram.stats.connectivity_rounds},
+                       {"forbidden_labels", diagram.stats.forbidden_labels}};
+  report["predicates"] = predicates_json();
+
+  if (write_cells && !opt.output.empty()) write_cells_ply(opt.output, diagram_polygon_mesh(diagram, input.mesh));
+
+  bool passed = true;
+  std::string failures;
+  if (!opt.no_verify) {
+    progress("verifying");
+    const DiagramVerification check = verify_diagram(input.mesh, input.samples, diagram);
+    report["verification"] = check.to_json();
+    passed = check.passed;
+    failures = check.summary();
+  } else {
+    report["verification"] = nullptr;
+  }
+  if (!opt.report.empty()) write_json(opt.report, report);
+
+  std::printf("%s: %d samples on %d triangles, %zu polygons, %d cell(s) in several pieces, %.3f s\n",
+              opt.kind.c_str(), input.samples.size(), input.mesh.triangle_count(), diagram.polygons.size(), multiple,
+              diagram.stats.time_s);
+  if (opt.no_verify) {
+    std::printf("verification: skipped (--no-verify)\n");
+    return kOk;
+  }
+  std::printf("verification: %s\n", passed ? "passed" : "FAILED");
+  if (!failures.empty()) std::fputs(failures.c_str(), stdout);
+  return passed ? kOk : kCheckFailed;
+}
+
+void add_diagram_options(CLI::App* cmd, ComputeOptions& opt) {
+  cmd->add_option("--diagram", opt.kind, "Diagram: lrvd, rvd, lrpd (power, weighted) or rpd")
+      ->check(CLI::IsMember({"lrvd", "rvd", "lrpd", "rpd"}))
+      ->capture_default_str();
+  cmd->add_option("--report", opt.report, "Write a JSON report");
+}
+
+}  // namespace
+
+Action add_compute_command(CLI::App& app) {
+  auto opt = std::make_shared<ComputeOptions>();
+  CLI::App* cmd = app.add_subcommand("compute", "Compute a diagram of samples on a mesh, write its cells, verify it");
+  add_input_options(cmd, opt->input, true);
+  add_diagram_options(cmd, *opt);
+  cmd->add_option("-o,--output", opt->output, "Write the cells as a PLY (face property 'cell' and a colour)");
+  cmd->add_flag("--no-verify", opt->no_verify, "Skip the verification");
+  return [opt]() { return run_diagram(*opt, true); };
+}
+
+Action add_verify_command(CLI::App& app) {
+  auto opt = std::make_shared<ComputeOptions>();
+  CLI::App* cmd = app.add_subcommand("verify", "Compute the diagram of your points and check all its properties");
+  add_input_options(cmd, opt->input, false);
+  add_diagram_options(cmd, *opt);
+  return [opt]() { return run_diagram(*opt, false); };
+}
+
+}  // namespace lrvd::cli

@@ -1,0 +1,143 @@
+// Loading inputs and writing reports for the subcommands.
+#include "cli/common.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include "common/error.h"
+#include "predicates/predicates.h"
+
+namespace lrvd::cli {
+
+void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
+  cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
+  cmd->add_flag("--repair", opt.repair, "Weld, clean, orient and stitch a triangle soup before use");
+  CLI::Option* points = cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line");
+  if (allow_count) {
+    CLI::Option* n = cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)");
+    n->excludes(points);
+  } else {
+    points->required();
+  }
+  cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)");
+  cmd->add_option("--seed", opt.seed, "Seed of the random samples")->capture_default_str();
+  cmd->add_option("--refine", opt.refine,
+                  "Split long edges first: 'auto' (when the samples would crowd the triangles), 'off', or a "
+                  "maximum edge length")
+      ->capture_default_str();
+}
+
+namespace {
+
+std::vector<double> read_weights(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
+  std::vector<double> weights;
+  std::string token;
+  while (in >> token) {
+    try {
+      size_t used = 0;
+      weights.push_back(std::stod(token, &used));
+      if (used != token.size() || !std::isfinite(weights.back())) throw std::invalid_argument(token);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("{}: '{}' is not a finite number", path, token));
+    }
+  }
+  return weights;
+}
+
+// Edge length that gives about eight triangles per sample, so that a triangle rarely holds two.
+double auto_refinement_length(const SurfaceMesh& mesh, int n) {
+  if (mesh.triangle_count() >= 4 * n) return 0;
+  const double target_triangles = 8.0 * n;
+  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * target_triangles));
+}
+
+}  // namespace
+
+Input load_input(const InputOptions& opt) {
+  Input input;
+  input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
+  PointFile points;
+  if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
+  if (!opt.weights_path.empty()) {
+    points.weights = read_weights(opt.weights_path);
+  }
+  const int n = opt.points_path.empty() ? opt.count : static_cast<int>(points.points.size());
+  if (opt.points_path.empty() && n < 1)
+    throw InputError(fmt::format("give a sample count -n >= 1 or a point file --points (got -n {})", opt.count));
+
+  double length = 0;
+  if (opt.refine == "auto") {
+    length = auto_refinement_length(input.loaded.mesh, n);
+  } else if (opt.refine != "off") {
+    try {
+      size_t used = 0;
+      length = std::stod(opt.refine, &used);
+      if (used != opt.refine.size() || !(length > 0)) throw std::invalid_argument(opt.refine);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("--refine takes 'auto', 'off' or a positive edge length, not '{}'", opt.refine));
+    }
+  }
+  if (length > 0 && input.loaded.mesh.max_edge_length() > length) {
+    input.refined_from = input.loaded.mesh.triangle_count();
+    input.mesh = refine_long_edges(input.loaded.mesh, length);
+  } else {
+    input.mesh = input.loaded.mesh;
+  }
+
+  if (opt.points_path.empty()) {
+    input.samples = sample_uniform(input.mesh, n, opt.seed);
+    if (!points.weights.empty()) {
+      if (static_cast<int>(points.weights.size()) != n)
+        throw InputError(fmt::format("{} weights were given for {} samples", points.weights.size(), n));
+      input.samples.weights = points.weights;
+    }
+  } else {
+    input.samples = locate_points(input.mesh, points.points, points.weights);
+  }
+  return input;
+}
+
+nlohmann::json input_json(const Input& input) {
+  const SurfaceMesh& mesh = input.loaded.mesh;
+  nlohmann::json j = {{"path", ""},
+                      {"vertices", mesh.vertex_count()},
+                      {"triangles", mesh.triangle_count()},
+                      {"area", mesh.area()},
+                      {"bbox_diagonal", mesh.bounding_box().diagonal()},
+                      {"components", mesh.component_count()},
+                      {"closed", mesh.is_closed()},
+                      {"euler_characteristic", mesh.euler_characteristic()}};
+  if (input.refined_from >= 0)
+    j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
+  if (input.loaded.repair.changed()) j["repair"] = input.loaded.repair.notes;
+  return j;
+}
+
+nlohmann::json predicates_json() {
+  const PredicateStats s = predicate_stats();
+  return {{"calls", s.total.calls},
+          {"filter_failures", s.total.filter_failures},
+          {"exact", s.total.exact},
+          {"perturbations", s.total.perturbations}};
+}
+
+void write_json(const std::string& path, const nlohmann::json& report) {
+  std::ofstream out(path);
+  if (!out) throw InputError(fmt::format("cannot write report '{}'", path));
+  out << report.dump(2) << '\n';
+  if (!out) throw InputError(fmt::format("failed writing report '{}'", path));
+}
+
+void progress(const std::string& message) {
+  static const bool enabled = isatty(STDERR_FILENO) || std::getenv("LRVD_PROGRESS");
+  if (enabled) std::fprintf(stderr, "lrvd: %s\n", message.c_str());
+}
+
+}  // namespace lrvd::cli

@@ -1,0 +1,46 @@
+// Shared pieces of the subcommands: loading the mesh and the samples, refinement, JSON reports.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mesh/mesh_io.h"
+#include "voronoi/samples.h"
+
+namespace lrvd::cli {
+
+//! Options every command that reads a mesh and samples shares.
+struct InputOptions {
+  std::string mesh_path;
+  bool repair = false;
+  int count = 0;              //!< -n: random samples
+  std::string points_path;    //!< --points: samples from a file
+  std::string weights_path;   //!< --weights: one weight per line (or 4th column of --points)
+  std::uint64_t seed = 1;
+  std::string refine = "auto";  //!< auto | off | a maximum edge length
+};
+
+void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count);
+
+struct Input {
+  LoadedMesh loaded;          //!< as read (and repaired)
+  SurfaceMesh mesh;           //!< after refinement
+  int refined_from = -1;      //!< triangle count before refinement, -1 if not refined
+  Samples samples;
+};
+
+//! Reads the mesh, refines it when the samples would crowd its triangles, and makes or reads the
+//! samples. \throw InputError on any bad input.
+Input load_input(const InputOptions& opt);
+
+nlohmann::json input_json(const Input& input);
+nlohmann::json predicates_json();
+void write_json(const std::string& path, const nlohmann::json& report);
+
+//! Progress on stderr for long work (only when stderr is a terminal or LRVD_PROGRESS is set).
+void progress(const std::string& message);
+
+}  // namespace lrvd::cli

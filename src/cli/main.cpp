@@ -1,0 +1,48 @@
+// lrvd: localized restricted Voronoi diagrams on triangle meshes, remeshing and sampling.
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "common/error.h"
+
+int main(int argc, char** argv) {
+  using namespace lrvd::cli;
+  CLI::App app{"lrvd: exact localized restricted Voronoi diagrams (LRVD) of points on triangle meshes"};
+  app.set_version_flag("--version", std::string("lrvd ") + LRVD_VERSION);
+  app.require_subcommand(1);
+  std::map<CLI::App*, Action> actions;
+  auto add = [&](Action (*adder)(CLI::App&)) {
+    const size_t before = app.get_subcommands({}).size();
+    Action action = adder(app);
+    actions[app.get_subcommands({})[before]] = std::move(action);
+  };
+  add(add_compute_command);
+  add(add_verify_command);
+  add(add_stress_command);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kBadInput;
+  }
+  try {
+    for (auto& [command, action] : actions)
+      if (command->parsed()) return action();
+  } catch (const lrvd::InputError& e) {
+    std::fprintf(stderr, "lrvd: error: %s\n", e.what());
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "lrvd: error: out of memory\n");
+    return kInternalError;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lrvd: internal error: %s\n", e.what());
+    return kInternalError;
+  }
+  return kInternalError;
+}

@@ -1,0 +1,145 @@
+// Closest-point queries on a triangle mesh with Embree 3 user geometry (double-precision distances).
+#include "mesh/closest_point.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <embree3/rtcore.h>
+
+#include "mesh/surface_mesh.h"
+
+namespace lrvd {
+
+ClosestPoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Region classification over the triangle's Voronoi regions (vertices, edges, face).
+  auto make = [&](double u, double v, double w) {
+    ClosestPoint r;
+    r.barycentric = {u, v, w};
+    r.point = u * a + v * b + w * c;
+    r.distance = distance(p, r.point);
+    return r;
+  };
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return make(1, 0, 0);
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return make(0, 1, 0);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return make(1 - v, v, 0);
+  }
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return make(0, 0, 1);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return make(1 - w, 0, w);
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return make(0, 1 - w, w);
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return make(1 - v - w, v, w);
+}
+
+struct ClosestPointIndex::Impl {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int, 3>> triangles;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+};
+
+namespace {
+
+float round_down(double x) {
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float round_up(double x) {
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+void triangle_bounds(const RTCBoundsFunctionArguments* args) {
+  const auto* impl = static_cast<const ClosestPointIndex::Impl*>(args->geometryUserPtr);
+  const auto& tri = impl->triangles[args->primID];
+  Vec3 lo = impl->positions[tri[0]], hi = lo;
+  for (int k = 1; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], impl->positions[tri[k]][c]);
+      hi[c] = std::max(hi[c], impl->positions[tri[k]][c]);
+    }
+  RTCBounds* box = args->bounds_o;
+  box->lower_x = round_down(lo.x), box->lower_y = round_down(lo.y), box->lower_z = round_down(lo.z);
+  box->upper_x = round_up(hi.x), box->upper_y = round_up(hi.y), box->upper_z = round_up(hi.z);
+}
+
+struct QueryState {
+  const ClosestPointIndex::Impl* impl;
+  Vec3 p;
+  double query_offset;  // |p - float(p)|: the BVH measures from the rounded query point
+  ClosestPoint best;
+};
+
+bool visit_triangle(RTCPointQueryFunctionArguments* args) {
+  auto* state = static_cast<QueryState*>(args->userPtr);
+  const auto& tri = state->impl->triangles[args->primID];
+  const auto& pos = state->impl->positions;
+  ClosestPoint c = closest_point_on_triangle(state->p, pos[tri[0]], pos[tri[1]], pos[tri[2]]);
+  if (state->best.triangle >= 0 && !(c.distance < state->best.distance)) return false;
+  c.triangle = static_cast<int>(args->primID);
+  state->best = c;
+  args->query->radius = round_up((c.distance + state->query_offset) * (1 + 1e-12));
+  return true;
+}
+
+}  // namespace
+
+ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
+                                     const std::vector<std::array<int, 3>>& triangles)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->positions = positions;
+  impl_->triangles = triangles;
+  impl_->device = rtcNewDevice("threads=1");
+  if (!impl_->device) throw std::runtime_error("Embree device could not be created");
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry geometry = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(triangles.size()));
+  rtcSetGeometryUserData(geometry, impl_.get());
+  rtcSetGeometryBoundsFunction(geometry, triangle_bounds, nullptr);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(impl_->scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(impl_->scene);
+}
+
+ClosestPointIndex::ClosestPointIndex(const SurfaceMesh& mesh)
+    : ClosestPointIndex(mesh.positions(), mesh.triangles()) {}
+
+ClosestPointIndex::~ClosestPointIndex() {
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+ClosestPoint ClosestPointIndex::query(const Vec3& p) const {
+  RTCPointQuery q;
+  q.x = static_cast<float>(p.x), q.y = static_cast<float>(p.y), q.z = static_cast<float>(p.z);
+  const Vec3 rounded{q.x, q.y, q.z};
+  QueryState state{impl_.get(), p, distance(p, rounded), {}};
+  q.time = 0;
+  q.radius = std::numeric_limits<float>::infinity();
+  RTCPointQueryContext context;
+  rtcInitPointQueryContext(&context);
+  rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);
+  return state.best;
+}
+
+}  // namespace lrvd

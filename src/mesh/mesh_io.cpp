@@ -1,0 +1,713 @@
+// Mesh IO: CGAL's readers into a polygon soup, checks with messages naming the first offender,
+// exact ear-clipping triangulation, optional CGAL PMP soup repair, and the OFF/OBJ/PLY writers.
+// This is the only translation unit that includes CGAL's IO and repair headers.
+#include "mesh/mesh_io.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Surface_mesh.h>
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace lrvd {
+
+namespace {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+using Polygon = std::vector<std::size_t>;
+using SoupTriangle = std::array<std::size_t, 3>;
+
+enum class Format { Off, Obj, Ply, Stl };
+
+[[noreturn]] void fail(const std::string& path, const std::string& reason) {
+  throw InputError(path + ": " + reason);
+}
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+Format input_format(const std::string& path) {
+  const std::string ext = lowercase_extension(path);
+  if (ext == ".off") return Format::Off;
+  if (ext == ".obj") return Format::Obj;
+  if (ext == ".ply") return Format::Ply;
+  if (ext == ".stl") return Format::Stl;
+  fail(path, ext.empty() ? "has no extension; expected .off, .obj, .ply or .stl"
+                         : fmt::format("unknown extension '{}'; expected .off, .obj, .ply or .stl", ext));
+}
+
+void check_readable(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) fail(path, "no such file");
+  if (fs::is_directory(status)) fail(path, "is a directory, not a mesh file");
+  if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot be opened for reading (check its permissions)");
+  if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0) fail(path, "is empty");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Diagnosis of files CGAL refused. CGAL's readers only return false (and leave partial data), so
+// when they do, a small line scanner finds the first offending line for the message. It is never
+// used to read data.
+
+bool parse_double(const std::string& token, double& value) {
+  char* end = nullptr;
+  value = std::strtod(token.c_str(), &end);
+  return !token.empty() && *end == '\0';
+}
+
+bool parse_long(const std::string& token, long long& value) {
+  char* end = nullptr;
+  value = std::strtoll(token.c_str(), &end, 10);
+  return !token.empty() && *end == '\0';
+}
+
+// Non-blank lines of a text file with '#' comments removed, split into tokens.
+class TokenLines {
+ public:
+  explicit TokenLines(const std::string& path) : in_(path, std::ios::binary) {}
+  bool next(std::vector<std::string>& tokens) {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      line = line.substr(0, line.find('#'));
+      std::istringstream words(line);
+      tokens.clear();
+      for (std::string w; words >> w;) tokens.push_back(w);
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  }
+  int line_number() const { return line_number_; }
+
+ private:
+  std::ifstream in_;
+  int line_number_ = 0;
+};
+
+std::string non_finite_vertex(long long v, const double xyz[3]) {
+  return fmt::format("vertex {} has a non-finite coordinate ({}, {}, {})", v, xyz[0], xyz[1], xyz[2]);
+}
+
+// First problem with vertex line `tokens` (coordinates from position `first`), or "".
+std::string check_vertex_tokens(const std::vector<std::string>& tokens, std::size_t first, long long v, int line) {
+  if (tokens.size() < first + 3) return fmt::format("vertex {} (line {}) has fewer than 3 coordinates", v, line);
+  double xyz[3];
+  for (int c = 0; c < 3; ++c)
+    if (!parse_double(tokens[first + c], xyz[c]))
+      return fmt::format("vertex {} (line {}): '{}' is not a number", v, line, tokens[first + c]);
+  if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return non_finite_vertex(v, xyz);
+  return "";
+}
+
+std::string diagnose_off(const std::string& path) {
+  TokenLines lines(path);
+  std::vector<std::string> tokens, header;
+  while (header.size() < 4 && lines.next(tokens)) header.insert(header.end(), tokens.begin(), tokens.end());
+  const std::string& magic = header.empty() ? std::string() : header[0];
+  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
+    return "is not an OFF file: it does not start with 'OFF'";
+  long long counts[3];
+  for (int k = 0; k < 3; ++k)
+    if (header.size() < std::size_t(k + 2) || !parse_long(header[k + 1], counts[k]) || counts[k] < 0)
+      return "has an invalid OFF header: expected 'OFF' then the vertex, face and edge counts";
+  const long long nv = counts[0], nf = counts[1];
+  for (long long v = 0; v < nv; ++v) {
+    if (!lines.next(tokens))
+      return fmt::format("is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
+                         "vertices",
+                         nv, nf, v);
+    if (std::string problem = check_vertex_tokens(tokens, 0, v, lines.line_number()); !problem.empty())
+      return problem;
+  }
+  for (long long f = 0; f < nf; ++f) {
+    if (!lines.next(tokens))
+      return fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f);
+    long long n = 0;
+    if (!parse_long(tokens[0], n) || n < 0)
+      return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
+    if (static_cast<long long>(tokens.size()) < n + 1)
+      return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, lines.line_number(),
+                         tokens.size() - 1, n);
+    for (long long k = 1; k <= n; ++k) {
+      long long index = 0;
+      if (!parse_long(tokens[k], index))
+        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
+      if (index < 0 || index >= nv)
+        return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
+    }
+  }
+  return "";
+}
+
+std::string diagnose_obj(const std::string& path) {
+  long long nv = 0, nf = 0;
+  std::vector<std::string> tokens;
+  for (TokenLines lines(path); lines.next(tokens);) {
+    const std::string& key = tokens[0];
+    if (key == "v") {
+      if (std::string problem = check_vertex_tokens(tokens, 1, nv, lines.line_number()); !problem.empty())
+        return problem;
+      ++nv;
+    } else if (key == "f") {
+      ++nf;
+    } else if (key != "vt" && key != "vn" && key != "vp" && key != "o" && key != "g" && key != "s" &&
+               key != "usemtl" && key != "mtllib") {
+      return fmt::format("line {}: the OBJ statement '{}' is not supported (CGAL reads v, vt, vn and f)",
+                         lines.line_number(), key);
+    }
+  }
+  if (nf == 0) return nv == 0 ? "has no vertices and no faces" : fmt::format("has {} vertices but no faces", nv);
+  // Second pass: indices against the final vertex count (positive) or the count so far (negative).
+  long long seen = 0, f = 0;
+  for (TokenLines lines(path); lines.next(tokens);) {
+    if (tokens[0] == "v") ++seen;
+    if (tokens[0] != "f") continue;
+    for (std::size_t k = 1; k < tokens.size(); ++k) {
+      long long index = 0;
+      if (!parse_long(tokens[k].substr(0, tokens[k].find('/')), index) || index == 0)
+        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
+      if (index > nv || -index > seen)
+        return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
+                           lines.line_number(), index, index > 0 ? nv : seen);
+    }
+    ++f;
+  }
+  return "";
+}
+
+// PLY: the header, then (ascii only) the vertex coordinates and the number of body lines.
+std::string diagnose_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  int line_number = 1;
+  if (!std::getline(in, line) || line.substr(0, 3) != "ply") return "is not a PLY file: it does not start with 'ply'";
+  std::string format;
+  std::vector<std::pair<std::string, long long>> elements;
+  std::vector<std::string> vertex_properties;
+  bool ended = false;
+  while (!ended && std::getline(in, line)) {
+    ++line_number;
+    std::istringstream words(line);
+    std::string key, name;
+    words >> key;
+    if (key == "format") {
+      words >> format;
+    } else if (key == "element") {
+      long long count = -1;
+      words >> name >> count;
+      elements.emplace_back(name, count);
+    } else if (key == "property" && !elements.empty() && elements.back().first == "vertex") {
+      words >> name >> name;
+      vertex_properties.push_back(name);
+    }
+    ended = key == "end_header";
+  }
+  if (!ended) return "has an invalid PLY header: no 'end_header' line";
+  long long nv = 0, nf = 0, after_vertices = 0;
+  for (const auto& [name, count] : elements) {
+    if (name == "vertex") nv = count;
+    if (name == "face") nf = count;
+    if (name != "vertex") after_vertices += count;
+  }
+  const std::string generic = fmt::format(
+      "cannot be parsed as {} PLY: the body is truncated or does not match the header ({} vertices, {} faces)",
+      format, nv, nf);
+  const auto x = std::find(vertex_properties.begin(), vertex_properties.end(), "x");
+  if (format != "ascii" || elements.empty() || elements[0].first != "vertex" || vertex_properties.end() - x < 3 ||
+      x[1] != "y" || x[2] != "z")
+    return generic;
+  std::vector<std::string> tokens;
+  long long body_lines = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::istringstream words(line);
+    tokens.clear();
+    for (std::string w; words >> w;) tokens.push_back(w);
+    if (tokens.empty()) continue;
+    if (body_lines < nv) {
+      const std::size_t first = static_cast<std::size_t>(x - vertex_properties.begin());
+      if (std::string problem = check_vertex_tokens(tokens, first, body_lines, line_number); !problem.empty())
+        return problem;
+    }
+    ++body_lines;
+  }
+  if (body_lines < nv)
+    return fmt::format("is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
+                       "vertices",
+                       nv, nf, body_lines);
+  if (body_lines < nv + after_vertices)
+    return fmt::format("is truncated: the header declares {} vertices and {} faces, but the body has only {} "
+                       "lines after the vertices",
+                       nv, nf, body_lines - nv);
+  return generic;
+}
+
+std::string why_unreadable(const std::string& path, Format format) {
+  std::string reason;
+  if (format == Format::Off) reason = diagnose_off(path);
+  if (format == Format::Obj) reason = diagnose_obj(path);
+  if (format == Format::Ply) reason = diagnose_ply(path);
+  if (format == Format::Stl) reason = "cannot be parsed as ascii or binary STL: it is truncated or malformed";
+  if (reason.empty()) {
+    static const char* names[] = {"OFF", "OBJ", "PLY", "STL"};
+    reason = fmt::format("cannot be parsed as {} (CGAL's reader refused it)", names[int(format)]);
+  }
+  return reason;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading, checking and triangulating the soup.
+
+bool read_soup(const std::string& path, Format format, std::vector<Point>& points, std::vector<Polygon>& polygons) {
+  try {
+    switch (format) {
+      case Format::Off: return CGAL::IO::read_OFF(path, points, polygons);
+      case Format::Obj: return CGAL::IO::read_OBJ(path, points, polygons);
+      case Format::Ply: return CGAL::IO::read_PLY(path, points, polygons);
+      case Format::Stl: return CGAL::IO::read_STL(path, points, polygons);
+    }
+  } catch (const std::exception&) {
+  }
+  return false;
+}
+
+// What CGAL accepted but lrvd cannot use: no faces, non-finite coordinates, short faces, and
+// out-of-range indices (CGAL's PLY reader does not check them; its OBJ reader lets index n pass).
+void check_soup(const std::string& path, Format format, const std::vector<Point>& points,
+                const std::vector<Polygon>& polygons) {
+  if (polygons.empty())
+    fail(path, points.empty() ? "has no vertices and no faces" : fmt::format("has {} vertices but no faces", points.size()));
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    const double xyz[3] = {points[v].x(), points[v].y(), points[v].z()};
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      fail(path, non_finite_vertex(static_cast<long long>(v), xyz));
+  }
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    if (polygons[f].size() < 3)
+      fail(path, fmt::format("face {} has only {} vertices; a face needs at least 3", f, polygons[f].size()));
+    for (std::size_t index : polygons[f])
+      if (index >= points.size())
+        fail(path, fmt::format("face {} has vertex index {} out of range [0, {}){}", f,
+                               static_cast<std::ptrdiff_t>(index), points.size(),
+                               format == Format::Obj ? fmt::format(" (index {} in the file, which counts from 1)",
+                                                                   static_cast<std::ptrdiff_t>(index) + 1)
+                                                     : std::string()));
+  }
+}
+
+// Ear clipping in the coordinate plane most orthogonal to the polygon's Newell normal. The
+// projection only drops a coordinate, so CGAL's exact 2D orientation decides convexity and
+// containment exactly. Returns false when no ear exists (self-intersecting or degenerate
+// polygon); the remainder is then fanned and the validation reports what is wrong with it.
+bool triangulate_polygon(const std::vector<Point>& points, const Polygon& polygon, std::vector<SoupTriangle>& out) {
+  const std::size_t n = polygon.size();
+  double normal[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point& a = points[polygon[i]];
+    const Point& b = points[polygon[(i + 1) % n]];
+    normal[0] += (a.y() - b.y()) * (a.z() + b.z());
+    normal[1] += (a.z() - b.z()) * (a.x() + b.x());
+    normal[2] += (a.x() - b.x()) * (a.y() + b.y());
+  }
+  int axis = 0;
+  for (int c = 1; c < 3; ++c)
+    if (std::abs(normal[c]) > std::abs(normal[axis])) axis = c;
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+  const CGAL::Orientation convex = normal[axis] >= 0 ? CGAL::LEFT_TURN : CGAL::RIGHT_TURN;
+  const CGAL::Orientation reflex = CGAL::opposite(convex);
+  std::vector<Kernel::Point_2> q(n);
+  for (std::size_t i = 0; i < n; ++i) q[i] = Kernel::Point_2(points[polygon[i]][u], points[polygon[i]][w]);
+  const auto orient = [&](std::size_t a, std::size_t b, std::size_t c) { return CGAL::orientation(q[a], q[b], q[c]); };
+
+  // The remaining polygon as a doubly linked ring over local positions.
+  std::vector<std::size_t> next(n), prev(n);
+  for (std::size_t i = 0; i < n; ++i) next[i] = (i + 1) % n, prev[i] = (i + n - 1) % n;
+  std::size_t remaining = n, b = 0, misses = 0;
+  while (remaining > 3 && misses < remaining) {
+    const std::size_t a = prev[b], c = next[b];
+    bool ear = orient(a, b, c) == convex;
+    for (std::size_t r = next[c]; ear && r != a; r = next[r]) {
+      if (q[r] == q[a] || q[r] == q[b] || q[r] == q[c]) continue;
+      if (orient(a, b, r) != reflex && orient(b, c, r) != reflex && orient(c, a, r) != reflex) ear = false;
+    }
+    if (ear) {
+      out.push_back({polygon[a], polygon[b], polygon[c]});
+      next[a] = c, prev[c] = a;
+      --remaining;
+      b = a, misses = 0;
+    } else {
+      b = c, ++misses;
+    }
+  }
+  const bool clipped = remaining == 3;
+  for (std::size_t r = next[b]; next[r] != b; r = next[r]) out.push_back({polygon[b], polygon[r], polygon[next[r]]});
+  return clipped;
+}
+
+std::vector<SoupTriangle> triangulate(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
+                                      RepairReport& report) {
+  std::vector<SoupTriangle> triangles;
+  triangles.reserve(polygons.size());
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    const Polygon& polygon = polygons[f];
+    if (polygon.size() == 3) {
+      triangles.push_back({polygon[0], polygon[1], polygon[2]});
+      continue;
+    }
+    ++report.triangulated_faces;
+    if (!triangulate_polygon(points, polygon, triangles))
+      report.notes.push_back(fmt::format("face {} ({} vertices) is self-intersecting or degenerate; it was fanned",
+                                         f, polygon.size()));
+  }
+  return triangles;
+}
+
+// Drops vertices no triangle uses; `original` maps new indices to the old ones.
+int drop_unreferenced(std::vector<Vec3>& positions, std::vector<Triangle>& triangles, std::vector<int>& original) {
+  std::vector<int> new_index(positions.size(), -1);
+  for (const Triangle& t : triangles)
+    for (int v : t) new_index[v] = 0;
+  original.clear();
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    if (new_index[v] == 0) {
+      new_index[v] = static_cast<int>(original.size());
+      positions[original.size()] = positions[v];
+      original.push_back(static_cast<int>(v));
+    }
+  const int dropped = static_cast<int>(positions.size() - original.size());
+  positions.resize(original.size());
+  for (Triangle& t : triangles)
+    for (int& v : t) v = new_index[v];
+  return dropped;
+}
+
+// An unwelded soup: two vertices with identical coordinates, both on boundary edges, i.e. a seam
+// that welding would close. (Closed meshes touching themselves at a point are not refused.)
+void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& positions,
+                          const std::vector<Triangle>& triangles, const std::vector<int>& original) {
+  std::unordered_map<uint64_t, int> edge_uses;
+  edge_uses.reserve(triangles.size() * 2);
+  const auto key = [](int a, int b) {
+    return (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint32_t>(std::max(a, b));
+  };
+  for (const Triangle& t : triangles)
+    for (int e = 0; e < 3; ++e) ++edge_uses[key(t[e], t[(e + 1) % 3])];
+  std::vector<char> on_boundary(positions.size(), 0);
+  for (const Triangle& t : triangles)
+    for (int e = 0; e < 3; ++e)
+      if (edge_uses[key(t[e], t[(e + 1) % 3])] == 1) on_boundary[t[e]] = on_boundary[t[(e + 1) % 3]] = 1;
+  std::vector<int> order;
+  for (int v = 0; v < static_cast<int>(positions.size()); ++v)
+    if (on_boundary[v]) order.push_back(v);
+  const auto less = [&](int a, int b) {
+    const Vec3 &p = positions[a], &q = positions[b];
+    return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+  };
+  std::sort(order.begin(), order.end(), less);
+  int coincident = 0, first_a = -1, first_b = -1;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const bool same_as_prev = i > 0 && positions[order[i]] == positions[order[i - 1]];
+    const bool same_as_next = i + 1 < order.size() && positions[order[i]] == positions[order[i + 1]];
+    if (same_as_prev || same_as_next) ++coincident;
+    if (same_as_next && (first_a < 0 || original[order[i]] < first_a))
+      first_a = original[order[i]], first_b = original[order[i + 1]];
+  }
+  if (coincident > 0)
+    fail(path, fmt::format("looks like a triangle soup: vertices {} and {} coincide but are not shared ({} boundary "
+                           "vertices have a twin); rerun with --repair to weld them",
+                           first_a, first_b, coincident));
+}
+
+SurfaceMesh validated_mesh(const std::string& path, std::vector<Vec3> positions, std::vector<Triangle> triangles,
+                           const std::string& numbering_note, bool repaired) {
+  try {
+    return SurfaceMesh(std::move(positions), std::move(triangles));
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const bool repairable = what.find("not manifold") != std::string::npos ||
+                            what.find("inconsistent orientation") != std::string::npos ||
+                            what.find("degenerate") != std::string::npos || what.find("zero area") != std::string::npos ||
+                            what.find("duplicates") != std::string::npos;
+    if (repaired) fail(path, "is still invalid after --repair: " + what + numbering_note);
+    fail(path, what + numbering_note + (repairable ? "; --repair may fix it" : ""));
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Repair (CGAL PMP on the soup).
+
+// Records which polygons orient_polygon_soup reversed and how many vertices it duplicated.
+// (CGAL copies the visitor, hence the pointers; it must derive from the default one.)
+struct OrientationRecorder : PMP::Default_orientation_visitor {
+  OrientationRecorder(std::vector<char>* reversed, int* duplicated) : reversed(reversed), duplicated(duplicated) {}
+  void duplicated_vertex(std::size_t, std::size_t) { ++*duplicated; }
+  void polygon_orientation_reversed(std::size_t p) { (*reversed)[p] ^= 1; }
+  std::vector<char>* reversed;
+  int* duplicated;
+};
+
+struct RepairedSoup {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<char> reversed;  // per triangle: reversed by the orientation step
+};
+
+RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
+                         RepairReport& report) {
+  report.merged_vertices = static_cast<int>(PMP::merge_duplicate_points_in_polygon_soup(points, polygons));
+  // Welding can repeat a vertex inside a polygon: drop consecutive repeats and what collapses.
+  std::vector<Polygon> simple;
+  simple.reserve(polygons.size());
+  for (Polygon& polygon : polygons) {
+    Polygon kept;
+    for (std::size_t i = 0; i < polygon.size(); ++i)
+      if (polygon[i] != polygon[(i + 1) % polygon.size()]) kept.push_back(polygon[i]);
+    if (kept.size() >= 3) simple.push_back(std::move(kept));
+    else ++report.removed_degenerate_faces;
+  }
+  std::vector<SoupTriangle> triangles = triangulate(points, simple, report);
+  const auto degenerate = [&](const SoupTriangle& t) {
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || CGAL::collinear(points[t[0]], points[t[1]], points[t[2]]);
+  };
+  const std::size_t before = triangles.size();
+  triangles.erase(std::remove_if(triangles.begin(), triangles.end(), degenerate), triangles.end());
+  report.removed_degenerate_faces += static_cast<int>(before - triangles.size());
+  if (triangles.empty()) fail(path, "has no faces left after --repair removed the degenerate ones");
+  report.removed_duplicate_faces = static_cast<int>(PMP::merge_duplicate_polygons_in_polygon_soup(points, triangles));
+
+  RepairedSoup out;
+  out.reversed.assign(triangles.size(), 0);
+  OrientationRecorder recorder(&out.reversed, &report.duplicated_nonmanifold_vertices);
+  PMP::orient_polygon_soup(points, triangles, CGAL::parameters::visitor(recorder));
+  if (report.duplicated_nonmanifold_vertices > 0)
+    report.notes.push_back(fmt::format("duplicated {} vertices to cut non-manifold edges or vertices apart",
+                                       report.duplicated_nonmanifold_vertices));
+  if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
+    fail(path, "is still invalid after --repair: the oriented soup is not a polygon mesh");
+
+  CGAL::Surface_mesh<Point> mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);  // face f is triangles[f]
+  report.stitched_edges = static_cast<int>(PMP::stitch_borders(mesh));
+  mesh.collect_garbage();
+  out.positions.reserve(mesh.number_of_vertices());
+  for (auto v : mesh.vertices()) {
+    const Point& p = mesh.point(v);
+    out.positions.push_back({p.x(), p.y(), p.z()});
+  }
+  for (auto f : mesh.faces()) {
+    Triangle t{};
+    int c = 0;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[c++] = static_cast<int>(v.idx());
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+// orient_polygon_soup keeps the orientation of an arbitrary seed face; keep instead that of the
+// majority of each component's faces, so one flipped face is the one reported and reversed.
+void keep_majority_orientation(SurfaceMesh& mesh, std::vector<char>& reversed, RepairReport& report) {
+  std::vector<int> flipped(mesh.component_count(), 0), size(mesh.component_count(), 0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    ++size[mesh.triangle_components()[t]];
+    flipped[mesh.triangle_components()[t]] += reversed[t];
+  }
+  bool any = false;
+  for (int c = 0; c < mesh.component_count(); ++c) any |= 2 * flipped[c] > size[c];
+  if (any) {
+    std::vector<Triangle> triangles = mesh.triangles();
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const int c = mesh.triangle_components()[t];
+      if (2 * flipped[c] > size[c]) {
+        std::swap(triangles[t][1], triangles[t][2]);
+        reversed[t] ^= 1;
+      }
+    }
+    mesh = SurfaceMesh(mesh.positions(), std::move(triangles));
+  }
+  report.reoriented_faces = static_cast<int>(std::count(reversed.begin(), reversed.end(), 1));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Writing.
+
+class OutputFile {
+ public:
+  explicit OutputFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+    if (!file_) fail(path, fmt::format("cannot be opened for writing ({})", std::strerror(errno)));
+  }
+  ~OutputFile() {
+    if (file_) std::fclose(file_);
+  }
+  void write(const fmt::memory_buffer& buffer) {
+    if (std::fwrite(buffer.data(), 1, buffer.size(), file_) != buffer.size()) fail(path_, "write failed");
+  }
+  void close() {
+    const bool ok = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!ok) fail(path_, "write failed");
+  }
+
+ private:
+  std::string path_;
+  std::FILE* file_;
+};
+
+void put_le(fmt::memory_buffer& out, uint64_t bits, int bytes) {
+  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xff));
+}
+void put_double(fmt::memory_buffer& out, double value) {
+  uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  put_le(out, bits, 8);
+}
+void put_int(fmt::memory_buffer& out, int value) { put_le(out, static_cast<uint32_t>(value), 4); }
+
+void check_indices(const std::vector<int>& face, std::size_t vertex_count, std::size_t f) {
+  for (int v : face)
+    if (v < 0 || static_cast<std::size_t>(v) >= vertex_count)
+      throw std::invalid_argument(fmt::format("face {} has vertex index {} out of range [0, {})", f, v, vertex_count));
+}
+
+}  // namespace
+
+bool RepairReport::changed() const {
+  return merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
+         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
+}
+
+LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
+  check_readable(path);
+  const Format format = input_format(path);
+  std::vector<Point> points;
+  std::vector<Polygon> polygons;
+  if (!read_soup(path, format, points, polygons)) fail(path, why_unreadable(path, format));
+  check_soup(path, format, points, polygons);
+
+  LoadedMesh loaded;
+  RepairReport& report = loaded.repair;
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<char> reversed;
+  if (options.repair) {
+    RepairedSoup repaired = repair_soup(path, std::move(points), std::move(polygons), report);
+    positions = std::move(repaired.positions);
+    triangles = std::move(repaired.triangles);
+    reversed = std::move(repaired.reversed);
+  } else {
+    for (const SoupTriangle& t : triangulate(points, polygons, report))
+      triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+    positions.reserve(points.size());
+    for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
+  }
+  std::vector<int> original;
+  report.removed_unreferenced_vertices = drop_unreferenced(positions, triangles, original);
+
+  std::string numbering_note;
+  if (!options.repair && (report.triangulated_faces > 0 || report.removed_unreferenced_vertices > 0))
+    numbering_note = fmt::format(" (numbering after triangulating {} polygons and dropping {} unreferenced vertices)",
+                                 report.triangulated_faces, report.removed_unreferenced_vertices);
+  if (!options.repair) refuse_triangle_soup(path, positions, triangles, original);
+  loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
+  if (options.repair) {
+    keep_majority_orientation(loaded.mesh, reversed, report);
+    if (!loaded.mesh.is_closed())
+      report.notes.push_back(fmt::format("the repaired mesh has {} boundary loops", loaded.mesh.boundary_loops().size()));
+  }
+  return loaded;
+}
+
+void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
+                const std::vector<std::array<int, 3>>& triangles) {
+  const std::string ext = lowercase_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".ply")
+    fail(path, fmt::format("cannot write meshes with extension '{}'; use .off, .obj or .ply", ext));
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    check_indices({triangles[t].begin(), triangles[t].end()}, positions.size(), t);
+  OutputFile file(path);
+  fmt::memory_buffer out;
+  if (ext == ".off") {
+    fmt::format_to(std::back_inserter(out), "OFF\n{} {} 0\n", positions.size(), triangles.size());
+    for (const Vec3& p : positions) fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+    for (const auto& t : triangles) fmt::format_to(std::back_inserter(out), "3 {} {} {}\n", t[0], t[1], t[2]);
+  } else if (ext == ".obj") {
+    fmt::format_to(std::back_inserter(out), "# written by lrvd\n");
+    for (const Vec3& p : positions) fmt::format_to(std::back_inserter(out), "v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+    for (const auto& t : triangles) fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  } else {
+    fmt::format_to(std::back_inserter(out),
+                   "ply\nformat binary_little_endian 1.0\ncomment written by lrvd\nelement vertex {}\n"
+                   "property double x\nproperty double y\nproperty double z\nelement face {}\n"
+                   "property list uchar int vertex_indices\nend_header\n",
+                   positions.size(), triangles.size());
+    for (const Vec3& p : positions)
+      for (int c = 0; c < 3; ++c) put_double(out, p[c]);
+    for (const auto& t : triangles) {
+      out.push_back(3);
+      for (int v : t) put_int(out, v);
+    }
+  }
+  file.write(out);
+  file.close();
+}
+
+void write_mesh(const std::string& path, const SurfaceMesh& mesh) {
+  write_mesh(path, mesh.positions(), mesh.triangles());
+}
+
+void write_cells_ply(const std::string& path, const PolygonMesh& mesh) {
+  const std::size_t nf = mesh.faces.size();
+  const bool cells = !mesh.face_cell.empty(), colors = !mesh.face_color.empty();
+  if ((cells && mesh.face_cell.size() != nf) || (colors && mesh.face_color.size() != nf))
+    throw std::invalid_argument("write_cells_ply: face_cell and face_color need 0 or one entry per face");
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (mesh.faces[f].size() > 255) throw std::invalid_argument(fmt::format("face {} has more than 255 vertices", f));
+    check_indices(mesh.faces[f], mesh.positions.size(), f);
+  }
+  OutputFile file(path);
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "ply\nformat binary_little_endian 1.0\ncomment Voronoi cells written by lrvd\nelement vertex {}\n"
+                 "property double x\nproperty double y\nproperty double z\nelement face {}\n"
+                 "property list uchar int vertex_indices\n{}{}end_header\n",
+                 mesh.positions.size(), nf, cells ? "property int cell\n" : "",
+                 colors ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "");
+  for (const Vec3& p : mesh.positions)
+    for (int c = 0; c < 3; ++c) put_double(out, p[c]);
+  for (std::size_t f = 0; f < nf; ++f) {
+    out.push_back(static_cast<char>(mesh.faces[f].size()));
+    for (int v : mesh.faces[f]) put_int(out, v);
+    if (cells) put_int(out, mesh.face_cell[f]);
+    if (colors)
+      for (unsigned char c : mesh.face_color[f]) out.push_back(static_cast<char>(c));
+  }
+  file.write(out);
+  file.close();
+}
+
+}  // namespace lrvd

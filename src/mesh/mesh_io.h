@@ -1,0 +1,68 @@
+// Mesh files in and out: reading OFF/OBJ/PLY/STL through CGAL's IO into a validated SurfaceMesh
+// (with optional CGAL polygon-soup repair), and writing meshes and Voronoi-cell polygons.
+// What is checked, the error messages and what repair does: docs/input.md.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace lrvd {
+
+struct ReadOptions {
+  bool repair = false;  //!< weld, clean, orient and stitch the polygon soup (CGAL PMP) before validation
+};
+
+//! What reading changed between the file and the returned mesh. Indices in the notes are 0-based.
+struct RepairReport {
+  int merged_vertices = 0;                  //!< vertices welded into an earlier one with identical coordinates
+  int removed_degenerate_faces = 0;         //!< zero-area faces (exact test) and faces repeating a vertex
+  int removed_duplicate_faces = 0;          //!< faces on the same vertices as an earlier face, any orientation
+  int removed_unreferenced_vertices = 0;    //!< vertices no face uses (dropped even without repair)
+  int reoriented_faces = 0;                 //!< faces reversed to orient their component consistently
+  int duplicated_nonmanifold_vertices = 0;  //!< vertices copied to cut non-manifold edges / vertices apart
+  int stitched_edges = 0;                   //!< pairs of coincident boundary edges glued together
+  int triangulated_faces = 0;               //!< polygons with more than 3 vertices split into triangles
+  std::vector<std::string> notes;           //!< one human-readable line per change worth knowing
+  bool changed() const;
+};
+
+struct LoadedMesh {
+  SurfaceMesh mesh;
+  RepairReport repair;
+};
+
+//! Reads OFF, OBJ, PLY (ascii or binary) or STL (ascii or binary), chosen by the extension
+//! (any letter case). Polygons are triangulated (ear clipping with exact orientation tests);
+//! unreferenced vertices are dropped. With options.repair the soup is welded, cleaned, oriented
+//! and stitched first (see docs/input.md).
+//! \throw InputError "<path>: <reason>" for a missing/unreadable file, an unknown extension, an
+//!        empty, truncated or unparsable file, non-finite coordinates, out-of-range indices, an
+//!        unwelded triangle soup (suggests --repair), and every SurfaceMesh precondition.
+LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
+
+//! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
+//! (binary little-endian, double coordinates), chosen by the extension.
+//! \throw InputError on an unknown extension or a path that cannot be written.
+void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
+                const std::vector<std::array<int, 3>>& triangles);
+void write_mesh(const std::string& path, const SurfaceMesh& mesh);
+
+//! Polygons with a cell label and a colour per face: the Voronoi cells clipped to the mesh.
+struct PolygonMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::vector<int>> faces;
+  std::vector<int> face_cell;                           //!< empty, or one cell index per face
+  std::vector<std::array<unsigned char, 3>> face_color;  //!< empty, or one colour per face
+};
+
+//! Writes binary little-endian PLY: vertex (double x, y, z); face (list uchar int vertex_indices,
+//! int cell, uchar red, green, blue) — cell / colour properties only when given.
+//! \throw InputError when the path cannot be written; std::invalid_argument when face_cell or
+//!        face_color has neither 0 nor faces.size() entries, a face has more than 255 vertices
+//!        or an index is out of range.
+void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
+
+}  // namespace lrvd

@@ -1,0 +1,256 @@
+// SurfaceMesh construction: validation of the manifold preconditions and the adjacency build.
+#include "mesh/surface_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "predicates/predicates.h"
+
+namespace lrvd {
+
+namespace {
+
+uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
+}
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+}  // namespace
+
+double BoundingBox::diagonal() const { return distance(min, max); }
+
+SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles)
+    : positions_(std::move(positions)), triangles_(std::move(triangles)) {
+  if (positions_.empty() || triangles_.empty()) throw InputError("mesh is empty: it has no triangles");
+  for (int v = 0; v < vertex_count(); ++v) {
+    const Vec3& p = positions_[v];
+    if (!is_finite(p))
+      throw InputError(fmt::format("vertex {} has a non-finite coordinate ({}, {}, {})", v, p.x, p.y, p.z));
+  }
+  std::vector<char> referenced(positions_.size(), 0);
+  for (int t = 0; t < triangle_count(); ++t) {
+    const Triangle& tri = triangles_[t];
+    for (int c = 0; c < 3; ++c) {
+      if (tri[c] < 0 || tri[c] >= vertex_count())
+        throw InputError(fmt::format("triangle {} has vertex index {} out of range [0, {})", t, tri[c],
+                                     vertex_count()));
+      referenced[tri[c]] = 1;
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      throw InputError(fmt::format("triangle {} is degenerate: it repeats a vertex ({}, {}, {})", t, tri[0],
+                                   tri[1], tri[2]));
+    if (predicates::collinear(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]))
+      throw InputError(fmt::format("triangle {} ({}, {}, {}) has zero area", t, tri[0], tri[1], tri[2]));
+  }
+  for (int v = 0; v < vertex_count(); ++v)
+    if (!referenced[v]) throw InputError(fmt::format("vertex {} is not used by any triangle", v));
+  build_topology();
+}
+
+void SurfaceMesh::build_topology() {
+  const int nt = triangle_count(), nv = vertex_count();
+
+  // Duplicate triangles: same vertex set, in any order.
+  {
+    std::vector<std::pair<std::array<int, 3>, int>> sorted(nt);
+    for (int t = 0; t < nt; ++t) {
+      std::array<int, 3> s = triangles_[t];
+      std::sort(s.begin(), s.end());
+      sorted[t] = {s, t};
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (int k = 1; k < nt; ++k)
+      if (sorted[k].first == sorted[k - 1].first)
+        throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})",
+                                     std::min(sorted[k - 1].second, sorted[k].second),
+                                     std::max(sorted[k - 1].second, sorted[k].second), sorted[k].first[0],
+                                     sorted[k].first[1], sorted[k].first[2]));
+  }
+
+  // Edges: at most two triangles each, in opposite directions.
+  neighbors_.assign(nt, {-1, -1, -1});
+  std::unordered_map<uint64_t, std::array<int, 2>> edge_slot;  // (t*3+e) of the first two users
+  edge_slot.reserve(static_cast<size_t>(nt) * 2);
+  for (int t = 0; t < nt; ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles_[t][e], b = triangles_[t][(e + 1) % 3];
+      auto [it, fresh] = edge_slot.try_emplace(edge_key(a, b), std::array<int, 2>{t * 3 + e, -1});
+      if (fresh) continue;
+      auto& slot = it->second;
+      if (slot[1] >= 0)
+        throw InputError(fmt::format("mesh is not manifold: edge ({}, {}) has 3 or more triangles ({}, {}, {})",
+                                     std::min(a, b), std::max(a, b), slot[0] / 3, slot[1] / 3, t));
+      const int t0 = slot[0] / 3, e0 = slot[0] % 3;
+      if (triangles_[t0][e0] == a)
+        throw InputError(fmt::format(
+            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction",
+            t0, t, a, b));
+      slot[1] = t * 3 + e;
+      neighbors_[t][e] = t0;
+      neighbors_[t0][e0] = t;
+    }
+  }
+  edge_count_ = static_cast<int>(edge_slot.size());
+
+  // Vertex-to-triangle lists (CSR).
+  vt_offsets_.assign(nv + 1, 0);
+  for (const Triangle& tri : triangles_)
+    for (int v : tri) ++vt_offsets_[v + 1];
+  std::partial_sum(vt_offsets_.begin(), vt_offsets_.end(), vt_offsets_.begin());
+  vt_triangles_.resize(vt_offsets_[nv]);
+  {
+    std::vector<int> fill(vt_offsets_.begin(), vt_offsets_.end() - 1);
+    for (int t = 0; t < nt; ++t)
+      for (int v : triangles_[t]) vt_triangles_[fill[v]++] = t;
+  }
+
+  // Manifold vertices: the triangles around v form a single fan (edge-connected through v).
+  {
+    std::vector<int> parent;
+    for (int v = 0; v < nv; ++v) {
+      const int* begin = vertex_triangles_begin(v);
+      const int count = vertex_triangle_count(v);
+      parent.resize(count);
+      std::iota(parent.begin(), parent.end(), 0);
+      int groups = count;
+      for (int a = 0; a < count; ++a) {
+        const int t = begin[a];
+        for (int e = 0; e < 3; ++e) {
+          const Triangle& tri = triangles_[t];
+          if (tri[e] != v && tri[(e + 1) % 3] != v) continue;
+          const int across = neighbors_[t][e];
+          if (across < 0) continue;
+          const int b = static_cast<int>(std::find(begin, begin + count, across) - begin);
+          const int ra = find_root(parent, a), rb = find_root(parent, b);
+          if (ra != rb) { parent[ra] = rb; --groups; }
+        }
+      }
+      if (groups > 1)
+        throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v,
+                                     groups));
+    }
+  }
+
+  // Connected components over triangle adjacency.
+  component_of_triangle_.assign(nt, -1);
+  component_count_ = 0;
+  std::vector<int> stack;
+  for (int seed = 0; seed < nt; ++seed) {
+    if (component_of_triangle_[seed] >= 0) continue;
+    const int c = component_count_++;
+    component_of_triangle_[seed] = c;
+    stack.push_back(seed);
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const int n = neighbors_[t][e];
+        if (n >= 0 && component_of_triangle_[n] < 0) {
+          component_of_triangle_[n] = c;
+          stack.push_back(n);
+        }
+      }
+    }
+  }
+
+  // Boundary loops: each boundary vertex of a manifold mesh has one outgoing boundary edge.
+  boundary_loops_.clear();
+  std::unordered_map<int, int> next_on_boundary;
+  for (int t = 0; t < nt; ++t)
+    for (int e = 0; e < 3; ++e)
+      if (neighbors_[t][e] < 0) next_on_boundary[triangles_[t][e]] = triangles_[t][(e + 1) % 3];
+  std::vector<int> starts;
+  for (const auto& kv : next_on_boundary) starts.push_back(kv.first);
+  std::sort(starts.begin(), starts.end());
+  std::unordered_map<int, char> visited;
+  for (int start : starts) {
+    if (visited.count(start)) continue;
+    std::vector<int> loop;
+    for (int v = start; !visited.count(v); v = next_on_boundary.at(v)) {
+      visited[v] = 1;
+      loop.push_back(v);
+    }
+    boundary_loops_.push_back(std::move(loop));
+  }
+}
+
+int SurfaceMesh::neighbor_edge(int t, int e) const {
+  const int across = neighbors_[t][e];
+  const int a = triangles_[t][e];
+  for (int f = 0; f < 3; ++f)
+    if (triangles_[across][(f + 1) % 3] == a) return f;
+  return -1;
+}
+
+std::vector<int> SurfaceMesh::vertex_neighbors(int v) const {
+  std::vector<int> out;
+  for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t)
+    for (int u : triangles_[*t])
+      if (u != v) out.push_back(u);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+int SurfaceMesh::euler_characteristic() const { return vertex_count() - edge_count_ + triangle_count(); }
+
+std::vector<int> SurfaceMesh::component_euler_characteristics() const {
+  std::vector<int> chi(component_count_, 0);
+  for (int v = 0; v < vertex_count(); ++v) ++chi[vertex_component(v)];
+  for (int t = 0; t < triangle_count(); ++t) {
+    const int c = component_of_triangle_[t];
+    ++chi[c];
+    for (int e = 0; e < 3; ++e)  // count each edge once: from its lower triangle, or alone on the boundary
+      if (neighbors_[t][e] < 0 || neighbors_[t][e] > t) --chi[c];
+  }
+  return chi;
+}
+
+double SurfaceMesh::triangle_area(int t) const {
+  const Triangle& tri = triangles_[t];
+  const Vec3& a = positions_[tri[0]];
+  return 0.5 * norm(cross(positions_[tri[1]] - a, positions_[tri[2]] - a));
+}
+
+double SurfaceMesh::area() const {
+  double sum = 0;
+  for (int t = 0; t < triangle_count(); ++t) sum += triangle_area(t);
+  return sum;
+}
+
+Vec3 SurfaceMesh::triangle_normal(int t) const {
+  const Triangle& tri = triangles_[t];
+  const Vec3& a = positions_[tri[0]];
+  const Vec3 n = cross(positions_[tri[1]] - a, positions_[tri[2]] - a);
+  return n / norm(n);
+}
+
+BoundingBox SurfaceMesh::bounding_box() const {
+  BoundingBox box{positions_.front(), positions_.front()};
+  for (const Vec3& p : positions_)
+    for (int c = 0; c < 3; ++c) {
+      box.min[c] = std::min(box.min[c], p[c]);
+      box.max[c] = std::max(box.max[c], p[c]);
+    }
+  return box;
+}
+
+double SurfaceMesh::max_edge_length() const {
+  double longest = 0;
+  for (const Triangle& tri : triangles_)
+    for (int e = 0; e < 3; ++e)
+      longest = std::max(longest, distance(positions_[tri[e]], positions_[tri[(e + 1) % 3]]));
+  return longest;
+}
+
+}  // namespace lrvd

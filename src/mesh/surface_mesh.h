@@ -1,0 +1,89 @@
+// SurfaceMesh: an indexed, validated, manifold triangle mesh with the adjacency the diagrams walk
+// (triangle-triangle across each edge, vertex-to-triangle lists, boundary loops, components).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "predicates/vec3.h"
+
+namespace lrvd {
+
+using Triangle = std::array<int, 3>;
+
+struct BoundingBox {
+  Vec3 min, max;
+  double diagonal() const;
+};
+
+//! An oriented 2-manifold triangle mesh, with or without boundary.
+//! Edge e of triangle t joins corners e and (e+1)%3; neighbor(t, e) is the triangle across it.
+//! \pre (checked by the constructor) finite coordinates, indices in range, no zero-area or
+//!      duplicate triangles, every edge in at most two triangles with opposite directions,
+//!      every vertex's triangles form one fan, no unreferenced vertices.
+//! \throw InputError naming the first offending element when a precondition fails.
+class SurfaceMesh {
+ public:
+  SurfaceMesh() = default;
+  SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles);
+
+  int vertex_count() const { return static_cast<int>(positions_.size()); }
+  int triangle_count() const { return static_cast<int>(triangles_.size()); }
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }
+  const Vec3& position(int v) const { return positions_[v]; }
+  const Triangle& triangle(int t) const { return triangles_[t]; }
+
+  //! Triangle across edge e of t, or -1 on the boundary.
+  int neighbor(int t, int e) const { return neighbors_[t][e]; }
+  //! Which edge of triangle `across` is the edge e of t (valid only when neighbor(t,e) >= 0).
+  int neighbor_edge(int t, int e) const;
+  //! Triangles incident to vertex v.
+  const int* vertex_triangles_begin(int v) const { return vt_triangles_.data() + vt_offsets_[v]; }
+  const int* vertex_triangles_end(int v) const { return vt_triangles_.data() + vt_offsets_[v + 1]; }
+  int vertex_triangle_count(int v) const { return vt_offsets_[v + 1] - vt_offsets_[v]; }
+  //! Vertices joined to v by an edge.
+  std::vector<int> vertex_neighbors(int v) const;
+
+  //! Connected component of each triangle (0-based, by first triangle index) and their count.
+  const std::vector<int>& triangle_components() const { return component_of_triangle_; }
+  int component_count() const { return component_count_; }
+  //! Component of a vertex (of any of its triangles).
+  int vertex_component(int v) const { return component_of_triangle_[vt_triangles_[vt_offsets_[v]]]; }
+
+  //! Boundary loops, each a closed list of vertices in the direction of their triangles' edges.
+  const std::vector<std::vector<int>>& boundary_loops() const { return boundary_loops_; }
+  bool is_closed() const { return boundary_loops_.empty(); }
+
+  int edge_count() const { return edge_count_; }
+  //! Euler characteristic V - E + F of the whole mesh / of each component.
+  int euler_characteristic() const;
+  std::vector<int> component_euler_characteristics() const;
+
+  double triangle_area(int t) const;
+  double area() const;
+  Vec3 triangle_normal(int t) const;  // unit normal
+  BoundingBox bounding_box() const;
+  double max_edge_length() const;
+
+ private:
+  void build_topology();
+
+  std::vector<Vec3> positions_;
+  std::vector<Triangle> triangles_;
+  std::vector<std::array<int, 3>> neighbors_;
+  std::vector<int> vt_offsets_, vt_triangles_;
+  std::vector<int> component_of_triangle_;
+  int component_count_ = 0;
+  int edge_count_ = 0;
+  std::vector<std::vector<int>> boundary_loops_;
+};
+
+//! Splits every edge longer than max_length (both triangles beside it, 1-to-2 splits at the
+//! midpoint, longest edges first) until no edge is longer (paper §4.2). The surface is unchanged.
+//! \pre max_length > 0.
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length);
+
+}  // namespace lrvd

@@ -1,0 +1,115 @@
+// Diagram helpers: kinds, sites, cell integrals for CVT and cell connected components.
+#include "voronoi/diagram.h"
+
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/surface_mesh.h"
+
+namespace lrvd {
+
+std::string to_string(DiagramKind kind) {
+  switch (kind) {
+    case DiagramKind::Lrvd: return "lrvd";
+    case DiagramKind::Rvd: return "rvd";
+    case DiagramKind::Lrpd: return "lrpd";
+    case DiagramKind::Rpd: return "rpd";
+  }
+  return "?";
+}
+
+DiagramKind diagram_kind_from_string(const std::string& name) {
+  for (DiagramKind k : {DiagramKind::Lrvd, DiagramKind::Rvd, DiagramKind::Lrpd, DiagramKind::Rpd})
+    if (to_string(k) == name) return k;
+  throw InputError(fmt::format("unknown diagram '{}': use lrvd, rvd, lrpd or rpd", name));
+}
+
+bool is_localized(DiagramKind kind) { return kind == DiagramKind::Lrvd || kind == DiagramKind::Lrpd; }
+bool is_power(DiagramKind kind) { return kind == DiagramKind::Lrpd || kind == DiagramKind::Rpd; }
+
+SymbolicContext Diagram::context(const SurfaceMesh& mesh) const {
+  return SymbolicContext{mesh.positions().data(), sites.data()};
+}
+
+std::vector<Site> make_sites(const Samples& samples, bool weighted) {
+  std::vector<Site> sites(samples.size());
+  for (int i = 0; i < samples.size(); ++i) sites[i] = Site{samples.positions[i], weighted ? samples.weight(i) : 0.0, i};
+  return sites;
+}
+
+CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples) {
+  const int n = diagram.sample_count;
+  CellIntegrals out;
+  out.area.assign(n, 0);
+  out.centroid.assign(n, Vec3{});
+  out.energy.assign(n, 0);
+  const SymbolicContext ctx = diagram.context(mesh);
+  std::vector<Vec3> points;
+  for (const CellPolygon& poly : diagram.polygons) {
+    const int i = poly.cell;
+    const Vec3& x = samples.positions[i];
+    points.clear();
+    const SymbolicVertex* verts = diagram.polygon_vertices(poly);
+    for (int a = 0; a < poly.vertex_count; ++a) points.push_back(position(verts[a], ctx) - x);
+    // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
+    for (int a = 1; a + 1 < poly.vertex_count; ++a) {
+      const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
+      const double area = 0.5 * norm(cross(v - u, w - u));
+      out.area[i] += area;
+      out.centroid[i] += area * (u + v + w) / 3.0;
+      out.energy[i] += area / 6.0 *
+                       (dot(u, u) + dot(v, v) + dot(w, w) + dot(u, v) + dot(v, w) + dot(u, w));
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    out.centroid[i] = out.area[i] > 0 ? samples.positions[i] + out.centroid[i] / out.area[i] : samples.positions[i];
+    out.total_energy += out.energy[i];
+  }
+  return out;
+}
+
+namespace {
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+}  // namespace
+
+CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
+  const int np = static_cast<int>(diagram.polygons.size());
+  std::vector<int> parent(np);
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int p = 0; p < np; ++p) {
+    const CellPolygon& poly = diagram.polygons[p];
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    const SymbolicVertex* verts = diagram.polygon_vertices(poly);
+    for (int e = 0; e < 3; ++e) {
+      const int across = mesh.neighbor(poly.triangle, e);
+      if (across < 0) continue;
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      bool segment = false;  // two consecutive polygon vertices on edge (a, b)
+      for (int k = 0; k < poly.vertex_count && !segment; ++k)
+        segment = verts[k].on_mesh_edge(a, b) && verts[(k + 1) % poly.vertex_count].on_mesh_edge(a, b);
+      if (!segment) continue;
+      for (int q = diagram.triangle_offsets[across]; q < diagram.triangle_offsets[across + 1]; ++q)
+        if (diagram.polygons[q].cell == poly.cell) {
+          const int ra = find_root(parent, p), rb = find_root(parent, q);
+          if (ra != rb) parent[ra] = rb;
+        }
+    }
+  }
+  CellComponents out;
+  out.polygon_component.assign(np, -1);
+  out.count.assign(diagram.sample_count, 0);
+  std::vector<int> root_component(np, -1);
+  for (int p = 0; p < np; ++p) {
+    const int r = find_root(parent, p);
+    if (root_component[r] < 0) root_component[r] = out.count[diagram.polygons[p].cell]++;
+    out.polygon_component[p] = root_component[r];
+  }
+  return out;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,79 @@
+// Diagram: the output of every diagram computation (LRVD, RVD, LRPD, RPD): per-triangle convex
+// polygons with symbolic vertices and a cell label, plus the cell integrals CVT needs (paper §3, §4.1).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "predicates/symbolic_vertex.h"
+#include "voronoi/samples.h"
+
+namespace lrvd {
+
+class SurfaceMesh;
+
+enum class DiagramKind {
+  Lrvd,  //!< localized restricted Voronoi diagram (the paper, §3)
+  Rvd,   //!< restricted Voronoi diagram: 3D Voronoi diagram ∩ surface
+  Lrpd,  //!< localized restricted power diagram (weighted, §2.4)
+  Rpd    //!< restricted power diagram
+};
+
+std::string to_string(DiagramKind kind);
+//! "lrvd", "rvd", "lrpd", "rpd". \throw InputError on anything else.
+DiagramKind diagram_kind_from_string(const std::string& name);
+bool is_localized(DiagramKind kind);
+bool is_power(DiagramKind kind);
+
+//! One convex piece of a cell inside one mesh triangle. Its vertices run counterclockwise seen
+//! from the triangle's normal.
+struct CellPolygon {
+  int triangle = -1;
+  int cell = -1;
+  int first_vertex = 0;  //!< index into Diagram::vertices
+  int vertex_count = 0;
+};
+
+struct DiagramStats {
+  double time_s = 0;             //!< diagram computation alone
+  int clipped_triangles = 0;     //!< triangle clippings (a triangle clipped again counts again)
+  int connectivity_rounds = 0;   //!< LRVD: rounds that removed stray cell pieces
+  int forbidden_labels = 0;      //!< LRVD: (triangle, cell) pairs forbidden to restore connectivity
+};
+
+struct Diagram {
+  DiagramKind kind = DiagramKind::Lrvd;
+  int sample_count = 0;
+  std::vector<SymbolicVertex> vertices;  //!< polygon vertex lists, one after the other
+  std::vector<CellPolygon> polygons;     //!< ordered by triangle, then cell
+  std::vector<int> triangle_offsets;     //!< polygons of triangle t: [offsets[t], offsets[t + 1])
+  std::vector<Site> sites;               //!< the sites the predicates used (id == sample index)
+  DiagramStats stats;
+
+  SymbolicContext context(const SurfaceMesh& mesh) const;
+  const SymbolicVertex* polygon_vertices(const CellPolygon& p) const { return vertices.data() + p.first_vertex; }
+};
+
+//! Sites of the samples: position, weight (0 unless the kind is a power diagram), id = index.
+std::vector<Site> make_sites(const Samples& samples, bool weighted);
+
+//! Integrals over each cell: area m_i, centroid c_i and the CVT energy ∫|x - x_i|² (paper Eq. 1,
+//! uniform density), from the double positions of the polygon vertices.
+struct CellIntegrals {
+  std::vector<double> area;
+  std::vector<Vec3> centroid;
+  std::vector<double> energy;
+  double total_energy = 0;
+};
+CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples);
+
+//! Connected components of each cell: polygons of one cell are joined when they share a segment
+//! of positive length on a mesh edge (touching at a single point does not join them).
+//! Returns, per polygon, its component id (0..count-1 per cell), and the count per cell.
+struct CellComponents {
+  std::vector<int> polygon_component;
+  std::vector<int> count;  //!< per cell; 0 for a cell with no polygon
+};
+CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh);
+
+}  // namespace lrvd

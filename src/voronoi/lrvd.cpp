@@ -1,0 +1,271 @@
+// LRVD computation (paper §3): cell-to-vertex assignment by region growing (§3.2), triangle label
+// lists (§3.3, §3.5), exact clipping with local propagation (§3.4), and the connectivity
+// restoration the fixpoint alone does not give (DESIGN.md, "Where the paper is thin").
+#include "voronoi/lrvd.h"
+
+#include <algorithm>
+#include <chrono>
+#include <deque>
+#include <queue>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/surface_mesh.h"
+#include "voronoi/clip.h"
+
+namespace lrvd {
+
+namespace {
+
+bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
+bool insert_sorted(std::vector<int>& sorted, int x) {
+  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
+  if (it != sorted.end() && *it == x) return false;
+  sorted.insert(it, x);
+  return true;
+}
+bool erase_sorted(std::vector<int>& sorted, int x) {
+  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
+  if (it == sorted.end() || *it != x) return false;
+  sorted.erase(it);
+  return true;
+}
+
+// Polygons of one triangle during propagation.
+struct TrianglePolygons {
+  std::vector<int> labels;     // candidate cells L(t), sorted
+  std::vector<int> forbidden;  // cells removed for connectivity, sorted; never re-added
+  std::vector<int> cell;       // cell of each polygon
+  std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
+  std::vector<SymbolicVertex> verts;
+};
+
+class LrvdBuilder {
+ public:
+  LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options)
+      : mesh_(mesh), samples_(samples), options_(options), state_(mesh.triangle_count()),
+        queued_(mesh.triangle_count(), 0) {
+    sites_ = make_sites(samples, options.weighted);
+    ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
+  }
+
+  Diagram run() {
+    assign_vertices();
+    assign_triangles();
+    Diagram diagram;
+    for (int round = 0;; ++round) {
+      propagate();
+      diagram = flatten();
+      if (!options_.restore_connectivity || round >= options_.max_connectivity_rounds) break;
+      if (!forbid_stray_pieces(diagram)) break;
+      ++stats_.connectivity_rounds;
+    }
+    diagram.stats = stats_;
+    return diagram;
+  }
+
+ private:
+  double power_distance(const Vec3& q, int i) const { return squared_distance(q, sites_[i].p) - sites_[i].w; }
+
+  // §3.2: each vertex goes to the cell whose region, grown over the edge graph from the samples'
+  // triangles in order of distance, reaches it first. Every cell's vertex set is connected.
+  void assign_vertices() {
+    const int nv = mesh_.vertex_count();
+    vertex_label_.assign(nv, -1);
+    std::vector<std::vector<int>> adjacency(nv);
+    for (int v = 0; v < nv; ++v) adjacency[v] = mesh_.vertex_neighbors(v);
+    using Entry = std::tuple<double, int, int>;  // (power distance, sample, vertex)
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    for (int i = 0; i < samples_.size(); ++i)
+      for (int v : mesh_.triangle(samples_.triangles[i])) queue.emplace(power_distance(mesh_.position(v), i), i, v);
+    while (!queue.empty()) {
+      const auto [d, i, v] = queue.top();
+      queue.pop();
+      if (vertex_label_[v] >= 0) continue;
+      vertex_label_[v] = i;
+      for (int u : adjacency[v])
+        if (vertex_label_[u] < 0) queue.emplace(power_distance(mesh_.position(u), i), i, u);
+    }
+  }
+
+  // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
+  void assign_triangles() {
+    for (int t = 0; t < mesh_.triangle_count(); ++t)
+      for (int v : mesh_.triangle(t)) insert_sorted(state_[t].labels, vertex_label_[v]);
+    home_.resize(samples_.size());
+    for (int i = 0; i < samples_.size(); ++i) {
+      home_[i] = samples_.triangles[i];
+      insert_sorted(state_[home_[i]].labels, i);
+    }
+    for (int t = 0; t < mesh_.triangle_count(); ++t) activate(t);
+  }
+
+  void activate(int t) {
+    if (queued_[t]) return;
+    queued_[t] = 1;
+    queue_.push_back(t);
+  }
+
+  void clip(int t) {
+    TrianglePolygons& st = state_[t];
+    st.cell.clear();
+    st.offset.assign(1, 0);
+    st.verts.clear();
+    for (int k : st.labels) {
+      clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon_, scratch_);
+      if (polygon_.empty()) continue;
+      st.cell.push_back(k);
+      st.verts.insert(st.verts.end(), polygon_.begin(), polygon_.end());
+      st.offset.push_back(static_cast<int>(st.verts.size()));
+    }
+    ++stats_.clipped_triangles;
+  }
+
+  // §3.4: every cell whose polygon in t reaches a mesh edge (a corner or an edge point) must be a
+  // candidate of the triangle across that edge, so both sides split the edge alike.
+  void propagate() {
+    while (!queue_.empty()) {
+      const int t = queue_.front();
+      queue_.pop_front();
+      queued_[t] = 0;
+      clip(t);
+      const Triangle& tri = mesh_.triangle(t);
+      const TrianglePolygons& st = state_[t];
+      conflicts_.clear();
+      for (size_t p = 0; p < st.cell.size(); ++p) {
+        const int k = st.cell[p];
+        for (int e = 0; e < 3; ++e) {
+          const int across = mesh_.neighbor(t, e);
+          if (across < 0 || contains(state_[across].labels, k)) continue;
+          bool touches = false;
+          for (int a = st.offset[p]; a < st.offset[p + 1] && !touches; ++a)
+            touches = st.verts[a].on_mesh_edge(tri[e], tri[(e + 1) % 3]);
+          if (!touches) continue;
+          if (contains(state_[across].forbidden, k)) {
+            conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
+            continue;
+          }
+          insert_sorted(state_[across].labels, k);
+          activate(across);
+        }
+      }
+      for (int k : conflicts_)
+        if (t != home_[k] && state_[t].labels.size() > 1 && erase_sorted(state_[t].labels, k)) {
+          insert_sorted(state_[t].forbidden, k);
+          ++stats_.forbidden_labels;
+          activate(t);
+        }
+    }
+  }
+
+  // Removes each cell from the triangles of its pieces that do not hold its sample. Returns
+  // whether anything was removed.
+  bool forbid_stray_pieces(const Diagram& diagram) {
+    const CellComponents comps = cell_components(diagram, mesh_);
+    std::vector<int> home_component(samples_.size(), -1);
+    for (size_t p = 0; p < diagram.polygons.size(); ++p) {
+      const CellPolygon& poly = diagram.polygons[p];
+      if (poly.triangle == home_[poly.cell]) home_component[poly.cell] = comps.polygon_component[p];
+    }
+    bool changed = false;
+    std::vector<int> emptied;
+    for (size_t p = 0; p < diagram.polygons.size(); ++p) {
+      const CellPolygon& poly = diagram.polygons[p];
+      const int k = poly.cell;
+      if (comps.count[k] <= 1) continue;
+      // A cell whose sample lost its own polygon keeps its first piece.
+      const int keep = home_component[k] >= 0 ? home_component[k] : 0;
+      if (comps.polygon_component[p] == keep) continue;
+      TrianglePolygons& st = state_[poly.triangle];
+      if (!erase_sorted(st.labels, k)) continue;
+      insert_sorted(st.forbidden, k);
+      ++stats_.forbidden_labels;
+      activate(poly.triangle);
+      if (st.labels.empty()) emptied.push_back(poly.triangle);
+      changed = true;
+    }
+    refill(emptied);
+    return changed;
+  }
+
+  // A triangle left without candidates takes those of its neighbours (minus its forbidden ones),
+  // spreading inward from the rest of the surface.
+  void refill(std::vector<int> pending) {
+    while (!pending.empty()) {
+      std::vector<int> still;
+      for (int t : pending) {
+        TrianglePolygons& st = state_[t];
+        for (int e = 0; e < 3; ++e) {
+          const int across = mesh_.neighbor(t, e);
+          if (across < 0) continue;
+          for (int k : state_[across].labels)
+            if (!contains(st.forbidden, k)) insert_sorted(st.labels, k);
+        }
+        if (st.labels.empty()) still.push_back(t);
+      }
+      if (still.size() == pending.size()) break;  // nothing reachable: verification will report it
+      pending.swap(still);
+    }
+  }
+
+  Diagram flatten() const {
+    Diagram d;
+    d.kind = options_.weighted ? DiagramKind::Lrpd : DiagramKind::Lrvd;
+    d.sample_count = samples_.size();
+    d.sites = sites_;
+    d.triangle_offsets.assign(1, 0);
+    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      const TrianglePolygons& st = state_[t];
+      for (size_t p = 0; p < st.cell.size(); ++p) {
+        d.polygons.push_back({t, st.cell[p], static_cast<int>(d.vertices.size()), st.offset[p + 1] - st.offset[p]});
+        d.vertices.insert(d.vertices.end(), st.verts.begin() + st.offset[p], st.verts.begin() + st.offset[p + 1]);
+      }
+      d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
+    }
+    return d;
+  }
+
+  const SurfaceMesh& mesh_;
+  const Samples& samples_;
+  LrvdOptions options_;
+  std::vector<Site> sites_;
+  SymbolicContext ctx_;
+  std::vector<int> vertex_label_, home_;
+  std::vector<TrianglePolygons> state_;
+  std::deque<int> queue_;
+  std::vector<char> queued_;
+  std::vector<int> conflicts_;
+  std::vector<SymbolicVertex> polygon_, scratch_;
+  DiagramStats stats_;
+};
+
+}  // namespace
+
+void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool weighted) {
+  if (samples.size() == 0) throw InputError("no samples: a diagram needs at least one");
+  if (weighted && !samples.weighted()) throw InputError("a power diagram needs a weight for every sample");
+  for (int i = 0; i < samples.size(); ++i)
+    if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
+      throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
+}
+
+Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options) {
+  check_diagram_input(mesh, samples, options.weighted);
+  const auto start = std::chrono::steady_clock::now();
+  Diagram diagram = LrvdBuilder(mesh, samples, options).run();
+  diagram.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return diagram;
+}
+
+Diagram compute_diagram(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind) {
+  if (is_localized(kind)) {
+    LrvdOptions options;
+    options.weighted = is_power(kind);
+    return compute_lrvd(mesh, samples, options);
+  }
+  return compute_rvd(mesh, samples, is_power(kind));
+}
+
+}  // namespace lrvd

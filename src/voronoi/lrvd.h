@@ -1,0 +1,32 @@
+// The localized restricted Voronoi / power diagram (paper §3) and the restricted Voronoi / power
+// diagram it is compared with, behind one entry point.
+#pragma once
+
+#include "voronoi/diagram.h"
+
+namespace lrvd {
+
+struct LrvdOptions {
+  bool weighted = false;               //!< power diagram (LRPD) with the samples' weights
+  bool restore_connectivity = true;    //!< forbid a cell in triangles of its stray pieces and re-propagate
+  int max_connectivity_rounds = 100;   //!< bound on those rounds (each forbids at least one pair)
+};
+
+//! The LRVD (or LRPD) of the samples on the mesh (paper §3.2-3.5): vertex labels by region
+//! growing, triangle label lists, exact clipping and local propagation until every label seen on
+//! a mesh edge from one side is known on the other side, then removal of stray cell pieces.
+//! \pre every sample's triangle is set; weights present when options.weighted.
+//! \throw InputError on an empty sample set or weights missing for a power diagram.
+Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options = {});
+
+//! The exact RVD (or restricted power diagram): the 3D Voronoi (power) diagram of the samples,
+//! with neighbours from CGAL's Delaunay (regular) triangulation, intersected with every triangle.
+Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weighted = false);
+
+//! \throw InputError when there are no samples, a sample has no triangle, or weights are missing.
+void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool weighted);
+
+//! Dispatch on the kind (Lrvd, Rvd, Lrpd, Rpd).
+Diagram compute_diagram(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind);
+
+}  // namespace lrvd

@@ -1,0 +1,124 @@
+// The exact restricted Voronoi (power) diagram, the baseline the LRVD is compared with: for each
+// triangle, the cells meeting it are found by walking the Delaunay (regular) neighbour graph from
+// the cell of one corner, and each is clipped by all its neighbours' bisectors exactly.
+#include <algorithm>
+#include <chrono>
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Regular_triangulation_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include "mesh/surface_mesh.h"
+#include "voronoi/clip.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// Neighbours of each sample in the 3D Delaunay (or regular) triangulation, as sorted lists.
+template <class Triangulation>
+std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n) {
+  std::vector<std::vector<int>> adjacency(n);
+  for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
+    const int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
+    adjacency[a].push_back(b);
+    adjacency[b].push_back(a);
+  }
+  for (auto& list : adjacency) std::sort(list.begin(), list.end());
+  return adjacency;
+}
+
+std::vector<std::vector<int>> delaunay_neighbours(const std::vector<Site>& sites) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+  using Tds = CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+  using Dt = CGAL::Delaunay_triangulation_3<K, Tds>;
+  std::vector<std::pair<K::Point_3, int>> points;
+  for (const Site& s : sites) points.emplace_back(K::Point_3(s.p.x, s.p.y, s.p.z), s.id);
+  const Dt dt(points.begin(), points.end());
+  return neighbours_of(dt, static_cast<int>(sites.size()));
+}
+
+std::vector<std::vector<int>> regular_neighbours(const std::vector<Site>& sites) {
+  using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K, CGAL::Regular_triangulation_vertex_base_3<K>>;
+  using Tds = CGAL::Triangulation_data_structure_3<Vb, CGAL::Regular_triangulation_cell_base_3<K>>;
+  using Rt = CGAL::Regular_triangulation_3<K, Tds>;
+  std::vector<std::pair<K::Weighted_point_3, int>> points;
+  for (const Site& s : sites) points.emplace_back(K::Weighted_point_3(K::Point_3(s.p.x, s.p.y, s.p.z), s.w), s.id);
+  const Rt rt(points.begin(), points.end());
+  return neighbours_of(rt, static_cast<int>(sites.size()));
+}
+
+}  // namespace
+
+Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weighted) {
+  check_diagram_input(mesh, samples, weighted);
+  const auto start = std::chrono::steady_clock::now();
+  Diagram d;
+  d.kind = weighted ? DiagramKind::Rpd : DiagramKind::Rvd;
+  d.sample_count = samples.size();
+  d.sites = make_sites(samples, weighted);
+  const SymbolicContext ctx = d.context(mesh);
+  const auto adjacency = weighted ? regular_neighbours(d.sites) : delaunay_neighbours(d.sites);
+
+  // Walk from a cell to the exact owner of point q: a neighbour closer to q is always there
+  // unless the current cell owns q (Voronoi and power cells are convex).
+  auto owner = [&](int i, const SymbolicVertex& q) {
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (int j : adjacency[i])
+        if (side(q, i, j, ctx) == Sign::Negative) {
+          i = j;
+          moved = true;
+          break;
+        }
+    }
+    return i;
+  };
+
+  std::vector<SymbolicVertex> polygon, scratch;
+  std::vector<int> visited_stamp(samples.size(), -1), stack;
+  std::vector<std::pair<int, std::vector<SymbolicVertex>>> pieces;
+  int start_cell = samples.size() > 0 ? 0 : -1;
+  d.triangle_offsets.assign(1, 0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    // Hidden sites of a power diagram have no neighbours; start from a site that has some.
+    if (adjacency[start_cell].empty() && samples.size() > 1)
+      for (int i = 0; i < samples.size(); ++i)
+        if (!adjacency[i].empty()) { start_cell = i; break; }
+    start_cell = owner(start_cell, SymbolicVertex::mesh_vertex(tri[0]));
+    pieces.clear();
+    stack.assign(1, start_cell);
+    visited_stamp[start_cell] = t;
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      clip_triangle(mesh, t, i, adjacency[i].data(), static_cast<int>(adjacency[i].size()), ctx, polygon, scratch);
+      if (polygon.empty()) continue;
+      for (const SymbolicVertex& q : polygon)
+        for (int a = 0; a < q.num_labels(); ++a) {
+          const int j = q.label[a];
+          if (visited_stamp[j] != t) {
+            visited_stamp[j] = t;
+            stack.push_back(j);
+          }
+        }
+      pieces.emplace_back(i, polygon);
+    }
+    std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [cell, verts] : pieces) {
+      d.polygons.push_back({t, cell, static_cast<int>(d.vertices.size()), static_cast<int>(verts.size())});
+      d.vertices.insert(d.vertices.end(), verts.begin(), verts.end());
+    }
+    d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
+    ++d.stats.clipped_triangles;
+  }
+  d.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return d;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,190 @@
+// Samples: uniform random sampling by area and location of given points by closest point.
+#include "voronoi/samples.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/closest_point.h"
+#include "mesh/surface_mesh.h"
+
+namespace lrvd {
+
+namespace {
+
+uint64_t splitmix64(uint64_t& x) {
+  uint64_t z = (x += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+
+// A point of triangle t, uniform by area, from two uniform numbers.
+void point_in_triangle(const SurfaceMesh& mesh, int t, double u1, double u2, Vec3& position, Vec3& bary) {
+  const double r = std::sqrt(u1);
+  bary = {1 - r, r * (1 - u2), r * u2};
+  const Triangle& tri = mesh.triangle(t);
+  position = bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
+}
+
+}  // namespace
+
+Random::Random(uint64_t seed) {
+  for (auto& s : state_) s = splitmix64(seed);
+}
+
+uint64_t Random::next() {  // xoshiro256**
+  const uint64_t result = rotl(state_[1] * 5, 7) * 9;
+  const uint64_t t = state_[1] << 17;
+  state_[2] ^= state_[0];
+  state_[3] ^= state_[1];
+  state_[1] ^= state_[2];
+  state_[0] ^= state_[3];
+  state_[2] ^= t;
+  state_[3] = rotl(state_[3], 45);
+  return result;
+}
+
+double Random::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
+  if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
+  const int components = mesh.component_count();
+  if (n < components)
+    throw InputError(fmt::format("{} samples cannot cover the mesh's {} connected components: each needs one",
+                                 n, components));
+  const int m = mesh.triangle_count();
+  std::vector<double> cumulative(m);
+  double total = 0;
+  for (int t = 0; t < m; ++t) cumulative[t] = (total += mesh.triangle_area(t));
+
+  // Per-component cumulative areas for the first sample of each component.
+  std::vector<std::vector<int>> component_triangles(components);
+  for (int t = 0; t < m; ++t) component_triangles[mesh.triangle_components()[t]].push_back(t);
+
+  Random random(seed);
+  Samples samples;
+  samples.positions.resize(n);
+  samples.triangles.resize(n);
+  samples.barycentric.resize(n);
+  auto pick = [&](const std::vector<int>* subset) {
+    if (!subset) {
+      const double target = random.uniform() * total;
+      return std::min<int>(static_cast<int>(std::upper_bound(cumulative.begin(), cumulative.end(), target) -
+                                            cumulative.begin()), m - 1);
+    }
+    double area = 0;
+    for (int t : *subset) area += mesh.triangle_area(t);
+    const double target = random.uniform() * area;
+    double running = 0;
+    for (int t : *subset)
+      if ((running += mesh.triangle_area(t)) > target) return t;
+    return subset->back();
+  };
+  for (int i = 0; i < n; ++i) {
+    const int t = pick(i < components ? &component_triangles[i] : nullptr);
+    const double u1 = random.uniform(), u2 = random.uniform();
+    samples.triangles[i] = t;
+    point_in_triangle(mesh, t, u1, u2, samples.positions[i], samples.barycentric[i]);
+  }
+  return samples;
+}
+
+Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const std::vector<double>& weights) {
+  if (points.empty()) throw InputError("no sample points were given");
+  if (!weights.empty() && weights.size() != points.size())
+    throw InputError(fmt::format("{} weights were given for {} points", weights.size(), points.size()));
+  const double tolerance = 0.01 * mesh.bounding_box().diagonal();
+  ClosestPointIndex index(mesh);
+  Samples samples;
+  samples.weights = weights;
+  std::vector<char> component_hit(mesh.component_count(), 0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
+    if (!is_finite(p)) throw InputError(fmt::format("point {} has a non-finite coordinate", i));
+    if (!weights.empty() && !std::isfinite(weights[i]))
+      throw InputError(fmt::format("point {} has a non-finite weight", i));
+    const ClosestPoint c = index.query(p);
+    if (c.distance > tolerance)
+      throw InputError(fmt::format("point {} ({}, {}, {}) is {:.3g} from the surface, more than 1% of the "
+                                   "bounding-box diagonal ({:.3g})",
+                                   i, p.x, p.y, p.z, c.distance, tolerance));
+    samples.positions.push_back(c.point);
+    samples.triangles.push_back(c.triangle);
+    samples.barycentric.push_back(c.barycentric);
+    component_hit[mesh.triangle_components()[c.triangle]] = 1;
+  }
+  // Coincident samples have no bisector between them: refuse them.
+  std::vector<int> order(points.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  auto less = [&](int a, int b) {
+    const Vec3 &pa = samples.positions[a], &pb = samples.positions[b];
+    return std::tie(pa.x, pa.y, pa.z) < std::tie(pb.x, pb.y, pb.z);
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (size_t k = 1; k < order.size(); ++k)
+    if (samples.positions[order[k]] == samples.positions[order[k - 1]])
+      throw InputError(fmt::format("points {} and {} coincide on the surface; remove one",
+                                   std::min(order[k], order[k - 1]), std::max(order[k], order[k - 1])));
+  for (int c = 0; c < mesh.component_count(); ++c)
+    if (!component_hit[c]) {
+      int first = 0;
+      while (mesh.triangle_components()[first] != c) ++first;
+      throw InputError(fmt::format("connected component {} of the mesh (containing triangle {}) has no sample "
+                                   "point; every component needs at least one",
+                                   c, first));
+    }
+  return samples;
+}
+
+PointFile read_xyz(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("cannot read point file '{}'", path));
+  PointFile file;
+  std::string line;
+  int columns = 0;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> values;
+    std::string token;
+    while (fields >> token) {
+      try {
+        size_t used = 0;
+        values.push_back(std::stod(token, &used));
+        if (used != token.size()) throw std::invalid_argument(token);
+      } catch (const std::exception&) {
+        throw InputError(fmt::format("{}:{}: '{}' is not a number", path, number, token));
+      }
+    }
+    if (values.size() != 3 && values.size() != 4)
+      throw InputError(fmt::format("{}:{}: expected 'x y z' or 'x y z w', got {} values", path, number, values.size()));
+    if (columns == 0) columns = static_cast<int>(values.size());
+    if (columns != static_cast<int>(values.size()))
+      throw InputError(fmt::format("{}:{}: every line must have the same number of columns ({})", path, number, columns));
+    file.points.push_back({values[0], values[1], values[2]});
+    if (columns == 4) file.weights.push_back(values[3]);
+  }
+  if (file.points.empty()) throw InputError(fmt::format("point file '{}' holds no points", path));
+  return file;
+}
+
+void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights) {
+  std::ofstream out(path);
+  if (!out) throw InputError(fmt::format("cannot write '{}'", path));
+  for (size_t i = 0; i < points.size(); ++i) {
+    out << fmt::format("{:.17g} {:.17g} {:.17g}", points[i].x, points[i].y, points[i].z);
+    if (!weights.empty()) out << fmt::format(" {:.17g}", weights[i]);
+    out << '\n';
+  }
+  if (!out) throw InputError(fmt::format("failed writing '{}'", path));
+}
+
+}  // namespace lrvd

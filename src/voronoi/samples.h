@@ -1,0 +1,59 @@
+// Samples: the generating points of a diagram, each located on the mesh (triangle + barycentric),
+// with optional power weights. Random sampling by area, or points read from a .xyz file.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "predicates/vec3.h"
+
+namespace lrvd {
+
+class SurfaceMesh;
+
+struct Samples {
+  std::vector<Vec3> positions;
+  std::vector<double> weights;      // power weights (radius²); empty for a Voronoi diagram
+  std::vector<int> triangles;       // triangle holding each sample
+  std::vector<Vec3> barycentric;    // coordinates of each sample in its triangle
+
+  int size() const { return static_cast<int>(positions.size()); }
+  bool weighted() const { return !weights.empty(); }
+  double weight(int i) const { return weights.empty() ? 0.0 : weights[i]; }
+};
+
+//! n points uniformly distributed by area, reproducible from the seed on every machine. Every
+//! connected component of the mesh receives at least one sample (the first ones), the rest are
+//! drawn over the whole surface.
+//! \throw InputError when n < 1 or n is smaller than the number of components.
+Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed);
+
+//! Locates points on the mesh by closest point and moves each onto it.
+//! \throw InputError when a point is not finite, farther from the surface than 1% of the bounding
+//!        box diagonal, when two points coincide, or when a component of the mesh gets no point.
+Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
+                      const std::vector<double>& weights = {});
+
+struct PointFile {
+  std::vector<Vec3> points;
+  std::vector<double> weights;  // empty unless every line has a 4th column
+};
+
+//! Reads `x y z [w]` lines (blank lines and lines starting with '#' are skipped).
+//! \throw InputError on an unreadable file, a malformed line, or a mix of 3- and 4-column lines.
+PointFile read_xyz(const std::string& path);
+void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights = {});
+
+//! Reproducible uniform doubles in [0, 1) from a 64-bit seed (same on every platform).
+class Random {
+ public:
+  explicit Random(uint64_t seed);
+  double uniform();
+  uint64_t next();
+
+ private:
+  uint64_t state_[4];
+};
+
+}  // namespace lrvd

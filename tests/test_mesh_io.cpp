@@ -1,0 +1,327 @@
+// Mesh IO: every refusal on a real malformed file with its message, --repair on real soups,
+// exact round trips of the writers, CGAL's data-set meshes, and the Voronoi-cells PLY.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/error.h"
+#include "mesh/mesh_io.h"
+
+using namespace lrvd;
+using Catch::Contains;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(LRVD_SOURCE_DIR) + "/tests/data/" + name; }
+
+std::string scratch(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(LRVD_BINARY_DIR) / "test_mesh_io";
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+template <class T>
+void append(std::string& bytes, T value) {  // little-endian on the x86/arm hosts we build on
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));
+  bytes.append(raw, sizeof(T));
+}
+
+const float tetra_points[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+const int tetra_faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+double signed_volume(const SurfaceMesh& mesh) {
+  double six_volume = 0;
+  for (const Triangle& t : mesh.triangles())
+    six_volume += dot(mesh.position(t[0]), cross(mesh.position(t[1]), mesh.position(t[2])));
+  return six_volume / 6;
+}
+
+}  // namespace
+
+TEST_CASE("read_mesh refuses files it cannot open or does not know") {
+  REQUIRE_THROWS_AS(read_mesh(data("no_such_mesh.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("no_such_mesh.off")), Contains("no_such_mesh.off: no such file"));
+  REQUIRE_THROWS_WITH(read_mesh(data("unknown.xyz")), Contains("unknown extension '.xyz'") && Contains(".off, .obj"));
+  REQUIRE_THROWS_WITH(read_mesh(data("")), Contains("is a directory"));
+  REQUIRE_THROWS_WITH(read_mesh(data("empty.off")), Contains("empty.off: is empty"));
+  REQUIRE_THROWS_WITH(read_mesh(data("no_faces.off")), Contains("no_faces.off: has 3 vertices but no faces"));
+}
+
+TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into the first offending line") {
+  REQUIRE_THROWS_AS(read_mesh(data("truncated.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("truncated.off")),
+                      Contains("truncated.off: is truncated: the header declares 8 vertices and 6 faces, but the "
+                               "file ends after 5 vertices"));
+  REQUIRE_THROWS_WITH(read_mesh(data("not_a_number.off")), Contains("vertex 1 (line 4): 'O' is not a number"));
+
+  // A truncated binary PLY: the header promises 4 faces, the body holds 3 and a half.
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : tetra_points)
+    for (float c : p) append(ply, c);
+  for (const auto& f : tetra_faces) {
+    append(ply, static_cast<unsigned char>(3));
+    for (int v : f) append(ply, v);
+  }
+  const std::string truncated_ply = scratch("truncated.ply");
+  write_file(truncated_ply, ply.substr(0, ply.size() - 7));
+  REQUIRE_THROWS_WITH(read_mesh(truncated_ply),
+                      Contains("cannot be parsed as binary_little_endian PLY") && Contains("4 vertices, 4 faces"));
+
+  const std::string truncated_stl = scratch("truncated.stl");
+  write_file(truncated_stl, read_file(data("tetrahedron.stl")).substr(0, 150));
+  REQUIRE_THROWS_WITH(read_mesh(truncated_stl), Contains("cannot be parsed as ascii or binary STL"));
+}
+
+TEST_CASE("read_mesh refuses NaN and infinite coordinates") {
+  REQUIRE_THROWS_AS(read_mesh(data("nan.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("nan.off")), Contains("nan.off: vertex 2 has a non-finite coordinate (0, nan, 0)"));
+  REQUIRE_THROWS_WITH(read_mesh(data("inf.obj")), Contains("inf.obj: vertex 2 has a non-finite coordinate (0, inf, 0)"));
+
+  // Binary formats carry NaN through CGAL's reader; the check after reading catches it.
+  std::string stl(80, '\0');
+  append(stl, std::uint32_t{1});
+  const float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, 0, std::nanf(""), 0};
+  for (float c : facet) append(stl, c);
+  append(stl, std::uint16_t{0});
+  const std::string path = scratch("nan.stl");
+  write_file(path, stl);
+  REQUIRE_THROWS_WITH(read_mesh(path), Contains("non-finite coordinate") && Contains("nan"));
+}
+
+TEST_CASE("read_mesh refuses face indices out of range") {
+  REQUIRE_THROWS_AS(read_mesh(data("index_out_of_range.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("index_out_of_range.off")),
+                      Contains("index_out_of_range.off: face 2 has vertex index 9 out of range [0, 4)"));
+  // CGAL's OBJ reader lets the index one past the end through; the check after reading does not.
+  REQUIRE_THROWS_WITH(read_mesh(data("index_out_of_range.obj")),
+                      Contains("face 3 has vertex index 4 out of range [0, 4) (index 5 in the file"));
+}
+
+TEST_CASE("read_mesh reports what SurfaceMesh refuses, with the file name and a --repair hint") {
+  REQUIRE_THROWS_AS(read_mesh(data("nonmanifold_edge.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("nonmanifold_edge.off")),
+                      Contains("nonmanifold_edge.off: mesh is not manifold: edge (0, 1) has 3") &&
+                          Contains("; --repair may fix it"));
+  REQUIRE_THROWS_WITH(read_mesh(data("nonmanifold_vertex.off")),
+                      Contains("vertex 0 joins 2 separate fans") && Contains("--repair may fix it"));
+  REQUIRE_THROWS_WITH(read_mesh(data("inconsistent_orientation.off")),
+                      Contains("inconsistent orientation: triangles 0 and 1") && Contains("--repair may fix it"));
+  REQUIRE_THROWS_WITH(read_mesh(data("zero_area.off")),
+                      Contains("zero_area.off: triangle 1 (0, 2, 1) has zero area") && Contains("--repair may fix it"));
+  REQUIRE_THROWS_WITH(read_mesh(data("duplicate_triangle.off")),
+                      Contains("triangles 0 and 2 are duplicates") && Contains("--repair may fix it"));
+}
+
+TEST_CASE("an unwelded triangle soup is refused without --repair and welded into a closed mesh with it") {
+  REQUIRE_THROWS_AS(read_mesh(data("soup.off")), InputError);
+  REQUIRE_THROWS_WITH(read_mesh(data("soup.off")),
+                      Contains("soup.off: looks like a triangle soup: vertices 0 and 10 coincide but are not shared") &&
+                          Contains("rerun with --repair"));
+
+  const LoadedMesh loaded = read_mesh(data("soup.off"), {true});
+  REQUIRE(loaded.mesh.vertex_count() == 6);
+  REQUIRE(loaded.mesh.triangle_count() == 8);
+  REQUIRE(loaded.mesh.is_closed());
+  REQUIRE(loaded.mesh.component_count() == 1);
+  REQUIRE(loaded.mesh.euler_characteristic() == 2);
+  REQUIRE(signed_volume(loaded.mesh) == Approx(4.0 / 3.0));
+  REQUIRE(loaded.repair.merged_vertices == 18);
+  REQUIRE(loaded.repair.reoriented_faces == 0);
+  REQUIRE(loaded.repair.changed());
+}
+
+TEST_CASE("--repair orients, removes duplicates and degenerate faces, and cuts non-manifold configurations") {
+  SECTION("one reversed face of a closed octahedron is the one reoriented") {
+    const LoadedMesh loaded = read_mesh(data("inconsistent_orientation.off"), {true});
+    REQUIRE(loaded.repair.reoriented_faces == 1);
+    REQUIRE(loaded.mesh.is_closed());
+    REQUIRE(loaded.mesh.euler_characteristic() == 2);
+    REQUIRE(signed_volume(loaded.mesh) == Approx(4.0 / 3.0));
+  }
+  SECTION("a duplicate triangle is removed") {
+    const LoadedMesh loaded = read_mesh(data("duplicate_triangle.off"), {true});
+    REQUIRE(loaded.repair.removed_duplicate_faces == 1);
+    REQUIRE(loaded.mesh.triangle_count() == 2);
+  }
+  SECTION("a zero-area triangle is removed, and the vertex only it used") {
+    const LoadedMesh loaded = read_mesh(data("zero_area.off"), {true});
+    REQUIRE(loaded.repair.removed_degenerate_faces == 1);
+    REQUIRE(loaded.repair.removed_unreferenced_vertices == 1);
+    REQUIRE(loaded.mesh.triangle_count() == 1);
+    REQUIRE(loaded.mesh.vertex_count() == 3);
+  }
+  SECTION("a third triangle on an edge is cut off") {
+    const LoadedMesh loaded = read_mesh(data("nonmanifold_edge.off"), {true});
+    REQUIRE(loaded.repair.duplicated_nonmanifold_vertices == 2);
+    REQUIRE(loaded.mesh.vertex_count() == 7);
+    REQUIRE(loaded.mesh.component_count() == 2);
+  }
+  SECTION("two cones sharing an apex get one apex each") {
+    const LoadedMesh loaded = read_mesh(data("nonmanifold_vertex.off"), {true});
+    REQUIRE(loaded.repair.duplicated_nonmanifold_vertices == 1);
+    REQUIRE(loaded.mesh.vertex_count() == 8);
+    REQUIRE(loaded.mesh.component_count() == 2);
+  }
+  SECTION("what repair cannot fix is still an error that says so") {
+    REQUIRE_THROWS_WITH(read_mesh(data("nan.off"), {true}), Contains("non-finite coordinate"));
+  }
+}
+
+TEST_CASE("polygons are triangulated by exact ear clipping, also when non-convex") {
+  const LoadedMesh cube = read_mesh(data("cube_quads.obj"));
+  REQUIRE(cube.repair.triangulated_faces == 6);
+  REQUIRE(cube.repair.removed_unreferenced_vertices == 1);  // dropped quietly, no error
+  REQUIRE(cube.mesh.vertex_count() == 8);
+  REQUIRE(cube.mesh.triangle_count() == 12);
+  REQUIRE(cube.mesh.is_closed());
+  REQUIRE(cube.mesh.euler_characteristic() == 2);
+  REQUIRE(signed_volume(cube.mesh) == Approx(1.0));
+
+  // A fan from the caps' first corner would leave the L: area and volume would be wrong.
+  const LoadedMesh prism = read_mesh(data("l_prism.obj"));
+  REQUIRE(prism.repair.triangulated_faces == 8);
+  REQUIRE(prism.repair.notes.empty());
+  REQUIRE(prism.mesh.triangle_count() == 20);
+  REQUIRE(prism.mesh.is_closed());
+  REQUIRE(prism.mesh.euler_characteristic() == 2);
+  REQUIRE(prism.mesh.area() == Approx(14.0));
+  REQUIRE(signed_volume(prism.mesh) == Approx(3.0));
+}
+
+TEST_CASE("PLY and STL, ascii and binary, are read") {
+  const auto check_tetrahedron = [](const LoadedMesh& loaded) {
+    REQUIRE(loaded.mesh.vertex_count() == 4);
+    REQUIRE(loaded.mesh.triangle_count() == 4);
+    REQUIRE(loaded.mesh.is_closed());
+    REQUIRE(signed_volume(loaded.mesh) == Approx(1.0 / 6.0));
+    REQUIRE_FALSE(loaded.repair.changed());
+  };
+  check_tetrahedron(read_mesh(data("tetrahedron.ply")));
+  check_tetrahedron(read_mesh(data("tetrahedron.stl")));  // CGAL welds STL's repeated corners
+
+  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const auto& p : tetra_points)
+    for (float c : p) append(ply, c);
+  for (const auto& f : tetra_faces) {
+    append(ply, static_cast<unsigned char>(3));
+    for (int v : f) append(ply, v);
+  }
+  const std::string ply_path = scratch("tetrahedron_binary.PLY");  // extension case does not matter
+  write_file(ply_path, ply);
+  check_tetrahedron(read_mesh(ply_path));
+
+  std::string stl(80, ' ');
+  append(stl, std::uint32_t{4});
+  for (const auto& f : tetra_faces) {
+    for (int c = 0; c < 3; ++c) append(stl, 0.0f);
+    for (int v : f)
+      for (float c : tetra_points[v]) append(stl, c);
+    append(stl, std::uint16_t{0});
+  }
+  const std::string stl_path = scratch("tetrahedron_binary.stl");
+  write_file(stl_path, stl);
+  check_tetrahedron(read_mesh(stl_path));
+}
+
+TEST_CASE("written meshes read back with identical positions and triangles") {
+  // Doubles that %.6g or float storage would not keep.
+  std::vector<Vec3> positions = {{1.0 / 3, 0.1, -0.0},  {-1, 1e-300, 2.0 / 7}, {0.2, 1, 1e20 / 3},
+                                 {0, -1, 0.30000000000000004}, {0, 0, 1},           {0, 0, -1}};
+  const std::vector<Triangle> triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                                           {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  for (const char* name : {"round_trip.off", "round_trip.obj", "round_trip.ply"}) {
+    const std::string path = scratch(name);
+    write_mesh(path, positions, triangles);
+    const LoadedMesh back = read_mesh(path);
+    INFO(name);
+    REQUIRE(back.mesh.triangles() == triangles);
+    REQUIRE(back.mesh.vertex_count() == static_cast<int>(positions.size()));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+      for (int c = 0; c < 3; ++c) {
+        const double got = back.mesh.position(static_cast<int>(v))[c], want = positions[v][c];
+        REQUIRE(std::memcmp(&got, &want, sizeof(double)) == 0);  // bit for bit: -0.0 stays -0.0
+      }
+    write_mesh(path, back.mesh);  // the SurfaceMesh overload writes the same file
+    REQUIRE(read_mesh(path).mesh.positions() == back.mesh.positions());
+  }
+}
+
+TEST_CASE("write_mesh refuses unknown extensions and unwritable paths") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  REQUIRE_THROWS_AS(write_mesh(scratch("mesh.stl"), p, {{0, 1, 2}}), InputError);
+  REQUIRE_THROWS_WITH(write_mesh(scratch("mesh.stl"), p, {{0, 1, 2}}), Contains("extension '.stl'"));
+  REQUIRE_THROWS_WITH(write_mesh(scratch("no_such_dir/mesh.off"), p, {{0, 1, 2}}),
+                      Contains("cannot be opened for writing"));
+}
+
+TEST_CASE("CGAL's elk and knot load as closed manifolds of the right genus") {
+  const std::string dir = LRVD_CGAL_DATA_DIR;
+  const LoadedMesh elk = read_mesh(dir + "/elk.off");
+  REQUIRE(elk.mesh.vertex_count() == 1645);
+  REQUIRE(elk.mesh.triangle_count() == 3290);
+  REQUIRE(elk.mesh.is_closed());
+  REQUIRE(elk.mesh.component_count() == 1);
+  REQUIRE(elk.mesh.euler_characteristic() == 0);  // the elk is a torus: body and legs close a handle
+  REQUIRE_FALSE(elk.repair.changed());
+
+  const LoadedMesh knot = read_mesh(dir + "/knot.off");
+  REQUIRE(knot.mesh.vertex_count() == 2080);
+  REQUIRE(knot.mesh.triangle_count() == 4160);
+  REQUIRE(knot.mesh.is_closed());
+  REQUIRE(knot.mesh.component_count() == 1);
+  REQUIRE(knot.mesh.euler_characteristic() == 0);  // a knotted tube: genus 1
+}
+
+TEST_CASE("write_cells_ply writes polygons with a cell label and a colour per face") {
+  PolygonMesh cells;
+  cells.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {0.5, 1.5, 0}};
+  cells.faces = {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 6}};
+  cells.face_cell = {7, 8, 7};
+  cells.face_color = {{{255, 0, 0}}, {{0, 255, 0}}, {{255, 0, 0}}};
+  const std::string path = scratch("cells.ply");
+  write_cells_ply(path, cells);
+
+  // The header declares the cell property; the binary body holds the labels and colours.
+  const std::string bytes = read_file(path);
+  const std::size_t body = bytes.find("end_header\n") + 11;
+  const std::string header = bytes.substr(0, body);
+  REQUIRE_THAT(header, Contains("element face 3") && Contains("property int cell") && Contains("property uchar red"));
+  std::size_t at = body + cells.positions.size() * 3 * sizeof(double);
+  for (std::size_t f = 0; f < cells.faces.size(); ++f) {
+    REQUIRE(static_cast<std::size_t>(static_cast<unsigned char>(bytes[at])) == cells.faces[f].size());
+    at += 1 + 4 * cells.faces[f].size();
+    int cell;
+    std::memcpy(&cell, bytes.data() + at, 4);
+    REQUIRE(cell == cells.face_cell[f]);
+    REQUIRE(static_cast<unsigned char>(bytes[at + 4]) == cells.face_color[f][0]);
+    at += 4 + 3;
+  }
+  REQUIRE(at == bytes.size());
+
+  // CGAL reads it back (ignoring the extra properties): 2 quads + 1 triangle.
+  const LoadedMesh back = read_mesh(path);
+  REQUIRE(back.repair.triangulated_faces == 2);
+  REQUIRE(back.mesh.triangle_count() == 5);
+  REQUIRE(back.mesh.positions() == cells.positions);
+
+  cells.face_cell.pop_back();
+  REQUIRE_THROWS_AS(write_cells_ply(path, cells), std::invalid_argument);
+}

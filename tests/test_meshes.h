@@ -1,0 +1,74 @@
+// Small meshes built in code for the tests: octahedron, grid sheets, spheres, merging.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace lrvd::test {
+
+inline SurfaceMesh octahedron() {
+  return SurfaceMesh({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                     {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+}
+
+//! Unit square [0,1]^2 in the z = 0 plane, nx * ny quads split in two.
+inline SurfaceMesh grid(int nx, int ny) {
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) p.push_back({double(i) / nx, double(j) / ny, 0});
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  return SurfaceMesh(p, t);
+}
+
+//! Icosphere of radius 1: `levels` 1-to-4 subdivisions of an icosahedron, vertices on the sphere.
+inline SurfaceMesh icosphere(int levels) {
+  const double g = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> p = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+  std::vector<Triangle> t = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (auto& q : p) q = q / norm(q);
+  for (int level = 0; level < levels; ++level) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      Vec3 m = p[a] + p[b];
+      p.push_back(m / norm(m));
+      return mid[key] = static_cast<int>(p.size()) - 1;
+    };
+    std::vector<Triangle> next;
+    for (const auto& f : t) {
+      const int ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+      next.push_back({f[0], ab, ca});
+      next.push_back({f[1], bc, ab});
+      next.push_back({f[2], ca, bc});
+      next.push_back({ab, bc, ca});
+    }
+    t.swap(next);
+  }
+  return SurfaceMesh(p, t);
+}
+
+//! Disjoint union of two meshes, the second shifted by `offset`.
+inline SurfaceMesh merge(const SurfaceMesh& a, const SurfaceMesh& b, const Vec3& offset) {
+  std::vector<Vec3> p = a.positions();
+  std::vector<Triangle> t = a.triangles();
+  const int base = a.vertex_count();
+  for (const Vec3& q : b.positions()) p.push_back(q + offset);
+  for (Triangle f : b.triangles()) t.push_back({f[0] + base, f[1] + base, f[2] + base});
+  return SurfaceMesh(p, t);
+}
+
+}  // namespace lrvd::test

@@ -1,0 +1,155 @@
+// Samples: reproducible uniform sampling by area, location of points by closest point, .xyz files.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "common/error.h"
+#include "mesh/closest_point.h"
+#include "test_meshes.h"
+#include "voronoi/samples.h"
+
+using namespace lrvd;
+
+namespace {
+
+std::string temp_path(const std::string& name) { return std::string(LRVD_BINARY_DIR) + "/test_" + name; }
+
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+}  // namespace
+
+TEST_CASE("Uniform sampling is reproducible from its seed and lies on the surface") {
+  const SurfaceMesh mesh = test::icosphere(2);
+  const Samples a = sample_uniform(mesh, 500, 7), b = sample_uniform(mesh, 500, 7), c = sample_uniform(mesh, 500, 8);
+  REQUIRE(a.size() == 500);
+  REQUIRE(a.positions == b.positions);
+  REQUIRE(a.triangles == b.triangles);
+  REQUIRE(a.positions != c.positions);
+  for (int i = 0; i < a.size(); ++i) {
+    const Triangle& t = mesh.triangle(a.triangles[i]);
+    const Vec3 w = a.barycentric[i];
+    REQUIRE(w.x >= 0);
+    REQUIRE(w.y >= 0);
+    REQUIRE(w.z >= 0);
+    REQUIRE(w.x + w.y + w.z == Approx(1.0));
+    const Vec3 q = w.x * mesh.position(t[0]) + w.y * mesh.position(t[1]) + w.z * mesh.position(t[2]);
+    REQUIRE(distance(q, a.positions[i]) < 1e-15);
+  }
+  // The first values of seed 1 are fixed on every machine: a changed generator changes them.
+  const Samples fixed = sample_uniform(test::grid(1, 1), 2, 1);
+  const Samples again = sample_uniform(test::grid(1, 1), 2, 1);
+  REQUIRE(fixed.positions == again.positions);
+  Random r(1);
+  const uint64_t first = r.next();
+  REQUIRE(first == Random(1).next());
+  REQUIRE(first != Random(2).next());
+}
+
+TEST_CASE("Uniform sampling is uniform by area (chi-square with a fixed seed)") {
+  // Unit square split in a 4x4 grid of cells; every cell has area 1/16.
+  const SurfaceMesh mesh = test::grid(8, 8);
+  const int n = 32000, bins = 16;
+  const Samples s = sample_uniform(mesh, n, 12345);
+  std::vector<int> count(bins, 0);
+  for (const Vec3& p : s.positions) {
+    const int i = std::min(3, int(p.x * 4)), j = std::min(3, int(p.y * 4));
+    ++count[j * 4 + i];
+  }
+  double chi2 = 0;
+  const double expected = double(n) / bins;
+  for (int c : count) chi2 += (c - expected) * (c - expected) / expected;
+  // 15 degrees of freedom: P(chi2 > 37.7) = 0.001.
+  REQUIRE(chi2 < 37.7);
+  // Triangles of unequal area: a thin and a fat triangle must receive samples by area.
+  const SurfaceMesh two({{0, 0, 0}, {1, 0, 0}, {1, 0.1, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 2, 3}});
+  const Samples t = sample_uniform(two, 20000, 3);
+  int in_thin = 0;
+  for (int tri : t.triangles) in_thin += tri == 0;
+  const double share = two.triangle_area(0) / two.area();
+  REQUIRE(std::abs(in_thin / 20000.0 - share) < 4 * std::sqrt(share * (1 - share) / 20000));
+}
+
+TEST_CASE("Every connected component receives a sample") {
+  const SurfaceMesh mesh = test::merge(test::icosphere(2), test::merge(test::grid(1, 1), test::octahedron(), {0, 0, 3}),
+                                       {5, 0, 0});
+  REQUIRE(mesh.component_count() == 3);
+  const Samples s = sample_uniform(mesh, 3, 99);
+  std::vector<int> hit(3, 0);
+  for (int t : s.triangles) ++hit[mesh.triangle_components()[t]];
+  REQUIRE(hit == std::vector<int>{1, 1, 1});
+  REQUIRE_THROWS_WITH(sample_uniform(mesh, 2, 1), Catch::Contains("3 connected components"));
+  REQUIRE_THROWS_WITH(sample_uniform(mesh, 0, 1), Catch::Contains("at least 1"));
+}
+
+TEST_CASE("Closest point on a triangle covers vertex, edge and face regions") {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  auto check = [&](Vec3 p, Vec3 expected, double dist) {
+    const ClosestPoint q = closest_point_on_triangle(p, a, b, c);
+    REQUIRE(distance(q.point, expected) < 1e-15);
+    REQUIRE(q.distance == Approx(dist));
+    const Vec3 w = q.barycentric;
+    REQUIRE(distance(w.x * a + w.y * b + w.z * c, expected) < 1e-15);
+  };
+  check({0.2, 0.2, 1}, {0.2, 0.2, 0}, 1);
+  check({-1, -1, 0}, a, std::sqrt(2.0));
+  check({2, -1, 0}, b, std::sqrt(2.0));
+  check({-1, 3, 0}, c, std::sqrt(5.0));
+  check({0.5, -2, 0}, {0.5, 0, 0}, 2);
+  check({-3, 0.5, 0}, {0, 0.5, 0}, 3);
+  check({1, 1, 0}, {0.5, 0.5, 0}, std::sqrt(0.5));
+}
+
+TEST_CASE("Points are located on the mesh by closest point") {
+  const SurfaceMesh mesh = test::icosphere(3);
+  const Samples truth = sample_uniform(mesh, 200, 4);
+  std::vector<Vec3> pushed;
+  for (const Vec3& p : truth.positions) pushed.push_back(p * (1 + 1e-4));  // slightly off the surface
+  const Samples located = locate_points(mesh, pushed);
+  REQUIRE(located.size() == 200);
+  ClosestPointIndex index(mesh);
+  for (int i = 0; i < 200; ++i) {
+    REQUIRE(distance(located.positions[i], truth.positions[i]) < 2e-4);
+    // Brute force agrees with the BVH on the distance.
+    double best = INFINITY;
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Triangle& f = mesh.triangle(t);
+      best = std::min(best, closest_point_on_triangle(pushed[i], mesh.position(f[0]), mesh.position(f[1]),
+                                                      mesh.position(f[2])).distance);
+    }
+    REQUIRE(index.query(pushed[i]).distance == best);
+  }
+}
+
+TEST_CASE("Bad sample points are refused with a clear message") {
+  const SurfaceMesh mesh = test::icosphere(2);
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1.5}}), Catch::Contains("point 0") && Catch::Contains("1%"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {NAN, 0, 1}}), Catch::Contains("point 1 has a non-finite"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {1, 0, 0}, {0, 0, 1}}), Catch::Contains("points 0 and 2 coincide"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {}), Catch::Contains("no sample points"));
+  const SurfaceMesh two = test::merge(mesh, test::octahedron(), {4, 0, 0});
+  REQUIRE_THROWS_WITH(locate_points(two, {{0, 0, 1}}), Catch::Contains("component 1") && Catch::Contains("no sample"));
+}
+
+TEST_CASE("Point files are read with optional weights and malformed lines are named") {
+  const std::string good = temp_path("good.xyz"), weighted = temp_path("weighted.xyz"), bad = temp_path("bad.xyz"),
+                    mixed = temp_path("mixed.xyz");
+  write_text(good, "# comment\n0 0 1\n\n1 0 0\n");
+  write_text(weighted, "0 0 1 0.5\n1 0 0 0.25\n");
+  write_text(bad, "0 0 1\n1 zero 0\n");
+  write_text(mixed, "0 0 1\n1 0 0 2\n");
+  const PointFile g = read_xyz(good);
+  REQUIRE(g.points.size() == 2);
+  REQUIRE(g.weights.empty());
+  const PointFile w = read_xyz(weighted);
+  REQUIRE(w.weights == std::vector<double>{0.5, 0.25});
+  REQUIRE_THROWS_WITH(read_xyz(bad), Catch::Contains(":2: 'zero' is not a number"));
+  REQUIRE_THROWS_WITH(read_xyz(mixed), Catch::Contains(":2: every line must have the same number"));
+  REQUIRE_THROWS_WITH(read_xyz(temp_path("missing.xyz")), Catch::Contains("cannot read"));
+  const std::string out = temp_path("roundtrip.xyz");
+  write_xyz(out, {{0.1, 1e-300, -3}}, {2.5});
+  const PointFile r = read_xyz(out);
+  REQUIRE(r.points[0] == Vec3{0.1, 1e-300, -3});
+  REQUIRE(r.weights[0] == 2.5);
+}

@@ -1,0 +1,108 @@
+// SurfaceMesh adjacency, components, boundary loops, Euler characteristic and edge refinement.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/error.h"
+#include "mesh/surface_mesh.h"
+#include "test_meshes.h"
+
+using namespace lrvd;
+
+TEST_CASE("Octahedron adjacency is symmetric and closed") {
+  const SurfaceMesh mesh = test::octahedron();
+  REQUIRE(mesh.vertex_count() == 6);
+  REQUIRE(mesh.triangle_count() == 8);
+  REQUIRE(mesh.edge_count() == 12);
+  REQUIRE(mesh.is_closed());
+  REQUIRE(mesh.component_count() == 1);
+  REQUIRE(mesh.euler_characteristic() == 2);
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh.neighbor(t, e);
+      REQUIRE(n >= 0);
+      const int f = mesh.neighbor_edge(t, e);
+      REQUIRE(mesh.neighbor(n, f) == t);
+      // The shared edge is traversed in opposite directions.
+      REQUIRE(mesh.triangle(n)[f] == mesh.triangle(t)[(e + 1) % 3]);
+      REQUIRE(mesh.triangle(n)[(f + 1) % 3] == mesh.triangle(t)[e]);
+    }
+  for (int v = 0; v < 6; ++v) {
+    REQUIRE(mesh.vertex_triangle_count(v) == 4);
+    REQUIRE(mesh.vertex_neighbors(v).size() == 4);
+  }
+  REQUIRE(mesh.area() == Approx(4 * std::sqrt(3.0)));
+  REQUIRE(mesh.bounding_box().diagonal() == Approx(2 * std::sqrt(3.0)));
+}
+
+TEST_CASE("A grid sheet has one boundary loop in triangle order") {
+  const SurfaceMesh mesh = test::grid(4, 3);
+  REQUIRE_FALSE(mesh.is_closed());
+  REQUIRE(mesh.boundary_loops().size() == 1);
+  const auto& loop = mesh.boundary_loops()[0];
+  REQUIRE(loop.size() == 2 * (4 + 3));
+  REQUIRE(mesh.euler_characteristic() == 1);
+  // Consecutive loop vertices form a boundary edge (u -> v) of some triangle.
+  for (size_t k = 0; k < loop.size(); ++k) {
+    const int u = loop[k], v = loop[(k + 1) % loop.size()];
+    bool found = false;
+    for (const int* t = mesh.vertex_triangles_begin(u); t != mesh.vertex_triangles_end(u); ++t)
+      for (int e = 0; e < 3; ++e)
+        if (mesh.triangle(*t)[e] == u && mesh.triangle(*t)[(e + 1) % 3] == v && mesh.neighbor(*t, e) < 0)
+          found = true;
+    REQUIRE(found);
+  }
+}
+
+TEST_CASE("Components and their Euler characteristics are counted per component") {
+  const SurfaceMesh mesh = test::merge(test::octahedron(), test::grid(2, 2), {5, 0, 0});
+  REQUIRE(mesh.component_count() == 2);
+  const auto chi = mesh.component_euler_characteristics();
+  REQUIRE(chi.size() == 2);
+  REQUIRE(chi[0] == 2);
+  REQUIRE(chi[1] == 1);
+  REQUIRE(mesh.euler_characteristic() == 3);
+  REQUIRE(mesh.boundary_loops().size() == 1);
+}
+
+TEST_CASE("The constructor refuses what the algorithms cannot handle") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 0, 0}};
+  REQUIRE_THROWS_WITH(SurfaceMesh({}, {}), Catch::Contains("empty"));
+  REQUIRE_THROWS_WITH(SurfaceMesh(p, {{0, 1, 7}}), Catch::Contains("index 7 out of range"));
+  REQUIRE_THROWS_WITH(SurfaceMesh({{0, 0, 0}, {1, 0, 0}, {NAN, 1, 0}}, {{0, 1, 2}}),
+                      Catch::Contains("vertex 2 has a non-finite"));
+  REQUIRE_THROWS_WITH(SurfaceMesh({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, {{0, 1, 2}}),
+                      Catch::Contains("triangle 0 (0, 1, 2) has zero area"));
+  REQUIRE_THROWS_WITH(SurfaceMesh(p, {{0, 1, 2}, {1, 2, 0}}), Catch::Contains("duplicates"));
+  REQUIRE_THROWS_WITH(SurfaceMesh({p[0], p[1], p[2], p[3]}, {{0, 1, 2}, {1, 0, 3}, {0, 1, 3}}),
+                      Catch::Contains("edge (0, 1) has 3 or more"));
+  REQUIRE_THROWS_WITH(SurfaceMesh({p[0], p[1], p[2], p[3]}, {{0, 1, 2}, {0, 1, 3}}),
+                      Catch::Contains("inconsistent orientation"));
+  REQUIRE_THROWS_WITH(SurfaceMesh(p, {{0, 1, 2}}), Catch::Contains("not used by any triangle"));
+  // Two triangles touching at vertex 0 only.
+  const std::vector<Vec3> bow = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  REQUIRE_THROWS_WITH(SurfaceMesh(bow, {{0, 1, 2}, {0, 3, 4}}), Catch::Contains("vertex 0 joins 2 separate fans"));
+}
+
+TEST_CASE("Refinement bounds every edge and keeps the surface") {
+  const SurfaceMesh mesh = test::octahedron();
+  for (double length : {1.0, 0.3, 0.11}) {
+    const SurfaceMesh fine = refine_long_edges(mesh, length);
+    REQUIRE(fine.max_edge_length() <= length);
+    REQUIRE(fine.area() == Approx(mesh.area()).epsilon(1e-12));
+    REQUIRE(fine.is_closed());
+    REQUIRE(fine.euler_characteristic() == 2);
+    REQUIRE(fine.triangle_count() > mesh.triangle_count());
+    // Every new vertex lies on the original surface: on one of the octahedron's faces |x|+|y|+|z| = 1.
+    for (const Vec3& q : fine.positions())
+      REQUIRE(std::abs(q.x) + std::abs(q.y) + std::abs(q.z) == Approx(1.0).epsilon(1e-14));
+  }
+  // An open sheet keeps its boundary length and single loop.
+  const SurfaceMesh sheet = refine_long_edges(test::grid(2, 2), 0.2);
+  REQUIRE(sheet.max_edge_length() <= 0.2);
+  REQUIRE(sheet.boundary_loops().size() == 1);
+  REQUIRE(sheet.area() == Approx(1.0).epsilon(1e-12));
+  REQUIRE(sheet.euler_characteristic() == 1);
+  REQUIRE_THROWS_AS(refine_long_edges(mesh, 0.0), InputError);
+}
