@@ -1,7 +1,6 @@
 // Mesh IO: every refusal on a real malformed file with its message, --repair on real soups,
 // exact round trips of the writers, CGAL's data-set meshes, and the Voronoi-cells PLY.
 #include <catch2/catch.hpp>
-
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -24,9 +23,7 @@ std::string scratch(const std::string& name) {
   return (dir / name).string();
 }
 
-void write_file(const std::string& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+void write_file(const std::string& path, const std::string& bytes) { std::ofstream(path, std::ios::binary) << bytes; }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -71,8 +68,9 @@ TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into th
   REQUIRE_THROWS_WITH(read_mesh(data("not_a_number.off")), Contains("vertex 1 (line 4): 'O' is not a number"));
 
   // A truncated binary PLY: the header promises 4 faces, the body holds 3 and a half.
-  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& p : tetra_points)
     for (float c : p) append(ply, c);
   for (const auto& f : tetra_faces) {
@@ -86,13 +84,25 @@ TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into th
 
   const std::string truncated_stl = scratch("truncated.stl");
   write_file(truncated_stl, read_file(data("tetrahedron.stl")).substr(0, 150));
-  REQUIRE_THROWS_WITH(read_mesh(truncated_stl), Contains("cannot be parsed as ascii or binary STL"));
+  REQUIRE_THROWS_WITH(read_mesh(truncated_stl), Contains("is truncated: the ascii STL ends after 2 facets"));
+
+  std::string binary_stl(80, ' ');
+  append(binary_stl, std::uint32_t{4});
+  binary_stl.append(4 * 50 - 20, '\0');
+  write_file(scratch("truncated_binary.stl"), binary_stl);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("truncated_binary.stl")),
+                      Contains("is truncated or malformed as binary STL: it has 264 bytes"));
+
+  write_file(scratch("polyline.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("polyline.obj")), Contains("line 5: the OBJ statement 'l' is not supported"));
 }
 
 TEST_CASE("read_mesh refuses NaN and infinite coordinates") {
   REQUIRE_THROWS_AS(read_mesh(data("nan.off")), InputError);
-  REQUIRE_THROWS_WITH(read_mesh(data("nan.off")), Contains("nan.off: vertex 2 has a non-finite coordinate (0, nan, 0)"));
-  REQUIRE_THROWS_WITH(read_mesh(data("inf.obj")), Contains("inf.obj: vertex 2 has a non-finite coordinate (0, inf, 0)"));
+  REQUIRE_THROWS_WITH(read_mesh(data("nan.off")),
+                      Contains("nan.off: vertex 2 has a non-finite coordinate (0, nan, 0)"));
+  REQUIRE_THROWS_WITH(read_mesh(data("inf.obj")),
+                      Contains("inf.obj: vertex 2 has a non-finite coordinate (0, inf, 0)"));
 
   // Binary formats carry NaN through CGAL's reader; the check after reading catches it.
   std::string stl(80, '\0');
@@ -102,7 +112,21 @@ TEST_CASE("read_mesh refuses NaN and infinite coordinates") {
   append(stl, std::uint16_t{0});
   const std::string path = scratch("nan.stl");
   write_file(path, stl);
-  REQUIRE_THROWS_WITH(read_mesh(path), Contains("non-finite coordinate") && Contains("nan"));
+  REQUIRE_THROWS_WITH(read_mesh(path), Contains("nan.stl: facet 0 has a non-finite coordinate (0, nan, 0)"));
+
+  std::string ascii_stl = read_file(data("tetrahedron.stl"));
+  ascii_stl.replace(ascii_stl.find("vertex 0 0 1"), 12, "vertex 0 0 -inf");
+  write_file(scratch("inf.stl"), ascii_stl);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("inf.stl")), Contains("facet 1 has a non-finite coordinate (0, 0, -inf)"));
+
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (double c : {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, std::nan("")}) append(ply, c);
+  append(ply, static_cast<unsigned char>(3));
+  for (int v : {0, 1, 2}) append(ply, v);
+  write_file(scratch("nan.ply"), ply);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("nan.ply")), Contains("vertex 2 has a non-finite coordinate (0, 1, nan)"));
 }
 
 TEST_CASE("read_mesh refuses face indices out of range") {
@@ -116,9 +140,9 @@ TEST_CASE("read_mesh refuses face indices out of range") {
 
 TEST_CASE("read_mesh reports what SurfaceMesh refuses, with the file name and a --repair hint") {
   REQUIRE_THROWS_AS(read_mesh(data("nonmanifold_edge.off")), InputError);
-  REQUIRE_THROWS_WITH(read_mesh(data("nonmanifold_edge.off")),
-                      Contains("nonmanifold_edge.off: mesh is not manifold: edge (0, 1) has 3") &&
-                          Contains("; --repair may fix it"));
+  REQUIRE_THROWS_WITH(
+      read_mesh(data("nonmanifold_edge.off")),
+      Contains("nonmanifold_edge.off: mesh is not manifold: edge (0, 1) has 3") && Contains("; --repair may fix it"));
   REQUIRE_THROWS_WITH(read_mesh(data("nonmanifold_vertex.off")),
                       Contains("vertex 0 joins 2 separate fans") && Contains("--repair may fix it"));
   REQUIRE_THROWS_WITH(read_mesh(data("inconsistent_orientation.off")),
@@ -155,6 +179,15 @@ TEST_CASE("--repair orients, removes duplicates and degenerate faces, and cuts n
     REQUIRE(loaded.mesh.euler_characteristic() == 2);
     REQUIRE(signed_volume(loaded.mesh) == Approx(4.0 / 3.0));
   }
+  SECTION("a closed mesh oriented inwards is turned outwards") {
+    const std::vector<Vec3> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    const std::vector<Triangle> inwards = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    write_mesh(scratch("inwards.off"), p, inwards);
+    REQUIRE(signed_volume(read_mesh(scratch("inwards.off")).mesh) < 0);  // valid as it is without repair
+    const LoadedMesh loaded = read_mesh(scratch("inwards.off"), {true});
+    REQUIRE(loaded.repair.reoriented_faces == 4);
+    REQUIRE(signed_volume(loaded.mesh) == Approx(1.0 / 6.0));
+  }
   SECTION("a duplicate triangle is removed") {
     const LoadedMesh loaded = read_mesh(data("duplicate_triangle.off"), {true});
     REQUIRE(loaded.repair.removed_duplicate_faces == 1);
@@ -167,11 +200,14 @@ TEST_CASE("--repair orients, removes duplicates and degenerate faces, and cuts n
     REQUIRE(loaded.mesh.triangle_count() == 1);
     REQUIRE(loaded.mesh.vertex_count() == 3);
   }
-  SECTION("a third triangle on an edge is cut off") {
+  SECTION("three triangles on one edge are cut apart") {
+    // CGAL's orient_polygon_soup joins no two faces across an edge with 3 faces: each triangle
+    // keeps its own copy of the edge's endpoints (2 x 2 copies).
     const LoadedMesh loaded = read_mesh(data("nonmanifold_edge.off"), {true});
-    REQUIRE(loaded.repair.duplicated_nonmanifold_vertices == 2);
-    REQUIRE(loaded.mesh.vertex_count() == 7);
-    REQUIRE(loaded.mesh.component_count() == 2);
+    REQUIRE(loaded.repair.duplicated_nonmanifold_vertices == 4);
+    REQUIRE(loaded.mesh.vertex_count() == 9);
+    REQUIRE(loaded.mesh.component_count() == 3);
+    REQUIRE(loaded.repair.notes.size() == 2);  // the copies, and the boundary loops left
   }
   SECTION("two cones sharing an apex get one apex each") {
     const LoadedMesh loaded = read_mesh(data("nonmanifold_vertex.off"), {true});
@@ -216,8 +252,9 @@ TEST_CASE("PLY and STL, ascii and binary, are read") {
   check_tetrahedron(read_mesh(data("tetrahedron.ply")));
   check_tetrahedron(read_mesh(data("tetrahedron.stl")));  // CGAL welds STL's repeated corners
 
-  std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                    "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& p : tetra_points)
     for (float c : p) append(ply, c);
   for (const auto& f : tetra_faces) {
@@ -243,8 +280,12 @@ TEST_CASE("PLY and STL, ascii and binary, are read") {
 
 TEST_CASE("written meshes read back with identical positions and triangles") {
   // Doubles that %.6g or float storage would not keep.
-  std::vector<Vec3> positions = {{1.0 / 3, 0.1, -0.0},  {-1, 1e-300, 2.0 / 7}, {0.2, 1, 1e20 / 3},
-                                 {0, -1, 0.30000000000000004}, {0, 0, 1},           {0, 0, -1}};
+  std::vector<Vec3> positions = {{1.0 / 3, 0.1, -0.0},
+                                 {-1, 1e-300, 2.0 / 7},
+                                 {0.2, 1, 1e20 / 3},
+                                 {0, -1, 0.30000000000000004},
+                                 {0, 0, 1},
+                                 {0, 0, -1}};
   const std::vector<Triangle> triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                                            {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
   for (const char* name : {"round_trip.off", "round_trip.obj", "round_trip.ply"}) {

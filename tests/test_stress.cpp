@@ -150,6 +150,11 @@ TEST_CASE("Every stress mesh is a valid manifold with the catalogued topology an
       CHECK(box.min[c] >= -1.0);
       CHECK(box.max[c] <= 1.0);
     }
+    // No two vertices at the same point (samples placed on them would coincide).
+    std::vector<std::array<double, 3>> points;
+    for (const Vec3& p : mesh.positions()) points.push_back({p.x, p.y, p.z});
+    std::sort(points.begin(), points.end());
+    CHECK(std::adjacent_find(points.begin(), points.end()) == points.end());
   }
 }
 

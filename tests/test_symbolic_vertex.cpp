@@ -1,2 +1,274 @@
-// placeholder
+// Symbolic vertices (paper §3.4, §3.6): invariance of side() over exhaustive small grids, the birth
+// rule, and exact clipping of a triangle into cells that tile it and agree on shared vertices.
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <random>
+#include <set>
+#include <type_traits>
+#include <unordered_set>
+#include <vector>
+
+#include "predicates/exact.h"
+#include "predicates/symbolic_vertex.h"
+
+using lrvd::Sign;
+using lrvd::Site;
+using lrvd::SymbolicContext;
+using lrvd::SymbolicVertex;
+using lrvd::Vec3;
+using Q = CGAL::Gmpq;
+
+namespace {
+
+// The 27 points of {0,1,2}^3.
+std::vector<Vec3> grid3() {
+  std::vector<Vec3> g;
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      for (int z = 0; z < 3; ++z) g.push_back(Vec3{double(x), double(y), double(z)});
+  return g;
+}
+
+// A power weight in {-1, 0, 1} that depends on the position only.
+double grid_weight(const Vec3& p) { return double((int(p.x) * 5 + int(p.y) * 3 + int(p.z)) % 3 - 1); }
+
+// n-th permutation of {0, ..., N-1} (the id each role gets), cycling through all N!.
+template <std::size_t N>
+std::array<int, N> nth_permutation(int n) {
+  std::array<int, N> p;
+  for (std::size_t a = 0; a < N; ++a) p[a] = int(a);
+  for (int k = 0; k < n; ++k) std::next_permutation(p.begin(), p.end());
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("Symbolic vertices store their defining data canonically") {
+  static_assert(std::is_trivially_copyable<SymbolicVertex>::value, "hot-loop value type");
+  static_assert(sizeof(SymbolicVertex) <= 28, "small");
+  const SymbolicVertex b1 = SymbolicVertex::on_edge(7, 3, 9, 2), b2 = SymbolicVertex::on_edge(3, 7, 2, 9);
+  CHECK(b1 == b2);
+  CHECK(lrvd::SymbolicVertexHash()(b1) == lrvd::SymbolicVertexHash()(b2));
+  CHECK(b1.v[0] == 3);
+  CHECK(b1.label[0] == 2);
+  CHECK(b1.has_label(9));
+  CHECK(!b1.has_label(3));
+  const SymbolicVertex c1 = SymbolicVertex::in_triangle({5, 1, 4}, 8, 0, 3);
+  CHECK(c1.v == std::array<int, 3>{5, 1, 4});
+  CHECK(c1.label == std::array<int, 3>{0, 3, 8});
+  CHECK(c1 == SymbolicVertex::in_triangle({5, 1, 4}, 3, 8, 0));
+  CHECK(c1 != SymbolicVertex::in_triangle({1, 4, 5}, 3, 8, 0));
+  CHECK(SymbolicVertex::mesh_vertex(4).on_mesh_edge(4, 6));
+  CHECK(b1.on_mesh_edge(7, 3));
+  CHECK(!c1.on_mesh_edge(5, 1));
+}
+
+TEST_CASE("Type (a): side is antisymmetric, never zero and transitive on a 3x3x3 grid") {
+  const std::vector<Vec3> g = grid3();
+  for (int power = 0; power < 2; ++power) {
+    std::vector<Site> sites(g.size());
+    std::vector<int> ids(g.size());
+    for (std::size_t a = 0; a < g.size(); ++a) ids[a] = int((a * 11) % g.size());  // scrambled ids
+    for (std::size_t a = 0; a < g.size(); ++a) sites[ids[a]] = Site{g[a], power ? grid_weight(g[a]) : 0.0, ids[a]};
+    const SymbolicContext ctx{g.data(), sites.data()};
+    for (std::size_t v = 0; v < g.size(); ++v) {
+      const SymbolicVertex q = SymbolicVertex::mesh_vertex(int(v));
+      const int n = int(g.size());
+      std::vector<Sign> s(n * n);
+      for (int i = 0; i < n; ++i)
+        for (int l = 0; l < n; ++l) s[i * n + l] = lrvd::side(q, i, l, ctx);
+      for (int i = 0; i < n; ++i)
+        for (int l = 0; l < n; ++l) {
+          if (i == l) continue;
+          REQUIRE(s[i * n + l] != Sign::Zero);
+          REQUIRE(s[i * n + l] == -s[l * n + i]);
+          for (int k = 0; k < n; ++k)  // closer(i, l) and closer(l, k) => closer(i, k)
+            if (k != i && s[i * n + l] == Sign::Positive && s[l * n + k] == Sign::Positive)
+              REQUIRE(s[i * n + k] == Sign::Positive);
+        }
+    }
+  }
+}
+
+TEST_CASE("Type (b): side does not depend on the reference label or the edge direction") {
+  const std::vector<Vec3> g = grid3();
+  const std::vector<std::pair<int, int>> edges = {{0, 18}, {0, 24}, {0, 26}, {9, 17}, {5, 21}, {1, 16}};
+  int checked = 0, config = 0;
+  for (int power = 0; power < 2; ++power)
+    for (auto [e0, e1] : edges)
+      for (std::size_t a = 0; a < g.size(); ++a)
+        for (std::size_t b = a + 1; b < g.size(); ++b)
+          for (std::size_t c = 0; c < g.size(); ++c) {
+            const auto id = nth_permutation<3>(config++ % 6);  // ids of a, b, l
+            std::array<Site, 3> s;
+            const std::size_t at[3] = {a, b, c};
+            for (int r = 0; r < 3; ++r) s[id[r]] = Site{g[at[r]], power ? grid_weight(g[at[r]]) : 0.0, id[r]};
+            const Vec3 &q1 = g[e0], &q2 = g[e1];
+            if (lrvd::dot(q1 - q2, g[b] - g[a]) == 0) continue;  // exact on this grid: no vertex
+            const SymbolicContext ctx{g.data(), s.data()};
+            const SymbolicVertex q = SymbolicVertex::on_edge(e0, e1, id[0], id[1]);
+            const Sign ref = lrvd::side(q, id[0], id[2], ctx);
+            REQUIRE(ref != Sign::Zero);
+            REQUIRE(lrvd::side(q, id[1], id[2], ctx) == ref);
+            REQUIRE(lrvd::predicates::side2(s[id[0]], s[id[1]], s[id[2]], q2, q1) == ref);
+            REQUIRE(lrvd::predicates::side2(s[id[1]], s[id[0]], s[id[2]], q2, q1) == ref);
+            REQUIRE(lrvd::side(q, id[0], id[1], ctx) == Sign::Zero);  // l is one of q's labels
+            ++checked;
+          }
+  CHECK(checked > 50000);
+}
+
+TEST_CASE("Type (c): side does not depend on the reference label or the triangle's vertex order") {
+  const std::vector<Vec3> g = grid3();
+  // Corners: one triangle in the plane z = 0, one tilted; appended after the 27 grid points.
+  const std::vector<std::array<Vec3, 3>> triangles = {{Vec3{0, 0, 0}, Vec3{2, 0, 0}, Vec3{0, 2, 0}},
+                                                      {Vec3{0, 0, 0}, Vec3{2, 1, 0}, Vec3{0, 1, 2}}};
+  const std::array<std::array<int, 3>, 6> orders = {{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}}};
+  long checked = 0, config = 0;
+  for (const auto& tri : triangles)
+    for (int power = 0; power < 2; ++power)
+      for (std::size_t a = 0; a < g.size(); ++a)
+        for (std::size_t b = a + 1; b < g.size(); ++b)
+          for (std::size_t c = b + 1; c < g.size(); ++c) {
+            const Vec3 n = lrvd::cross(tri[1] - tri[0], tri[2] - tri[0]);
+            if (lrvd::dot(n, lrvd::cross(g[b] - g[a], g[c] - g[a])) == 0) continue;  // exact here
+            for (std::size_t d = 0; d < g.size(); ++d) {
+              const auto id = nth_permutation<4>(int(config++ % 24));  // ids of a, b, c, l
+              std::array<Site, 4> s;
+              const std::size_t at[4] = {a, b, c, d};
+              for (int r = 0; r < 4; ++r) s[id[r]] = Site{g[at[r]], power ? grid_weight(g[at[r]]) : 0.0, id[r]};
+              const SymbolicContext ctx{tri.data(), s.data()};
+              const Sign ref = lrvd::side(SymbolicVertex::in_triangle({0, 1, 2}, id[0], id[1], id[2]), id[0], id[3], ctx);
+              REQUIRE(ref != Sign::Zero);
+              for (int r = 1; r < 3; ++r)
+                REQUIRE(lrvd::side(SymbolicVertex::in_triangle({0, 1, 2}, id[0], id[1], id[2]), id[r], id[3], ctx) == ref);
+              for (int o = 1; o < 6; ++o)  // odd permutations flip n and det M together
+                REQUIRE(lrvd::side(SymbolicVertex::in_triangle(orders[o], id[0], id[1], id[2]), id[o % 3], id[3], ctx) == ref);
+              ++checked;
+            }
+          }
+  CHECK(checked > 100000);
+}
+
+TEST_CASE("The birth rule: type (b) on a shared mesh edge, type (c) inside the triangle") {
+  const std::array<int, 3> t = {10, 20, 30};
+  const SymbolicVertex a10 = SymbolicVertex::mesh_vertex(10), a20 = SymbolicVertex::mesh_vertex(20);
+  const SymbolicVertex b = SymbolicVertex::on_edge(20, 10, 1, 4), b2 = SymbolicVertex::on_edge(10, 20, 1, 6);
+  const SymbolicVertex b3 = SymbolicVertex::on_edge(20, 30, 1, 4), c = SymbolicVertex::in_triangle(t, 1, 4, 6);
+  CHECK(lrvd::intersect(a10, a20, 1, 5, t) == SymbolicVertex::on_edge(10, 20, 1, 5));
+  CHECK(lrvd::intersect(a20, b, 1, 5, t) == SymbolicVertex::on_edge(10, 20, 1, 5));
+  CHECK(lrvd::intersect(b, b2, 1, 5, t) == SymbolicVertex::on_edge(10, 20, 1, 5));
+  CHECK(lrvd::intersect(b, b3, 1, 5, t) == SymbolicVertex::in_triangle(t, 1, 4, 5));
+  CHECK(lrvd::intersect(c, b3, 1, 5, t) == SymbolicVertex::in_triangle(t, 1, 4, 5));
+  CHECK(lrvd::intersect(SymbolicVertex::in_triangle(t, 1, 6, 4), SymbolicVertex::in_triangle(t, 1, 6, 2), 1, 5, t) ==
+        SymbolicVertex::in_triangle(t, 1, 6, 5));
+  CHECK_THROWS_AS(lrvd::intersect(b2, b3, 1, 5, t), std::logic_error);  // share no bisector
+}
+
+namespace {
+
+// Cell i of the triangle (0, 1, 2): Sutherland-Hodgman with symbolic vertices and exact sides.
+std::vector<SymbolicVertex> clip_cell(int i, int n_sites, const SymbolicContext& ctx) {
+  const std::array<int, 3> tri = {0, 1, 2};
+  std::vector<SymbolicVertex> poly = {SymbolicVertex::mesh_vertex(0), SymbolicVertex::mesh_vertex(1),
+                                      SymbolicVertex::mesh_vertex(2)};
+  for (int l = 0; l < n_sites && !poly.empty(); ++l) {
+    if (l == i) continue;
+    std::vector<Sign> s;
+    for (const SymbolicVertex& v : poly) {
+      s.push_back(lrvd::side(v, i, l, ctx));
+      REQUIRE(s.back() != Sign::Zero);
+    }
+    std::vector<SymbolicVertex> out;
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const std::size_t k1 = (k + 1) % poly.size();
+      if (s[k] == Sign::Positive) out.push_back(poly[k]);
+      if (s[k] != s[k1]) out.push_back(lrvd::intersect(poly[k], poly[k1], i, l, tri));
+    }
+    poly = out;
+  }
+  return poly;
+}
+
+// Twice the signed area of the projection (dropping `axis`) of a polygon with exact vertices.
+Q twice_area(const std::vector<lrvd::ExactPoint>& p, int axis) {
+  auto coord = [](const lrvd::ExactPoint& e, int c) { return c == 0 ? e.x : (c == 1 ? e.y : e.z); };
+  const int x = (axis + 1) % 3, y = (axis + 2) % 3;
+  Q a = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto& u = p[k];
+    const auto& w = p[(k + 1) % p.size()];
+    a += coord(u, x) * coord(w, y) - coord(w, x) * coord(u, y);
+  }
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consistent shared vertices") {
+  std::mt19937_64 rng(42);
+  const std::vector<std::array<Vec3, 3>> triangles = {{Vec3{0, 0, 0}, Vec3{4, 0, 0}, Vec3{0, 4, 0}},
+                                                      {Vec3{0, 0, 0}, Vec3{4, 2, 0}, Vec3{0, 2, 4}}};
+  int type_c = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const auto& tri = triangles[trial % 2];
+    const int n = 2 + int(rng() % 6);
+    std::vector<Site> sites(n);
+    for (int s = 0; s < n; ++s) {  // small grid around the triangle: many ties, some duplicates
+      const Vec3 p{double(rng() % 5), double(rng() % 5), double(int(rng() % 3) - 1)};
+      sites[s] = Site{p, trial % 4 >= 2 ? double(int(rng() % 5) - 2) : 0.0, s};
+    }
+    const SymbolicContext ctx{tri.data(), sites.data()};
+    const int axis = lrvd::predicates::projection_axis(tri[0], tri[1], tri[2]);
+    const Q total = twice_area({lrvd::to_exact(tri[0]), lrvd::to_exact(tri[1]), lrvd::to_exact(tri[2])}, axis);
+    Q sum = 0;
+    std::vector<std::unordered_set<SymbolicVertex, lrvd::SymbolicVertexHash>> cell_vertices(n);
+    for (int i = 0; i < n; ++i) {
+      const std::vector<SymbolicVertex> poly = clip_cell(i, n, ctx);
+      std::vector<lrvd::ExactPoint> exact;
+      for (const SymbolicVertex& v : poly) {
+        const lrvd::ExactPoint e = lrvd::exact_position(v, ctx);
+        exact.push_back(e);
+        cell_vertices[i].insert(v);
+        type_c += v.type == SymbolicVertex::Type::C;
+        // On its bisectors exactly, and no site is strictly closer than i.
+        const Q di = lrvd::exact_power_distance(e, sites[i]);
+        for (int m = 0; m < v.num_labels(); ++m) REQUIRE(lrvd::exact_power_distance(e, sites[v.label[m]]) == di);
+        for (int m = 0; m < n; ++m) REQUIRE(lrvd::exact_power_distance(e, sites[m]) >= di);
+        const Vec3 d = lrvd::position(v, ctx) - lrvd::to_double(e);
+        REQUIRE(lrvd::norm(d) <= 1e-12);
+      }
+      const Q a = twice_area(exact, axis);
+      REQUIRE(CGAL::sign(a) * CGAL::sign(total) >= 0);
+      sum += a;
+    }
+    REQUIRE(sum == total);
+    // Every boundary vertex belongs to each cell it names.
+    for (int i = 0; i < n; ++i)
+      for (const SymbolicVertex& v : cell_vertices[i])
+        for (int m = 0; m < v.num_labels(); ++m) REQUIRE(cell_vertices[v.label[m]].count(v) == 1);
+  }
+  CHECK(type_c > 1000);
+}
+
+TEST_CASE("position and exact_position of vertices at extreme scales") {
+  for (int e : {-1000, -500, 0, 500, 1000}) {
+    auto s = [e](double x) { return std::ldexp(x, e); };
+    const Vec3 tri[3] = {{s(0), s(0), s(0)}, {s(4), s(0), s(0)}, {s(0), s(4), s(0)}};
+    const Site sites[3] = {{{s(1), s(1), s(1)}, 0, 0}, {{s(3), s(1), s(-1)}, 0, 1}, {{s(1), s(3), s(0)}, 0, 2}};
+    const SymbolicContext ctx{tri, sites};
+    for (const SymbolicVertex& v : {SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicVertex::in_triangle({0, 1, 2}, 0, 1, 2)}) {
+      const lrvd::ExactPoint x = lrvd::exact_position(v, ctx);
+      for (int m = 1; m < v.num_labels(); ++m)
+        CHECK(lrvd::exact_power_distance(x, sites[v.label[m]]) == lrvd::exact_power_distance(x, sites[v.label[0]]));
+      const Vec3 p = lrvd::position(v, ctx), r = lrvd::to_double(x);
+      CHECK(lrvd::is_finite(p));
+      CHECK(lrvd::norm(p - r) <= 1e-12 * lrvd::norm(r));
+    }
+  }
+  const Vec3 tri[3] = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}};
+  const Site sites[2] = {{{0, 1, 0}, 0, 0}, {{0, -1, 0}, 0, 1}};  // bisector y = 0 holds edge (0, 1)
+  CHECK_THROWS_AS(lrvd::exact_position(SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicContext{tri, sites}), std::domain_error);
+}

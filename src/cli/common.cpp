@@ -51,12 +51,6 @@ std::vector<double> read_weights(const std::string& path) {
   return weights;
 }
 
-// Edge length that gives about eight triangles per sample, so that a triangle rarely holds two.
-double auto_refinement_length(const SurfaceMesh& mesh, int n) {
-  if (mesh.triangle_count() >= 4 * n) return 0;
-  const double target_triangles = 8.0 * n;
-  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * target_triangles));
-}
 
 }  // namespace
 
@@ -74,7 +68,7 @@ Input load_input(const InputOptions& opt) {
 
   double length = 0;
   if (opt.refine == "auto") {
-    length = auto_refinement_length(input.loaded.mesh, n);
+    length = suggested_refinement_length(input.loaded.mesh, n);
   } else if (opt.refine != "off") {
     try {
       size_t used = 0;

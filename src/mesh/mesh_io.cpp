@@ -3,17 +3,6 @@
 // This is the only translation unit that includes CGAL's IO and repair headers.
 #include "mesh/mesh_io.h"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <numeric>
-#include <sstream>
-#include <stdexcept>
-#include <unordered_map>
-
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -26,7 +15,18 @@
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
 #include "common/error.h"
+#include "mesh/mesh_file_diagnosis.h"
 
 namespace lrvd {
 
@@ -38,11 +38,9 @@ using Point = Kernel::Point_3;
 using Polygon = std::vector<std::size_t>;
 using SoupTriangle = std::array<std::size_t, 3>;
 
-enum class Format { Off, Obj, Ply, Stl };
+using Format = MeshFileFormat;
 
-[[noreturn]] void fail(const std::string& path, const std::string& reason) {
-  throw InputError(path + ": " + reason);
-}
+[[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path + ": " + reason); }
 
 std::string lowercase_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -71,226 +69,19 @@ void check_readable(const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Diagnosis of files CGAL refused. CGAL's readers only return false (and leave partial data), so
-// when they do, a small line scanner finds the first offending line for the message. It is never
-// used to read data.
-
-bool parse_double(const std::string& token, double& value) {
-  char* end = nullptr;
-  value = std::strtod(token.c_str(), &end);
-  return !token.empty() && *end == '\0';
-}
-
-bool parse_long(const std::string& token, long long& value) {
-  char* end = nullptr;
-  value = std::strtoll(token.c_str(), &end, 10);
-  return !token.empty() && *end == '\0';
-}
-
-// Non-blank lines of a text file with '#' comments removed, split into tokens.
-class TokenLines {
- public:
-  explicit TokenLines(const std::string& path) : in_(path, std::ios::binary) {}
-  bool next(std::vector<std::string>& tokens) {
-    std::string line;
-    while (std::getline(in_, line)) {
-      ++line_number_;
-      line = line.substr(0, line.find('#'));
-      std::istringstream words(line);
-      tokens.clear();
-      for (std::string w; words >> w;) tokens.push_back(w);
-      if (!tokens.empty()) return true;
-    }
-    return false;
-  }
-  int line_number() const { return line_number_; }
-
- private:
-  std::ifstream in_;
-  int line_number_ = 0;
-};
-
-std::string non_finite_vertex(long long v, const double xyz[3]) {
-  return fmt::format("vertex {} has a non-finite coordinate ({}, {}, {})", v, xyz[0], xyz[1], xyz[2]);
-}
-
-// First problem with vertex line `tokens` (coordinates from position `first`), or "".
-std::string check_vertex_tokens(const std::vector<std::string>& tokens, std::size_t first, long long v, int line) {
-  if (tokens.size() < first + 3) return fmt::format("vertex {} (line {}) has fewer than 3 coordinates", v, line);
-  double xyz[3];
-  for (int c = 0; c < 3; ++c)
-    if (!parse_double(tokens[first + c], xyz[c]))
-      return fmt::format("vertex {} (line {}): '{}' is not a number", v, line, tokens[first + c]);
-  if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return non_finite_vertex(v, xyz);
-  return "";
-}
-
-std::string diagnose_off(const std::string& path) {
-  TokenLines lines(path);
-  std::vector<std::string> tokens, header;
-  while (header.size() < 4 && lines.next(tokens)) header.insert(header.end(), tokens.begin(), tokens.end());
-  const std::string& magic = header.empty() ? std::string() : header[0];
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
-    return "is not an OFF file: it does not start with 'OFF'";
-  long long counts[3];
-  for (int k = 0; k < 3; ++k)
-    if (header.size() < std::size_t(k + 2) || !parse_long(header[k + 1], counts[k]) || counts[k] < 0)
-      return "has an invalid OFF header: expected 'OFF' then the vertex, face and edge counts";
-  const long long nv = counts[0], nf = counts[1];
-  for (long long v = 0; v < nv; ++v) {
-    if (!lines.next(tokens))
-      return fmt::format("is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
-                         "vertices",
-                         nv, nf, v);
-    if (std::string problem = check_vertex_tokens(tokens, 0, v, lines.line_number()); !problem.empty())
-      return problem;
-  }
-  for (long long f = 0; f < nf; ++f) {
-    if (!lines.next(tokens))
-      return fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f);
-    long long n = 0;
-    if (!parse_long(tokens[0], n) || n < 0)
-      return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
-    if (static_cast<long long>(tokens.size()) < n + 1)
-      return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, lines.line_number(),
-                         tokens.size() - 1, n);
-    for (long long k = 1; k <= n; ++k) {
-      long long index = 0;
-      if (!parse_long(tokens[k], index))
-        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
-      if (index < 0 || index >= nv)
-        return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
-    }
-  }
-  return "";
-}
-
-std::string diagnose_obj(const std::string& path) {
-  long long nv = 0, nf = 0;
-  std::vector<std::string> tokens;
-  for (TokenLines lines(path); lines.next(tokens);) {
-    const std::string& key = tokens[0];
-    if (key == "v") {
-      if (std::string problem = check_vertex_tokens(tokens, 1, nv, lines.line_number()); !problem.empty())
-        return problem;
-      ++nv;
-    } else if (key == "f") {
-      ++nf;
-    } else if (key != "vt" && key != "vn" && key != "vp" && key != "o" && key != "g" && key != "s" &&
-               key != "usemtl" && key != "mtllib") {
-      return fmt::format("line {}: the OBJ statement '{}' is not supported (CGAL reads v, vt, vn and f)",
-                         lines.line_number(), key);
-    }
-  }
-  if (nf == 0) return nv == 0 ? "has no vertices and no faces" : fmt::format("has {} vertices but no faces", nv);
-  // Second pass: indices against the final vertex count (positive) or the count so far (negative).
-  long long seen = 0, f = 0;
-  for (TokenLines lines(path); lines.next(tokens);) {
-    if (tokens[0] == "v") ++seen;
-    if (tokens[0] != "f") continue;
-    for (std::size_t k = 1; k < tokens.size(); ++k) {
-      long long index = 0;
-      if (!parse_long(tokens[k].substr(0, tokens[k].find('/')), index) || index == 0)
-        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
-      if (index > nv || -index > seen)
-        return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
-                           lines.line_number(), index, index > 0 ? nv : seen);
-    }
-    ++f;
-  }
-  return "";
-}
-
-// PLY: the header, then (ascii only) the vertex coordinates and the number of body lines.
-std::string diagnose_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  int line_number = 1;
-  if (!std::getline(in, line) || line.substr(0, 3) != "ply") return "is not a PLY file: it does not start with 'ply'";
-  std::string format;
-  std::vector<std::pair<std::string, long long>> elements;
-  std::vector<std::string> vertex_properties;
-  bool ended = false;
-  while (!ended && std::getline(in, line)) {
-    ++line_number;
-    std::istringstream words(line);
-    std::string key, name;
-    words >> key;
-    if (key == "format") {
-      words >> format;
-    } else if (key == "element") {
-      long long count = -1;
-      words >> name >> count;
-      elements.emplace_back(name, count);
-    } else if (key == "property" && !elements.empty() && elements.back().first == "vertex") {
-      words >> name >> name;
-      vertex_properties.push_back(name);
-    }
-    ended = key == "end_header";
-  }
-  if (!ended) return "has an invalid PLY header: no 'end_header' line";
-  long long nv = 0, nf = 0, after_vertices = 0;
-  for (const auto& [name, count] : elements) {
-    if (name == "vertex") nv = count;
-    if (name == "face") nf = count;
-    if (name != "vertex") after_vertices += count;
-  }
-  const std::string generic = fmt::format(
-      "cannot be parsed as {} PLY: the body is truncated or does not match the header ({} vertices, {} faces)",
-      format, nv, nf);
-  const auto x = std::find(vertex_properties.begin(), vertex_properties.end(), "x");
-  if (format != "ascii" || elements.empty() || elements[0].first != "vertex" || vertex_properties.end() - x < 3 ||
-      x[1] != "y" || x[2] != "z")
-    return generic;
-  std::vector<std::string> tokens;
-  long long body_lines = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    std::istringstream words(line);
-    tokens.clear();
-    for (std::string w; words >> w;) tokens.push_back(w);
-    if (tokens.empty()) continue;
-    if (body_lines < nv) {
-      const std::size_t first = static_cast<std::size_t>(x - vertex_properties.begin());
-      if (std::string problem = check_vertex_tokens(tokens, first, body_lines, line_number); !problem.empty())
-        return problem;
-    }
-    ++body_lines;
-  }
-  if (body_lines < nv)
-    return fmt::format("is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
-                       "vertices",
-                       nv, nf, body_lines);
-  if (body_lines < nv + after_vertices)
-    return fmt::format("is truncated: the header declares {} vertices and {} faces, but the body has only {} "
-                       "lines after the vertices",
-                       nv, nf, body_lines - nv);
-  return generic;
-}
-
-std::string why_unreadable(const std::string& path, Format format) {
-  std::string reason;
-  if (format == Format::Off) reason = diagnose_off(path);
-  if (format == Format::Obj) reason = diagnose_obj(path);
-  if (format == Format::Ply) reason = diagnose_ply(path);
-  if (format == Format::Stl) reason = "cannot be parsed as ascii or binary STL: it is truncated or malformed";
-  if (reason.empty()) {
-    static const char* names[] = {"OFF", "OBJ", "PLY", "STL"};
-    reason = fmt::format("cannot be parsed as {} (CGAL's reader refused it)", names[int(format)]);
-  }
-  return reason;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Reading, checking and triangulating the soup.
 
 bool read_soup(const std::string& path, Format format, std::vector<Point>& points, std::vector<Polygon>& polygons) {
   try {
     switch (format) {
-      case Format::Off: return CGAL::IO::read_OFF(path, points, polygons);
-      case Format::Obj: return CGAL::IO::read_OBJ(path, points, polygons);
-      case Format::Ply: return CGAL::IO::read_PLY(path, points, polygons);
-      case Format::Stl: return CGAL::IO::read_STL(path, points, polygons);
+      case Format::Off:
+        return CGAL::IO::read_OFF(path, points, polygons);
+      case Format::Obj:
+        return CGAL::IO::read_OBJ(path, points, polygons);
+      case Format::Ply:
+        return CGAL::IO::read_PLY(path, points, polygons);
+      case Format::Stl:
+        return CGAL::IO::read_STL(path, points, polygons);
     }
   } catch (const std::exception&) {
   }
@@ -302,11 +93,12 @@ bool read_soup(const std::string& path, Format format, std::vector<Point>& point
 void check_soup(const std::string& path, Format format, const std::vector<Point>& points,
                 const std::vector<Polygon>& polygons) {
   if (polygons.empty())
-    fail(path, points.empty() ? "has no vertices and no faces" : fmt::format("has {} vertices but no faces", points.size()));
+    fail(path, points.empty() ? "has no vertices and no faces"
+                              : fmt::format("has {} vertices but no faces (a point cloud?)", points.size()));
   for (std::size_t v = 0; v < points.size(); ++v) {
-    const double xyz[3] = {points[v].x(), points[v].y(), points[v].z()};
-    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
-      fail(path, non_finite_vertex(static_cast<long long>(v), xyz));
+    const Point& p = points[v];
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      fail(path, fmt::format("vertex {} has a non-finite coordinate ({}, {}, {})", v, p.x(), p.y(), p.z()));
   }
   for (std::size_t f = 0; f < polygons.size(); ++f) {
     if (polygons[f].size() < 3)
@@ -382,8 +174,8 @@ std::vector<SoupTriangle> triangulate(const std::vector<Point>& points, const st
     }
     ++report.triangulated_faces;
     if (!triangulate_polygon(points, polygon, triangles))
-      report.notes.push_back(fmt::format("face {} ({} vertices) is self-intersecting or degenerate; it was fanned",
-                                         f, polygon.size()));
+      report.notes.push_back(
+          fmt::format("face {} ({} vertices) is self-intersecting or degenerate; it was fanned", f, polygon.size()));
   }
   return triangles;
 }
@@ -452,8 +244,8 @@ SurfaceMesh validated_mesh(const std::string& path, std::vector<Vec3> positions,
     const std::string what = e.what();
     const bool repairable = what.find("not manifold") != std::string::npos ||
                             what.find("inconsistent orientation") != std::string::npos ||
-                            what.find("degenerate") != std::string::npos || what.find("zero area") != std::string::npos ||
-                            what.find("duplicates") != std::string::npos;
+                            what.find("degenerate") != std::string::npos ||
+                            what.find("zero area") != std::string::npos || what.find("duplicates") != std::string::npos;
     if (repaired) fail(path, "is still invalid after --repair: " + what + numbering_note);
     fail(path, what + numbering_note + (repairable ? "; --repair may fix it" : ""));
   }
@@ -488,8 +280,10 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
     Polygon kept;
     for (std::size_t i = 0; i < polygon.size(); ++i)
       if (polygon[i] != polygon[(i + 1) % polygon.size()]) kept.push_back(polygon[i]);
-    if (kept.size() >= 3) simple.push_back(std::move(kept));
-    else ++report.removed_degenerate_faces;
+    if (kept.size() >= 3)
+      simple.push_back(std::move(kept));
+    else
+      ++report.removed_degenerate_faces;
   }
   std::vector<SoupTriangle> triangles = triangulate(points, simple, report);
   const auto degenerate = [&](const SoupTriangle& t) {
@@ -506,7 +300,7 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
   OrientationRecorder recorder(&out.reversed, &report.duplicated_nonmanifold_vertices);
   PMP::orient_polygon_soup(points, triangles, CGAL::parameters::visitor(recorder));
   if (report.duplicated_nonmanifold_vertices > 0)
-    report.notes.push_back(fmt::format("duplicated {} vertices to cut non-manifold edges or vertices apart",
+    report.notes.push_back(fmt::format("made {} vertex copies to cut non-manifold edges or vertices apart",
                                        report.duplicated_nonmanifold_vertices));
   if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
     fail(path, "is still invalid after --repair: the oriented soup is not a polygon mesh");
@@ -529,25 +323,40 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
   return out;
 }
 
-// orient_polygon_soup keeps the orientation of an arbitrary seed face; keep instead that of the
-// majority of each component's faces, so one flipped face is the one reported and reversed.
-void keep_majority_orientation(SurfaceMesh& mesh, std::vector<char>& reversed, RepairReport& report) {
-  std::vector<int> flipped(mesh.component_count(), 0), size(mesh.component_count(), 0);
+// orient_polygon_soup keeps the orientation of an arbitrary seed face per component. Choose it
+// instead: a closed component bounds its volume outwards (positive signed volume); an open one
+// keeps the orientation of the majority of its faces in the file, so that one flipped face is
+// the one reversed and reported.
+void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed, RepairReport& report) {
+  const int nc = mesh.component_count();
+  const std::vector<int>& component = mesh.triangle_components();
+  std::vector<int> flipped(nc, 0), size(nc, 0);
+  std::vector<char> closed(nc, 1);
+  std::vector<double> six_volume(nc, 0);
+  const BoundingBox box = mesh.bounding_box();
+  const Vec3 center = 0.5 * (box.min + box.max);
   for (int t = 0; t < mesh.triangle_count(); ++t) {
-    ++size[mesh.triangle_components()[t]];
-    flipped[mesh.triangle_components()[t]] += reversed[t];
+    const int c = component[t];
+    ++size[c];
+    flipped[c] += reversed[t];
+    const Triangle& tri = mesh.triangle(t);
+    for (int e = 0; e < 3; ++e) closed[c] &= mesh.neighbor(t, e) >= 0;
+    six_volume[c] +=
+        dot(mesh.position(tri[0]) - center, cross(mesh.position(tri[1]) - center, mesh.position(tri[2]) - center));
   }
+  std::vector<char> flip(nc, 0);
   bool any = false;
-  for (int c = 0; c < mesh.component_count(); ++c) any |= 2 * flipped[c] > size[c];
+  for (int c = 0; c < nc; ++c) {
+    flip[c] = closed[c] ? six_volume[c] < 0 : 2 * flipped[c] > size[c];
+    any = any || flip[c];
+  }
   if (any) {
     std::vector<Triangle> triangles = mesh.triangles();
-    for (int t = 0; t < mesh.triangle_count(); ++t) {
-      const int c = mesh.triangle_components()[t];
-      if (2 * flipped[c] > size[c]) {
+    for (int t = 0; t < mesh.triangle_count(); ++t)
+      if (flip[component[t]]) {
         std::swap(triangles[t][1], triangles[t][2]);
         reversed[t] ^= 1;
       }
-    }
     mesh = SurfaceMesh(mesh.positions(), std::move(triangles));
   }
   report.reoriented_faces = static_cast<int>(std::count(reversed.begin(), reversed.end(), 1));
@@ -588,7 +397,8 @@ void put_double(fmt::memory_buffer& out, double value) {
 }
 void put_int(fmt::memory_buffer& out, int value) { put_le(out, static_cast<uint32_t>(value), 4); }
 
-void check_indices(const std::vector<int>& face, std::size_t vertex_count, std::size_t f) {
+template <class Face>
+void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
   for (int v : face)
     if (v < 0 || static_cast<std::size_t>(v) >= vertex_count)
       throw std::invalid_argument(fmt::format("face {} has vertex index {} out of range [0, {})", f, v, vertex_count));
@@ -604,9 +414,11 @@ bool RepairReport::changed() const {
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   check_readable(path);
   const Format format = input_format(path);
+  if (format == Format::Stl)  // before CGAL, whose STL reader would weld a NaN corner into another
+    if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
   std::vector<Point> points;
   std::vector<Polygon> polygons;
-  if (!read_soup(path, format, points, polygons)) fail(path, why_unreadable(path, format));
+  if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
   check_soup(path, format, points, polygons);
 
   LoadedMesh loaded;
@@ -628,16 +440,21 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   std::vector<int> original;
   report.removed_unreferenced_vertices = drop_unreferenced(positions, triangles, original);
 
+  // SurfaceMesh's messages count triangles and vertices after these changes: say so.
   std::string numbering_note;
-  if (!options.repair && (report.triangulated_faces > 0 || report.removed_unreferenced_vertices > 0))
-    numbering_note = fmt::format(" (numbering after triangulating {} polygons and dropping {} unreferenced vertices)",
-                                 report.triangulated_faces, report.removed_unreferenced_vertices);
+  if (!options.repair && report.triangulated_faces > 0)
+    numbering_note = fmt::format("triangulating {} polygons", report.triangulated_faces);
+  if (!options.repair && report.removed_unreferenced_vertices > 0)
+    numbering_note += fmt::format("{}dropping {} unreferenced vertices", numbering_note.empty() ? "" : " and ",
+                                  report.removed_unreferenced_vertices);
+  if (!numbering_note.empty()) numbering_note = " (numbering after " + numbering_note + ")";
   if (!options.repair) refuse_triangle_soup(path, positions, triangles, original);
   loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
   if (options.repair) {
-    keep_majority_orientation(loaded.mesh, reversed, report);
-    if (!loaded.mesh.is_closed())
-      report.notes.push_back(fmt::format("the repaired mesh has {} boundary loops", loaded.mesh.boundary_loops().size()));
+    choose_component_orientation(loaded.mesh, reversed, report);
+    if (report.changed() && !loaded.mesh.is_closed())
+      report.notes.push_back(
+          fmt::format("the repaired mesh has {} boundary loops", loaded.mesh.boundary_loops().size()));
   }
   return loaded;
 }
@@ -647,8 +464,7 @@ void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
   const std::string ext = lowercase_extension(path);
   if (ext != ".off" && ext != ".obj" && ext != ".ply")
     fail(path, fmt::format("cannot write meshes with extension '{}'; use .off, .obj or .ply", ext));
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    check_indices({triangles[t].begin(), triangles[t].end()}, positions.size(), t);
+  for (std::size_t t = 0; t < triangles.size(); ++t) check_indices(triangles[t], positions.size(), t);
   OutputFile file(path);
   fmt::memory_buffer out;
   if (ext == ".off") {
@@ -657,8 +473,10 @@ void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
     for (const auto& t : triangles) fmt::format_to(std::back_inserter(out), "3 {} {} {}\n", t[0], t[1], t[2]);
   } else if (ext == ".obj") {
     fmt::format_to(std::back_inserter(out), "# written by lrvd\n");
-    for (const Vec3& p : positions) fmt::format_to(std::back_inserter(out), "v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
-    for (const auto& t : triangles) fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    for (const Vec3& p : positions)
+      fmt::format_to(std::back_inserter(out), "v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+    for (const auto& t : triangles)
+      fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
   } else {
     fmt::format_to(std::back_inserter(out),
                    "ply\nformat binary_little_endian 1.0\ncomment written by lrvd\nelement vertex {}\n"

@@ -45,7 +45,8 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
 
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
-//! \throw InputError on an unknown extension or a path that cannot be written.
+//! \throw InputError on an unknown extension or a path that cannot be written;
+//!        std::invalid_argument when a triangle index is out of range.
 void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
                 const std::vector<std::array<int, 3>>& triangles);
 void write_mesh(const std::string& path, const SurfaceMesh& mesh);
@@ -54,7 +55,7 @@ void write_mesh(const std::string& path, const SurfaceMesh& mesh);
 struct PolygonMesh {
   std::vector<Vec3> positions;
   std::vector<std::vector<int>> faces;
-  std::vector<int> face_cell;                           //!< empty, or one cell index per face
+  std::vector<int> face_cell;                            //!< empty, or one cell index per face
   std::vector<std::array<unsigned char, 3>> face_color;  //!< empty, or one colour per face
 };
 

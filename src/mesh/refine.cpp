@@ -1,6 +1,7 @@
 // Refinement by splitting long edges (paper §4.2): every edge longer than a bound is split at its
 // midpoint, longest first, until none is left, so that each triangle can hold at most one sample.
 #include <algorithm>
+#include <cmath>
 #include <queue>
 #include <unordered_map>
 
@@ -84,6 +85,12 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
     push_if_long(m, edge.b);
   }
   return SurfaceMesh(std::move(positions), std::move(triangles));
+}
+
+double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
+  if (mesh.triangle_count() >= 4 * n) return 0;
+  // Equilateral triangles of side a have area sqrt(3)/4 a^2: 8n of them cover the area.
+  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * 8.0 * n));
 }
 
 }  // namespace lrvd

@@ -86,4 +86,8 @@ class SurfaceMesh {
 //! \pre max_length > 0.
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length);
 
+//! The edge length to refine to so that n samples do not crowd the triangles (about eight
+//! triangles a sample), or 0 when the mesh already has at least four triangles a sample.
+double suggested_refinement_length(const SurfaceMesh& mesh, int n);
+
 }  // namespace lrvd

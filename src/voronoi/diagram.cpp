@@ -39,7 +39,8 @@ std::vector<Site> make_sites(const Samples& samples, bool weighted) {
   return sites;
 }
 
-CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples) {
+CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
+                              const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
   CellIntegrals out;
   out.area.assign(n, 0);
@@ -50,13 +51,14 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
   for (const CellPolygon& poly : diagram.polygons) {
     const int i = poly.cell;
     const Vec3& x = samples.positions[i];
+    const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
     points.clear();
     const SymbolicVertex* verts = diagram.polygon_vertices(poly);
     for (int a = 0; a < poly.vertex_count; ++a) points.push_back(position(verts[a], ctx) - x);
     // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
     for (int a = 1; a + 1 < poly.vertex_count; ++a) {
       const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
-      const double area = 0.5 * norm(cross(v - u, w - u));
+      const double area = rho * 0.5 * norm(cross(v - u, w - u));
       out.area[i] += area;
       out.centroid[i] += area * (u + v + w) / 3.0;
       out.energy[i] += area / 6.0 *

@@ -57,15 +57,17 @@ struct Diagram {
 //! Sites of the samples: position, weight (0 unless the kind is a power diagram), id = index.
 std::vector<Site> make_sites(const Samples& samples, bool weighted);
 
-//! Integrals over each cell: area m_i, centroid c_i and the CVT energy ∫|x - x_i|² (paper Eq. 1,
-//! uniform density), from the double positions of the polygon vertices.
+//! Integrals over each cell: mass m_i = ∫ρ, centroid c_i = ∫ρx / m_i and the CVT energy
+//! ∫ρ|x - x_i|² (paper Eq. 1), from the double positions of the polygon vertices. ρ is constant per
+//! mesh triangle (`triangle_density`), or 1 when it is null.
 struct CellIntegrals {
-  std::vector<double> area;
+  std::vector<double> area;      //!< mass ∫ρ (the area when ρ = 1)
   std::vector<Vec3> centroid;
   std::vector<double> energy;
   double total_energy = 0;
 };
-CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples);
+CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
+                              const std::vector<double>* triangle_density = nullptr);
 
 //! Connected components of each cell: polygons of one cell are joined when they share a segment
 //! of positive length on a mesh edge (touching at a single point does not join them).

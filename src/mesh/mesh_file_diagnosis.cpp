@@ -1,0 +1,297 @@
+// Diagnosis of mesh files CGAL refused: OFF, OBJ and ascii PLY/STL are scanned line by line for
+// the first offending element; binary files get their header counts in the message.
+#include "mesh/mesh_file_diagnosis.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <vector>
+
+namespace lrvd {
+
+namespace {
+
+bool parse_double(const std::string& token, double& value) {
+  char* end = nullptr;
+  value = std::strtod(token.c_str(), &end);
+  return !token.empty() && *end == '\0';
+}
+
+bool parse_long(const std::string& token, long long& value) {
+  char* end = nullptr;
+  value = std::strtoll(token.c_str(), &end, 10);
+  return !token.empty() && *end == '\0';
+}
+
+// Non-blank lines of a text file with '#' comments removed, split into tokens.
+class TokenLines {
+ public:
+  explicit TokenLines(const std::string& path) : in_(path, std::ios::binary) {}
+  bool next(std::vector<std::string>& tokens) {
+    std::string line;
+    while (std::getline(in_, line)) {
+      ++line_number_;
+      line = line.substr(0, line.find('#'));
+      std::istringstream words(line);
+      tokens.clear();
+      for (std::string w; words >> w;) tokens.push_back(w);
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  }
+  int line_number() const { return line_number_; }
+
+ private:
+  std::ifstream in_;
+  int line_number_ = 0;
+};
+
+template <class T>
+std::string non_finite(const std::string& element, const T xyz[3]) {
+  if (std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2])) return "";
+  return fmt::format("{} has a non-finite coordinate ({}, {}, {})", element, xyz[0], xyz[1], xyz[2]);
+}
+
+// First problem with the coordinates of `element` (e.g. "vertex 3") at tokens[first..], or "".
+std::string check_coordinates(const std::vector<std::string>& tokens, std::size_t first, const std::string& element,
+                              int line) {
+  if (tokens.size() < first + 3) return fmt::format("{} (line {}) has fewer than 3 coordinates", element, line);
+  double xyz[3];
+  for (int c = 0; c < 3; ++c)
+    if (!parse_double(tokens[first + c], xyz[c]))
+      return fmt::format("{} (line {}): '{}' is not a number", element, line, tokens[first + c]);
+  return non_finite(element, xyz);
+}
+
+std::string diagnose_off(const std::string& path) {
+  TokenLines lines(path);
+  std::vector<std::string> tokens;
+  lines.next(tokens);
+  const std::string magic = tokens.empty() ? std::string() : tokens[0];
+  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
+    return "is not an OFF file: it does not start with 'OFF'";
+  if (tokens.size() > 1 && tokens[1] == "BINARY") return "";  // binary OFF: no line to point at
+  if (tokens.size() == 1)
+    lines.next(tokens);
+  else
+    tokens.erase(tokens.begin());
+  long long counts[3];
+  for (int k = 0; k < 3; ++k)
+    if (tokens.size() < 3 || !parse_long(tokens[k], counts[k]) || counts[k] < 0)
+      return fmt::format(
+          "has an invalid OFF header (line {}): expected the vertex, face and edge counts, e.g. "
+          "'8 6 0'",
+          lines.line_number());
+  const long long nv = counts[0], nf = counts[1];
+  for (long long v = 0; v < nv; ++v) {
+    if (!lines.next(tokens))
+      return fmt::format(
+          "is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
+          "vertices",
+          nv, nf, v);
+    if (std::string problem = check_coordinates(tokens, 0, fmt::format("vertex {}", v), lines.line_number());
+        !problem.empty())
+      return problem;
+  }
+  for (long long f = 0; f < nf; ++f) {
+    if (!lines.next(tokens))
+      return fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f);
+    long long n = 0;
+    if (!parse_long(tokens[0], n) || n < 0)
+      return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
+    if (static_cast<long long>(tokens.size()) < n + 1)
+      return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, lines.line_number(),
+                         tokens.size() - 1, n);
+    for (long long k = 1; k <= n; ++k) {
+      long long index = 0;
+      if (!parse_long(tokens[k], index))
+        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
+      if (index < 0 || index >= nv)
+        return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
+    }
+  }
+  return "";
+}
+
+// The statements CGAL 5.5's OBJ reader accepts and ignores; any other one makes it fail.
+const char* const obj_statements_cgal_skips[] = {
+    "vt",     "vn",       "vp",     "bevel",      "lod",       "ctech",  "c_interp", "usemap", "usemtl",
+    "stech",  "d_interp", "mtllib", "shadow_obj", "trace_obj", "o",      "g",        "s",      "p",
+    "cstype", "deg",      "step",   "bmat",       "con",       "curv",   "curv2",    "surf",   "parm",
+    "trim",   "hole",     "scrv",   "sp",         "end",       "surf_1", "q0_1",     "q1_1",   "curv2d_1",
+    "surf_2", "q0_2",     "q1_2",   "curv2d_2",   "bsp",       "bzp",    "cdc",      "cdp",    "res"};
+
+std::string diagnose_obj(const std::string& path) {
+  long long nv = 0, nf = 0;
+  std::vector<std::string> tokens;
+  for (TokenLines lines(path); lines.next(tokens);) {
+    const std::string& key = tokens[0];
+    if (key == "v") {
+      if (std::string problem = check_coordinates(tokens, 1, fmt::format("vertex {}", nv), lines.line_number());
+          !problem.empty())
+        return problem;
+      ++nv;
+    } else if (key == "f") {
+      ++nf;
+    } else if (std::find(std::begin(obj_statements_cgal_skips), std::end(obj_statements_cgal_skips), key) ==
+               std::end(obj_statements_cgal_skips)) {
+      return fmt::format("line {}: the OBJ statement '{}' is not supported (CGAL reads v and f)", lines.line_number(),
+                         key);
+    }
+  }
+  if (nf == 0)
+    return nv == 0 ? "has no vertices and no faces" : fmt::format("has {} vertices but no faces (a point cloud?)", nv);
+  // Second pass: indices against the final vertex count (positive) or the count so far (negative).
+  long long seen = 0, f = 0;
+  for (TokenLines lines(path); lines.next(tokens);) {
+    if (tokens[0] == "v") ++seen;
+    if (tokens[0] != "f") continue;
+    for (std::size_t k = 1; k < tokens.size(); ++k) {
+      long long index = 0;
+      if (!parse_long(tokens[k].substr(0, tokens[k].find('/')), index) || index == 0)
+        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
+      if (index > nv || -index > seen)
+        return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
+                           lines.line_number(), index, index > 0 ? nv : seen);
+    }
+    ++f;
+  }
+  return "";
+}
+
+// PLY: the header, then (ascii only) the vertex coordinates and the number of body lines.
+std::string diagnose_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  int line_number = 1;
+  if (!std::getline(in, line) || line.substr(0, 3) != "ply") return "is not a PLY file: it does not start with 'ply'";
+  std::string format;
+  std::vector<std::pair<std::string, long long>> elements;
+  std::vector<std::string> vertex_properties;
+  bool ended = false;
+  while (!ended && std::getline(in, line)) {
+    ++line_number;
+    std::istringstream words(line);
+    std::string key, name;
+    words >> key;
+    if (key == "format") {
+      words >> format;
+    } else if (key == "element") {
+      long long count = -1;
+      words >> name >> count;
+      elements.emplace_back(name, count);
+    } else if (key == "property" && !elements.empty() && elements.back().first == "vertex") {
+      words >> name >> name;
+      vertex_properties.push_back(name);
+    }
+    ended = key == "end_header";
+  }
+  if (!ended) return "has an invalid PLY header: no 'end_header' line";
+  long long nv = 0, nf = 0, after_vertices = 0;
+  for (const auto& [name, count] : elements) {
+    if (name == "vertex") nv = count;
+    if (name == "face") nf = count;
+    if (name != "vertex") after_vertices += count;
+  }
+  const std::string generic = fmt::format(
+      "cannot be parsed as {} PLY: the body is truncated or does not match the header ({} vertices, {} faces)", format,
+      nv, nf);
+  const auto x = std::find(vertex_properties.begin(), vertex_properties.end(), "x");
+  if (format != "ascii" || elements.empty() || elements[0].first != "vertex" || vertex_properties.end() - x < 3 ||
+      x[1] != "y" || x[2] != "z")
+    return generic;
+  std::vector<std::string> tokens;
+  long long body_lines = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::istringstream words(line);
+    tokens.clear();
+    for (std::string w; words >> w;) tokens.push_back(w);
+    if (tokens.empty()) continue;
+    if (body_lines < nv) {
+      const std::size_t first = static_cast<std::size_t>(x - vertex_properties.begin());
+      if (std::string problem = check_coordinates(tokens, first, fmt::format("vertex {}", body_lines), line_number);
+          !problem.empty())
+        return problem;
+    }
+    ++body_lines;
+  }
+  if (body_lines < nv)
+    return fmt::format(
+        "is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
+        "vertices",
+        nv, nf, body_lines);
+  if (body_lines < nv + after_vertices)
+    return fmt::format(
+        "is truncated: the header declares {} vertices and {} faces, but the body has only {} "
+        "lines after the vertices",
+        nv, nf, body_lines - nv);
+  return generic;
+}
+
+std::string diagnose_stl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string first;
+  in >> first;
+  if (first != "solid") {
+    in.clear();
+    in.seekg(0, std::ios::end);
+    const long long size = in.tellg();
+    return fmt::format("is truncated or malformed as binary STL: it has {} bytes, not 84 + 50 per facet", size);
+  }
+  TokenLines lines(path);
+  std::vector<std::string> tokens;
+  long long facet = -1;
+  while (lines.next(tokens)) {
+    if (tokens[0] == "facet") ++facet;
+    if (tokens[0] == "endsolid") return "";
+    if (tokens[0] != "vertex") continue;
+    if (std::string problem = check_coordinates(tokens, 1, fmt::format("facet {}", facet), lines.line_number());
+        !problem.empty())
+      return problem;
+  }
+  return fmt::format("is truncated: the ascii STL ends after {} facets without 'endsolid'", facet + 1);
+}
+
+}  // namespace
+
+std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileFormat format) {
+  std::string reason;
+  if (format == MeshFileFormat::Off) reason = diagnose_off(path);
+  if (format == MeshFileFormat::Obj) reason = diagnose_obj(path);
+  if (format == MeshFileFormat::Ply) reason = diagnose_ply(path);
+  if (format == MeshFileFormat::Stl) reason = diagnose_stl(path);
+  if (reason.empty()) {
+    static const char* names[] = {"OFF", "OBJ", "PLY", "STL"};
+    reason = fmt::format("cannot be parsed as {} (CGAL's reader refused it)", names[int(format)]);
+  }
+  return reason;
+}
+
+std::string find_non_finite_binary_stl_coordinate(const std::string& path) {
+  const std::string bytes = [&] {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }();
+  if (bytes.size() < 84) return "";
+  std::uint32_t facets = 0;
+  for (int i = 0; i < 4; ++i)
+    facets |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[80 + i])) << (8 * i);
+  if (bytes.size() != 84 + 50 * static_cast<std::uint64_t>(facets)) return "";  // not binary (or truncated)
+  for (std::uint32_t f = 0; f < facets; ++f)
+    for (int corner = 1; corner <= 3; ++corner) {  // record: normal, 3 corners, attribute
+      float xyz[3];
+      std::memcpy(xyz, bytes.data() + 84 + 50 * std::size_t(f) + 12 * corner, sizeof xyz);  // little-endian host
+      if (std::string problem = non_finite(fmt::format("facet {}", f), xyz); !problem.empty()) return problem;
+    }
+  return "";
+}
+
+}  // namespace lrvd

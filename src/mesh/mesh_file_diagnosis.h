@@ -1,0 +1,22 @@
+// Why a mesh file is unreadable: a line scanner that names the first offending line of an OFF,
+// OBJ, PLY or STL file that CGAL's reader refused (CGAL only says "false"), and the coordinate
+// check CGAL's binary STL reader lacks. Used by mesh_io.cpp for its messages; never reads data.
+#pragma once
+
+#include <string>
+
+namespace lrvd {
+
+enum class MeshFileFormat { Off, Obj, Ply, Stl };
+
+//! One-line reason, without the path, why CGAL could not read `path` as `format`
+//! (e.g. "is truncated: the header declares 8 vertices and 6 faces, but the file ends after 5
+//! vertices"). Never empty: falls back to a generic "cannot be parsed as ..." line.
+std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileFormat format);
+
+//! For a binary STL file: "facet f has a non-finite coordinate (x, y, z)" for the first facet
+//! with a NaN or infinite corner; "" when there is none or the file is not binary STL.
+//! (CGAL welds STL corners through a std::map, where NaN compares equal to anything.)
+std::string find_non_finite_binary_stl_coordinate(const std::string& path);
+
+}  // namespace lrvd

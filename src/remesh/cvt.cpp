@@ -1,0 +1,189 @@
+// CVT on surfaces (paper §4.1): energy and gradient on the exact diagram, Lloyd and L-BFGS.
+#include "remesh/cvt.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+#include <LBFGS.h>
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/closest_point.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd {
+
+namespace {
+
+// Puts every point on the surface (closest point) and records its triangle.
+void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples) {
+  samples.positions.resize(points.size());
+  samples.triangles.resize(points.size());
+  samples.barycentric.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const ClosestPoint c = index.query(points[i]);
+    samples.positions[i] = c.point;
+    samples.triangles[i] = c.triangle;
+    samples.barycentric[i] = c.barycentric;
+  }
+}
+
+std::vector<Vec3> to_points(const Eigen::VectorXd& x) {
+  std::vector<Vec3> points(x.size() / 3);
+  for (size_t i = 0; i < points.size(); ++i) points[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+  return points;
+}
+
+}  // namespace
+
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
+                     const std::vector<double>* density) {
+  CvtEnergy e;
+  e.diagram = compute_diagram(mesh, samples, kind);
+  e.cells = integrate_cells(e.diagram, mesh, samples, density);
+  e.energy = e.cells.total_energy;
+  e.gradient.resize(samples.size());
+  for (int i = 0; i < samples.size(); ++i)
+    e.gradient[i] = 2.0 * e.cells.area[i] * (samples.positions[i] - e.cells.centroid[i]);
+  return e;
+}
+
+std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count) {
+  const int nv = mesh.vertex_count(), nt = mesh.triangle_count();
+  // Mean curvature magnitude per vertex: |cotangent Laplacian of x| / (2 · mixed area).
+  std::vector<Vec3> laplacian(nv, Vec3{});
+  std::vector<double> vertex_area(nv, 0);
+  for (int t = 0; t < nt; ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    const double a = mesh.triangle_area(t);
+    for (int c = 0; c < 3; ++c) {
+      const int i = tri[c], j = tri[(c + 1) % 3], k = tri[(c + 2) % 3];
+      const Vec3 u = mesh.position(j) - mesh.position(i), v = mesh.position(k) - mesh.position(i);
+      const double cot = dot(u, v) / std::max(norm(cross(u, v)), 1e-300);  // angle at i, opposite edge jk
+      laplacian[j] += 0.5 * cot * (mesh.position(k) - mesh.position(j));
+      laplacian[k] += 0.5 * cot * (mesh.position(j) - mesh.position(k));
+      vertex_area[i] += a / 3.0;
+    }
+  }
+  const double h = std::sqrt(2.0 * mesh.area() / (std::sqrt(3.0) * std::max(sample_count, 1)));
+  std::vector<double> rho(nt);
+  double mass = 0;
+  for (int t = 0; t < nt; ++t) {
+    double kappa = 0;
+    for (int v : mesh.triangle(t)) kappa += norm(laplacian[v]) / (2.0 * std::max(vertex_area[v], 1e-300));
+    const double c = kappa / 3.0 * h;
+    rho[t] = std::min(std::pow(1.0 + c * c, 2.0), 100.0);
+    mass += rho[t] * mesh.triangle_area(t);
+  }
+  // One smoothing pass over edge neighbours, then mean 1 by area.
+  std::vector<double> smooth(nt);
+  mass = 0;
+  for (int t = 0; t < nt; ++t) {
+    double sum = rho[t], count = 1;
+    for (int e = 0; e < 3; ++e)
+      if (mesh.neighbor(t, e) >= 0) sum += rho[mesh.neighbor(t, e)], count += 1;
+    smooth[t] = sum / count;
+    mass += smooth[t] * mesh.triangle_area(t);
+  }
+  for (double& r : smooth) r *= mesh.area() / mass;
+  return smooth;
+}
+
+CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options) {
+  if (initial.size() == 0) throw InputError("CVT needs at least one sample");
+  const auto start = std::chrono::steady_clock::now();
+  const int n = initial.size();
+  const ClosestPointIndex index(mesh);
+  std::vector<double> density_storage;
+  const std::vector<double>* density = nullptr;
+  if (options.density == CvtDensity::Curvature) {
+    density_storage = curvature_density(mesh, n);
+    density = &density_storage;
+  }
+
+  CvtResult result;
+  Samples samples = initial;
+  samples.weights.clear();
+  CvtEnergy current = cvt_energy(mesh, samples, options.diagram, density);
+  ++result.diagram_evaluations;
+  result.energy_history.push_back(current.energy);
+  int iteration = 0;
+  auto report = [&](double energy) {
+    result.energy_history.push_back(energy);
+    if (options.on_iteration) options.on_iteration(iteration, energy);
+  };
+
+  // Lloyd: every sample moves to its cell's centroid, then back onto the surface.
+  const int lloyd_steps = options.optimizer == CvtOptimizer::Lloyd ? options.iterations
+                                                                   : std::min(options.lloyd_warmup, options.iterations);
+  for (int step = 0; step < lloyd_steps; ++step) {
+    const double before = current.energy;
+    project(index, current.cells.centroid, samples);
+    current = cvt_energy(mesh, samples, options.diagram, density);
+    ++result.diagram_evaluations;
+    ++iteration;
+    report(current.energy);
+    if (std::abs(before - current.energy) <= options.relative_energy_change * before) break;
+  }
+
+  if (options.optimizer == CvtOptimizer::Lbfgs && iteration < options.iterations) {
+    // L-BFGS on the positions; each evaluation projects them onto the surface first, so the
+    // energy is always that of a point set on the surface. The best evaluated state is kept.
+    Samples best = samples;
+    double best_energy = current.energy;
+    int lbfgs_evaluations = 0;
+    auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
+      ++lbfgs_evaluations;
+      project(index, to_points(x), samples);
+      const CvtEnergy e = cvt_energy(mesh, samples, options.diagram, density);
+      ++result.diagram_evaluations;
+      grad.resize(3 * n);
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) grad[3 * i + c] = e.gradient[i][c];
+      if (e.energy < best_energy) {
+        best_energy = e.energy;
+        best = samples;
+      }
+      return e.energy;
+    };
+    LBFGSpp::LBFGSParam<double> param;
+    const double cell_size = std::sqrt(mesh.area() / n);
+    param.epsilon = options.relative_gradient * current.energy / cell_size;
+    param.epsilon_rel = 0;
+    param.past = 1;
+    param.delta = options.relative_energy_change;
+    param.max_iterations = options.iterations - iteration;
+    param.max_linesearch = 20;
+    LBFGSpp::LBFGSSolver<double> solver(param);
+    Eigen::VectorXd x(3 * n);
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) x[3 * i + c] = samples.positions[i][c];
+    double fx = 0;
+    int lbfgs_iterations = 0;
+    try {
+      lbfgs_iterations = solver.minimize(objective, x, fx);
+    } catch (const std::exception&) {
+      // The line search can fail where the energy is not smooth (cells appearing or vanishing);
+      // the best state seen so far stands.
+      result.line_search_stopped = true;
+      lbfgs_iterations = lbfgs_evaluations;
+    }
+    iteration += lbfgs_iterations;
+    samples = best;
+    current = cvt_energy(mesh, samples, options.diagram, density);
+    ++result.diagram_evaluations;
+    report(current.energy);
+  }
+
+  result.samples = samples;
+  result.energy = current.energy;
+  result.diagram = std::move(current.diagram);
+  result.iterations = iteration;
+  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,57 @@
+// Centroidal Voronoi tessellation on a surface (paper §4.1): Lloyd relaxation or L-BFGS on the
+// CVT energy computed exactly on the LRVD (or the RVD, for comparison), samples kept on the surface.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "voronoi/diagram.h"
+
+namespace lrvd {
+
+enum class CvtOptimizer { Lbfgs, Lloyd };
+enum class CvtDensity { Uniform, Curvature };
+
+struct CvtOptions {
+  DiagramKind diagram = DiagramKind::Lrvd;      //!< Lrvd (the paper) or Rvd (the baseline)
+  CvtOptimizer optimizer = CvtOptimizer::Lbfgs;
+  int iterations = 200;                         //!< iteration cap (L-BFGS iterations or Lloyd steps)
+  int lloyd_warmup = 3;                         //!< Lloyd steps before L-BFGS (robust first moves)
+  double relative_gradient = 1e-7;              //!< stop when ||∇F|| < this · F / (mean cell size)
+  double relative_energy_change = 1e-9;         //!< stop when F changes less than this, relatively
+  CvtDensity density = CvtDensity::Uniform;
+  //! Called after every iteration with (iteration, energy); for progress output.
+  std::function<void(int, double)> on_iteration;
+};
+
+struct CvtResult {
+  Samples samples;                   //!< final positions, on the surface
+  Diagram diagram;                   //!< the diagram of the final samples
+  int iterations = 0;                //!< Lloyd steps + L-BFGS iterations (evaluations if the line search stopped)
+  int diagram_evaluations = 0;
+  bool line_search_stopped = false;  //!< L-BFGS ended on a failed line search (non-smooth energy)
+  double energy = 0;
+  std::vector<double> energy_history;  //!< energy after each iteration (first entry: initial)
+  double time_s = 0;
+};
+
+//! Per-triangle density for the curvature-adaptive CVT: larger where the surface bends, so that
+//! more samples go there. Normalised to mean 1 by area.
+std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count);
+
+//! CVT energy and its gradient 2 m_i (x_i - c_i) at the given samples (for tests and optimisers).
+struct CvtEnergy {
+  double energy = 0;
+  std::vector<Vec3> gradient;
+  Diagram diagram;
+  CellIntegrals cells;
+};
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
+                     const std::vector<double>* density = nullptr);
+
+//! Moves the samples towards a CVT of the surface.
+//! \throw InputError on an empty sample set.
+CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options = {});
+
+}  // namespace lrvd

@@ -1,0 +1,194 @@
+// LRVD, RVD and their power variants: every LRVD passes all six verified properties over the
+// stress meshes and CGAL's models, the RVD shows the disconnected cells the LRVD removes, both
+// agree where the sampling is dense, and degenerate and bad inputs behave as documented.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+#include "common/error.h"
+#include "mesh/mesh_io.h"
+#include "mesh/stress.h"
+#include "test_meshes.h"
+#include "verification/diagram_check.h"
+#include "voronoi/lrvd.h"
+
+using namespace lrvd;
+
+namespace {
+
+SurfaceMesh cgal_mesh(const std::string& name) {
+  return read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + name).mesh;
+}
+
+// The mesh the samples go on: refined when n would crowd its triangles (as `lrvd compute` does).
+SurfaceMesh for_samples(const SurfaceMesh& mesh, int n) {
+  const double length = suggested_refinement_length(mesh, n);
+  return length > 0 && mesh.max_edge_length() > length ? refine_long_edges(mesh, length) : mesh;
+}
+
+std::string describe(const DiagramVerification& v) { return v.summary(); }
+
+int disconnected_cells(const Diagram& d, const SurfaceMesh& mesh) {
+  int count = 0;
+  for (int c : cell_components(d, mesh).count) count += c > 1;
+  return count;
+}
+
+void require_valid_lrvd(const SurfaceMesh& mesh, int n, int seed, const std::string& label) {
+  const Samples samples = sample_uniform(mesh, n, seed);
+  const Diagram d = compute_lrvd(mesh, samples);
+  const DiagramVerification v = verify_diagram(mesh, samples, d);
+  INFO(label << " n=" << n << " seed=" << seed << "\n" << describe(v));
+  REQUIRE(v.passed);
+  REQUIRE(v.connected.passed);
+  REQUIRE(v.cells_with_multiple_components == 0);
+}
+
+}  // namespace
+
+TEST_CASE("LRVD cells pass every property on the stress meshes", "[lrvd][property]") {
+  for (const StressMeshInfo& info : stress_mesh_catalog()) {
+    const SurfaceMesh base = make_stress_mesh(info.name, 0.5);
+    for (int n : {10, 30, 100, 300, 1000}) {
+      if (n < base.component_count()) continue;
+      const SurfaceMesh mesh = for_samples(base, n);
+      for (int seed = 1; seed <= 5; ++seed) require_valid_lrvd(mesh, n, seed, info.name);
+    }
+  }
+}
+
+TEST_CASE("LRVD cells pass every property on CGAL's elk, knot, ellipsoid and fold", "[lrvd][property]") {
+  for (const char* name : {"elk.off", "knot.off", "ellipsoid.off", "fold.off"}) {
+    const SurfaceMesh base = cgal_mesh(name);
+    for (int n : {10, 30, 100, 300, 1000}) {
+      const SurfaceMesh mesh = for_samples(base, n);
+      for (int seed = 1; seed <= 5; ++seed) require_valid_lrvd(mesh, n, seed, name);
+    }
+  }
+}
+
+TEST_CASE("The RVD has disconnected cells on nearby sheets where the LRVD has none", "[rvd]") {
+  for (const char* name : {"thin_plate", "folded_sheet", "open_cup"}) {
+    const SurfaceMesh mesh = make_stress_mesh(name, 0.5);
+    int rvd_disconnected = 0;
+    for (int seed = 1; seed <= 5; ++seed) {
+      const Samples samples = sample_uniform(mesh, 30, seed);
+      const Diagram rvd = compute_rvd(mesh, samples);
+      const Diagram lrvd = compute_lrvd(mesh, samples);
+      rvd_disconnected += disconnected_cells(rvd, mesh);
+      REQUIRE(disconnected_cells(lrvd, mesh) == 0);
+      // The RVD passes everything it promises, and reports what it does not.
+      const DiagramVerification v = verify_diagram(mesh, samples, rvd);
+      INFO(name << " seed " << seed << "\n" << describe(v));
+      REQUIRE(v.passed);
+      REQUIRE(v.connected.promised == false);
+      REQUIRE(v.cells_with_multiple_components == disconnected_cells(rvd, mesh));
+    }
+    INFO(name);
+    REQUIRE(rvd_disconnected > 0);
+  }
+}
+
+TEST_CASE("RVD and LRVD are identical polygon for polygon on a densely sampled sphere", "[rvd][lrvd]") {
+  const SurfaceMesh mesh = test::icosphere(5);  // 20480 triangles
+  const Samples samples = sample_uniform(mesh, 2000, 11);
+  const Diagram rvd = compute_rvd(mesh, samples);
+  const Diagram lrvd = compute_lrvd(mesh, samples);
+  REQUIRE(rvd.polygons.size() == lrvd.polygons.size());
+  REQUIRE(rvd.triangle_offsets == lrvd.triangle_offsets);
+  for (size_t p = 0; p < rvd.polygons.size(); ++p) {
+    const CellPolygon &a = rvd.polygons[p], &b = lrvd.polygons[p];
+    REQUIRE(a.triangle == b.triangle);
+    REQUIRE(a.cell == b.cell);
+    REQUIRE(a.vertex_count == b.vertex_count);
+    for (int k = 0; k < a.vertex_count; ++k) REQUIRE(rvd.polygon_vertices(a)[k] == lrvd.polygon_vertices(b)[k]);
+  }
+  REQUIRE(verify_diagram(mesh, samples, lrvd).passed);
+}
+
+TEST_CASE("Degenerate samples: on mesh vertices and edges, cospherical, shared triangles, n = 1 and n = V",
+          "[lrvd][degenerate]") {
+  const SurfaceMesh sphere = test::icosphere(2);  // 162 vertices, all on the unit sphere
+  auto check = [&](const Samples& samples, const std::string& label) {
+    for (DiagramKind kind : {DiagramKind::Lrvd, DiagramKind::Rvd}) {
+      const Diagram d = compute_diagram(sphere, samples, kind);
+      const DiagramVerification v = verify_diagram(sphere, samples, d);
+      INFO(label << " " << to_string(kind) << "\n" << describe(v));
+      REQUIRE(v.passed);
+      if (kind == DiagramKind::Lrvd) REQUIRE(v.cells_with_multiple_components == 0);
+    }
+  };
+  // Samples on every mesh vertex: cospherical, each mesh vertex equidistant from many samples.
+  std::vector<Vec3> on_vertices = sphere.positions();
+  check(locate_points(sphere, on_vertices), "all vertices (n = V, cospherical)");
+  // Samples on a subset of vertices and on edge midpoints.
+  std::vector<Vec3> mixed;
+  for (int v = 0; v < sphere.vertex_count(); v += 7) mixed.push_back(sphere.position(v));
+  for (int t = 0; t < sphere.triangle_count(); t += 23) {
+    const Triangle& tri = sphere.triangle(t);
+    mixed.push_back(0.5 * (sphere.position(tri[0]) + sphere.position(tri[1])));
+  }
+  check(locate_points(sphere, mixed), "vertices and edge midpoints");
+  // Two and three samples in one triangle.
+  const Triangle& tri = sphere.triangle(5);
+  const Vec3 a = sphere.position(tri[0]), b = sphere.position(tri[1]), c = sphere.position(tri[2]);
+  check(locate_points(sphere, {(a + b + c) / 3.0, 0.6 * a + 0.2 * b + 0.2 * c, 0.2 * a + 0.6 * b + 0.2 * c,
+                               sphere.position(100)}),
+        "three samples in one triangle");
+  check(sample_uniform(sphere, 1, 3), "n = 1");
+  // Samples symmetric about a mesh vertex (it is equidistant from both).
+  check(locate_points(sphere, {Vec3{0.3, 0, 1}, Vec3{-0.3, 0, 1}, Vec3{0, 0, -1}}), "symmetric pair");
+}
+
+TEST_CASE("The power variants pass their promised properties", "[lrpd]") {
+  const SurfaceMesh mesh = make_stress_mesh("folded_sheet", 0.5);
+  for (int seed = 1; seed <= 3; ++seed) {
+    Samples samples = sample_uniform(mesh, 100, seed);
+    Random random(seed);
+    for (int i = 0; i < samples.size(); ++i) samples.weights.push_back(1e-4 * random.uniform());
+    for (DiagramKind kind : {DiagramKind::Lrpd, DiagramKind::Rpd}) {
+      const Diagram d = compute_diagram(mesh, samples, kind);
+      REQUIRE(d.kind == kind);
+      const DiagramVerification v = verify_diagram(mesh, samples, d);
+      INFO(to_string(kind) << " seed " << seed << "\n" << describe(v));
+      REQUIRE(v.passed);
+      if (kind == DiagramKind::Lrpd) REQUIRE(v.cells_with_multiple_components == 0);
+    }
+  }
+  Samples unweighted = sample_uniform(mesh, 10, 1);
+  REQUIRE_THROWS_WITH(compute_diagram(mesh, unweighted, DiagramKind::Lrpd), Catch::Contains("weight"));
+}
+
+TEST_CASE("Cell integrals add up to the surface", "[lrvd]") {
+  const SurfaceMesh mesh = cgal_mesh("knot.off");
+  const Samples samples = sample_uniform(mesh, 200, 5);
+  const Diagram d = compute_lrvd(mesh, samples);
+  const CellIntegrals cells = integrate_cells(d, mesh, samples);
+  double area = 0;
+  for (double a : cells.area) area += a;
+  REQUIRE(area == Approx(mesh.area()).epsilon(1e-10));
+  for (int i = 0; i < samples.size(); ++i) {
+    REQUIRE(cells.area[i] > 0);
+    // The centroid lies within the cell's reach of its sample.
+    REQUIRE(distance(cells.centroid[i], samples.positions[i]) < std::sqrt(cells.area[i]) * 3);
+  }
+  REQUIRE(cells.total_energy > 0);
+}
+
+TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") {
+  const SurfaceMesh mesh = test::icosphere(2);
+  REQUIRE_THROWS_WITH(compute_lrvd(mesh, Samples{}), Catch::Contains("no samples"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {0, 0, 1}}), Catch::Contains("coincide"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {0, NAN, 1}}), Catch::Contains("non-finite"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 3}}), Catch::Contains("from the surface"));
+  REQUIRE_THROWS_WITH(sample_uniform(mesh, 0, 1), Catch::Contains("at least 1"));
+  // More samples than triangles without refinement: several samples share triangles (§3.5); the
+  // diagram is still valid.
+  const SurfaceMesh coarse = test::octahedron();
+  const Samples crowded = sample_uniform(coarse, 40, 2);
+  const Diagram d = compute_lrvd(coarse, crowded);
+  const DiagramVerification v = verify_diagram(coarse, crowded, d);
+  INFO(describe(v));
+  REQUIRE(v.passed);
+}

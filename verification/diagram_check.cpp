@@ -1,0 +1,399 @@
+// verify_diagram: the LRVD properties of paper §2.3 checked exactly. Per triangle: (3) equidistance
+// and the local Voronoi property of every polygon vertex, (4) convex, counterclockwise polygons
+// inside the triangle and pairwise interior-disjoint, (5) exact area sums; per sample: (1) it lies
+// in its cell. (2) and (6) are decided along mesh edges (diagram_edges.cpp).
+#include <algorithm>
+#include <chrono>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "verification/diagram_geometry.h"
+
+namespace lrvd {
+
+namespace {
+
+using namespace verify_detail;
+
+// A symbolic vertex whose indices are in range and whose labels are distinct.
+bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
+  const int nv = q.type == SymbolicVertex::Type::A ? 1 : (q.type == SymbolicVertex::Type::B ? 2 : 3);
+  for (int k = 0; k < nv; ++k)
+    if (q.v[k] < 0 || q.v[k] >= vertex_count) return false;
+  for (int k = 0; k < q.num_labels(); ++k) {
+    if (q.label[k] < 0 || q.label[k] >= sample_count) return false;
+    for (int m = 0; m < k; ++m)
+      if (q.label[m] == q.label[k]) return false;
+  }
+  return true;
+}
+
+// Whether q is by definition a point of triangle `tri`: one of its corners, a point of one of its
+// edges, or a point of its plane defined by this triangle.
+bool defined_on_triangle(const SymbolicVertex& q, const Triangle& tri) {
+  auto corner = [&](int v) { return v == tri[0] || v == tri[1] || v == tri[2]; };
+  switch (q.type) {
+    case SymbolicVertex::Type::A: return corner(q.v[0]);
+    case SymbolicVertex::Type::B: return corner(q.v[0]) && corner(q.v[1]) && q.v[0] != q.v[1];
+    case SymbolicVertex::Type::C: {
+      std::array<int, 3> a = q.v, b = tri;
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      return a == b;
+    }
+  }
+  return false;
+}
+
+// Diagram layout the checks index through; a failure here stops the verification.
+std::string structure_error(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d) {
+  const int nt = mesh.triangle_count();
+  if (d.sample_count != samples.size())
+    return fmt::format("diagram has {} cells for {} samples", d.sample_count, samples.size());
+  if (static_cast<int>(d.sites.size()) != d.sample_count)
+    return fmt::format("diagram has {} sites for {} cells", d.sites.size(), d.sample_count);
+  if (static_cast<int>(d.triangle_offsets.size()) != nt + 1)
+    return fmt::format("diagram has {} triangle offsets for {} triangles", d.triangle_offsets.size(), nt);
+  if (d.triangle_offsets[0] != 0 || d.triangle_offsets[nt] != static_cast<int>(d.polygons.size()))
+    return "triangle offsets do not span the polygon list";
+  for (int t = 0; t < nt; ++t) {
+    if (d.triangle_offsets[t + 1] < d.triangle_offsets[t]) return fmt::format("triangle {}: offsets decrease", t);
+    for (int p = d.triangle_offsets[t]; p < d.triangle_offsets[t + 1]; ++p) {
+      const CellPolygon& poly = d.polygons[p];
+      if (poly.triangle != t) return fmt::format("polygon {} is listed under triangle {} but names triangle {}", p, t, poly.triangle);
+      if (poly.first_vertex < 0 || poly.vertex_count < 0 ||
+          poly.first_vertex + poly.vertex_count > static_cast<int>(d.vertices.size()))
+        return fmt::format("polygon {} in triangle {}: vertex range out of bounds", p, t);
+    }
+  }
+  return {};
+}
+
+class DiagramChecker {
+ public:
+  DiagramChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options,
+                 DiagramVerification& out)
+      : mesh_(mesh), samples_(samples), d_(diagram), options_(options), out_(out),
+        vertices_{ExactVertices(diagram.context(mesh)), {}} {}
+
+  void run() {
+    index_vertices();
+    for (int t = 0; t < mesh_.triangle_count(); ++t) check_triangle(t);
+    check_samples();
+    check_edges(mesh_, samples_, d_, polygon_ok_, vertices_, out_);
+  }
+
+ private:
+  // Exact positions of every distinct polygon vertex; which polygons the geometric checks can use.
+  void index_vertices() {
+    const int n = d_.sample_count;
+    vertices_.of_diagram_vertex.assign(d_.vertices.size(), -1);
+    for (size_t k = 0; k < d_.vertices.size(); ++k)
+      if (well_formed(d_.vertices[k], mesh_.vertex_count(), n))
+        vertices_.of_diagram_vertex[k] = vertices_.exact.index(d_.vertices[k]);
+    // Every mesh vertex too, so that no later index() call moves the cached points.
+    mesh_vertex_.resize(mesh_.vertex_count());
+    for (int v = 0; v < mesh_.vertex_count(); ++v) mesh_vertex_[v] = vertices_.exact.index(SymbolicVertex::mesh_vertex(v));
+    polygon_ok_.assign(d_.polygons.size(), 0);
+    area_sign_.assign(d_.polygons.size(), Sign::Zero);
+    for (size_t p = 0; p < d_.polygons.size(); ++p) {
+      const CellPolygon& poly = d_.polygons[p];
+      bool ok = poly.cell >= 0 && poly.cell < n;
+      for (int k = 0; ok && k < poly.vertex_count; ++k) {
+        const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
+        ok = id >= 0 && vertices_.exact[id].valid;
+      }
+      polygon_ok_[p] = ok;
+    }
+  }
+
+  const ExactVertex& vertex(const CellPolygon& poly, int k) const {
+    return vertices_.exact[vertices_.of_diagram_vertex[poly.first_vertex + k]];
+  }
+
+  void check_triangle(int t) {
+    const int begin = d_.triangle_offsets[t], end = d_.triangle_offsets[t + 1];
+    const Frame f = triangle_frame(mesh_, t);
+    ++out_.coverage.checked;
+    if (!f.valid) {
+      out_.coverage.fail(fmt::format("triangle {}: degenerate, it has no 2D frame", t));
+      return;
+    }
+    if (begin == end) {
+      out_.coverage.fail(fmt::format("triangle {}: no polygon", t));
+      return;
+    }
+    const Triangle& tri = mesh_.triangle(t);
+    for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
+
+    bool areas_known = true;
+    Q area_sum(0);
+    for (int p = begin; p < end; ++p) {
+      ++out_.disjoint.checked;
+      if (!polygon_ok_[p]) {
+        out_.disjoint.fail(fmt::format("triangle {}: polygon {} (cell {}) has a malformed or non-existent vertex", t, p,
+                                       d_.polygons[p].cell));
+        areas_known = false;
+        continue;
+      }
+      if (!options_.exact_geometry) continue;
+      const std::string problem = polygon_problem(p, tri, f);
+      if (!problem.empty()) out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
+      if (full_triangle(d_.polygons[p], tri)) {
+        area_sign_[p] = Sign::Positive;
+        if (end - begin == 1) continue;  // exactly the triangle: coverage holds
+      }
+      const Q area = twice_area(points_, f);
+      area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(area)));
+      area_sum += area;
+    }
+    if (!options_.exact_geometry) return;
+    if (!areas_known) {
+      out_.coverage.fail(fmt::format("triangle {}: a polygon's area is unknown (malformed vertex)", t));
+    } else if (!(end - begin == 1 && full_triangle(d_.polygons[begin], tri))) {
+      points_.assign(corner_, corner_ + 3);
+      const Q triangle_area = twice_area(points_, f);
+      if (area_sum != triangle_area)
+        out_.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
+                                       CGAL::to_double(area_sum / triangle_area)));
+    }
+    check_overlaps(t, begin, end, f);
+    check_equidistance(t, begin, end);
+  }
+
+  // Whether the polygon is the whole triangle: its corners, in the triangle's cyclic order.
+  bool full_triangle(const CellPolygon& poly, const Triangle& tri) const {
+    if (poly.vertex_count != 3) return false;
+    const SymbolicVertex* verts = d_.polygon_vertices(poly);
+    for (int shift = 0; shift < 3; ++shift) {
+      bool same = true;
+      for (int c = 0; c < 3 && same; ++c) same = verts[c] == SymbolicVertex::mesh_vertex(tri[(c + shift) % 3]);
+      if (same) return true;
+    }
+    return false;
+  }
+
+  // (4) for one polygon: at least three distinct vertices, each a point of the triangle (by
+  // definition and exactly inside it), convex and counterclockwise (every vertex on the closed left
+  // side of every edge). Zero turns are allowed: at a degenerate input the unperturbed limit of a
+  // polygon may have collinear or coincident vertices. Leaves the polygon's points in points_.
+  std::string polygon_problem(int p, const Triangle& tri, const Frame& f) {
+    const CellPolygon& poly = d_.polygons[p];
+    const SymbolicVertex* verts = d_.polygon_vertices(poly);
+    const int n = poly.vertex_count;
+    points_.clear();
+    for (int k = 0; k < n; ++k) points_.push_back(&vertex(poly, k));
+    if (n < 3) return fmt::format("has {} vertices", n);
+    for (int k = 0; k < n; ++k)
+      for (int m = 0; m < k; ++m)
+        if (verts[k] == verts[m]) return fmt::format("repeats vertex {}", describe(verts[k]));
+    for (int k = 0; k < n; ++k) {
+      if (!defined_on_triangle(verts[k], tri)) return fmt::format("has vertex {} of another triangle", describe(verts[k]));
+      if (verts[k].type == SymbolicVertex::Type::A) continue;
+      for (int c = 0; c < 3; ++c)
+        if (orient(*corner_[c], *corner_[(c + 1) % 3], *points_[k], f) == Sign::Negative)
+          return fmt::format("has vertex {} outside the triangle", describe(verts[k]));
+    }
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n;
+      for (int m = 0; m < n; ++m) {
+        if (m == k || m == k1) continue;
+        if (orient(*points_[k], *points_[k1], *points_[m], f) == Sign::Negative)
+          return fmt::format("is not convex and counterclockwise: {} is right of edge {} -> {}", describe(verts[m]),
+                             describe(verts[k]), describe(verts[k1]));
+      }
+    }
+    return {};
+  }
+
+  // (4) pairwise: two convex polygons with interiors are interior-disjoint iff the line of an edge
+  // of one of them has the other on its closed outer side.
+  void check_overlaps(int t, int begin, int end, const Frame& f) {
+    for (int p = begin; p < end; ++p)
+      for (int q = p + 1; q < end; ++q) {
+        if (!polygon_ok_[p] || !polygon_ok_[q]) continue;
+        if (area_sign_[p] != Sign::Positive || area_sign_[q] != Sign::Positive) continue;
+        if (separated(p, q, f) || separated(q, p, f)) continue;
+        out_.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
+                                       d_.polygons[q].cell));
+      }
+  }
+
+  bool separated(int p, int q, const Frame& f) const {
+    const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
+    const SymbolicVertex* pv = d_.polygon_vertices(pp);
+    const SymbolicVertex* qv = d_.polygon_vertices(qq);
+    for (int k = 0; k < pp.vertex_count; ++k) {
+      const int k1 = (k + 1) % pp.vertex_count;
+      bool outside = true;
+      for (int m = 0; m < qq.vertex_count && outside; ++m) {
+        if (qv[m] == pv[k] || qv[m] == pv[k1]) continue;  // a shared vertex lies on the line
+        outside = orient(vertex(pp, k), vertex(pp, k1), vertex(qq, m), f) != Sign::Positive;
+      }
+      if (outside) return true;
+    }
+    return false;
+  }
+
+  // (3) Every vertex q of cell i's polygon is at least as close (power distance, exact) to x_i as
+  // to every cell with a polygon in the triangle, and lies on as many bisectors of i with those
+  // cells as its type says (B: one, C: two). The cells come from the polygons, not from q's labels,
+  // so a vertex with wrong labels is caught; the labels themselves are checked equidistant once.
+  void check_equidistance(int t, int begin, int end) {
+    present_.clear();
+    for (int p = begin; p < end; ++p)
+      if (polygon_ok_[p]) present_.push_back(d_.polygons[p].cell);
+    std::sort(present_.begin(), present_.end());
+    present_.erase(std::unique(present_.begin(), present_.end()), present_.end());
+    for (int p = begin; p < end; ++p) {
+      if (!polygon_ok_[p]) continue;
+      const CellPolygon& poly = d_.polygons[p];
+      const int i = poly.cell;
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        ++out_.equidistant.checked;
+        const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
+        const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
+        const bool labels_equidistant = check_labels(id);
+        int equidistant = 0;
+        std::string problem;
+        for (int j : present_) {
+          if (j == i) continue;
+          const Sign s = labels_equidistant && q.has_label(i) && q.has_label(j)
+                             ? Sign::Zero
+                             : compare_power_distance(vertices_.exact[id], d_.sites[i], d_.sites[j]);
+          if (s == Sign::Zero) ++equidistant;
+          if (s == Sign::Positive && problem.empty()) problem = fmt::format("is closer to x_{} than to x_{}", j, i);
+        }
+        if (problem.empty() && equidistant + 1 < q.num_labels())
+          problem = fmt::format("is equidistant from x_{} and {} other cell(s) of the triangle, not {}", i, equidistant,
+                                q.num_labels() - 1);
+        if (!problem.empty())
+          out_.equidistant.fail(fmt::format("triangle {}: vertex {} of cell {} {}", t, describe(q), i, problem));
+      }
+    }
+  }
+
+  // Whether vertex id is exactly (power-)equidistant from the sites it is defined by; reported once.
+  bool check_labels(int id) {
+    if (static_cast<int>(label_state_.size()) <= id) label_state_.resize(id + 1, -1);
+    if (label_state_[id] >= 0) return label_state_[id] == 1;
+    const SymbolicVertex& q = vertices_.exact.symbolic(id);
+    bool ok = true;
+    for (int k = 1; k < q.num_labels() && ok; ++k)
+      ok = compare_power_distance(vertices_.exact[id], d_.sites[q.label[0]], d_.sites[q.label[k]]) == Sign::Zero;
+    if (!ok) out_.equidistant.fail(fmt::format("vertex {} is not equidistant from its cells", describe(q)));
+    label_state_[id] = ok ? 1 : 0;
+    return ok;
+  }
+
+  // (1) x_i, at its barycentric coordinates taken as exact rationals, lies in the closed polygon of
+  // cell i in its triangle.
+  void check_samples() {
+    for (int i = 0; i < samples_.size(); ++i) {
+      ++out_.sample_in_cell.checked;
+      const int t = i < static_cast<int>(samples_.triangles.size()) ? samples_.triangles[i] : -1;
+      if (t < 0 || t >= mesh_.triangle_count() || i >= static_cast<int>(samples_.barycentric.size())) {
+        out_.sample_in_cell.fail(fmt::format("sample {}: not located on a triangle", i));
+        continue;
+      }
+      const Triangle& tri = mesh_.triangle(t);
+      const Vec3& b = samples_.barycentric[i];
+      const Q b0(b.x), b1(b.y), b2(b.z);
+      const Q sum = b0 + b1 + b2;
+      if (CGAL::is_negative(b0) || CGAL::is_negative(b1) || CGAL::is_negative(b2) || !CGAL::is_positive(sum)) {
+        out_.sample_in_cell.fail(fmt::format("sample {}: barycentric ({}, {}, {}) is outside its triangle {}", i, b.x, b.y, b.z, t));
+        continue;
+      }
+      ExactPoint x{Q(0), Q(0), Q(0)};
+      const Q* w[3] = {&b0, &b1, &b2};
+      for (int c = 0; c < 3; ++c) {
+        const ExactPoint corner = to_exact(mesh_.position(tri[c]));
+        x.x += *w[c] * corner.x / sum;
+        x.y += *w[c] * corner.y / sum;
+        x.z += *w[c] * corner.z / sum;
+      }
+      const ExactVertex point = make_exact_vertex(x);
+      const Frame f = triangle_frame(mesh_, t);
+      bool has_polygon = false, inside = false;
+      int holder = -1;
+      for (int p = d_.triangle_offsets[t]; p < d_.triangle_offsets[t + 1] && !inside; ++p) {
+        if (!polygon_ok_[p] || !f.valid) continue;
+        const bool own = d_.polygons[p].cell == i;
+        has_polygon = has_polygon || own;
+        const bool contains = contains_point(d_.polygons[p], point, f);
+        if (contains && own) inside = true;
+        if (contains && !own && holder < 0) holder = d_.polygons[p].cell;
+      }
+      if (inside) continue;
+      if (!has_polygon)
+        out_.sample_in_cell.fail(fmt::format("sample {}: cell {} has no polygon in the sample's triangle {}", i, i, t));
+      else
+        out_.sample_in_cell.fail(fmt::format("sample {}: outside its cell's polygon in triangle {}{}", i, t,
+                                             holder >= 0 ? fmt::format(" (it lies in cell {}'s)", holder) : ""));
+    }
+  }
+
+  // Exact point-in-closed-convex-polygon in the frame. A polygon of zero area (a degenerate
+  // input's limit) contains the points of its segment.
+  bool contains_point(const CellPolygon& poly, const ExactVertex& x, const Frame& f) {
+    points_.clear();
+    for (int k = 0; k < poly.vertex_count; ++k) points_.push_back(&vertex(poly, k));
+    if (points_.size() < 3) return false;
+    const bool flat = !CGAL::is_positive(twice_area(points_, f));
+    for (size_t k = 0; k < points_.size(); ++k) {
+      const Sign s = orient(*points_[k], *points_[(k + 1) % points_.size()], x, f);
+      if (s == Sign::Negative || (flat && s != Sign::Zero)) return false;
+    }
+    if (!flat) return true;
+    for (int axis : {f.u, f.v}) {
+      bool below = false, above = false;  // some vertex <= x, some >= x along the axis
+      for (const ExactVertex* p : points_) {
+        below = below || coordinate(p->p, axis) <= coordinate(x.p, axis);
+        above = above || coordinate(p->p, axis) >= coordinate(x.p, axis);
+      }
+      if (!below || !above) return false;
+    }
+    return true;
+  }
+
+  const SurfaceMesh& mesh_;
+  const Samples& samples_;
+  const Diagram& d_;
+  const VerifyOptions& options_;
+  DiagramVerification& out_;
+  VertexIndex vertices_;
+  std::vector<int> mesh_vertex_;  // exact vertex id of each mesh vertex
+  std::vector<char> polygon_ok_;
+  std::vector<Sign> area_sign_;
+  std::vector<signed char> label_state_;  // per exact vertex: -1 unchecked, 0 failed, 1 passed
+  std::vector<const ExactVertex*> points_;
+  std::vector<int> present_;
+  const ExactVertex* corner_[3] = {nullptr, nullptr, nullptr};
+};
+
+}  // namespace
+
+DiagramVerification verify_diagram(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
+                                   const VerifyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  DiagramVerification out;
+  out.sample_in_cell.promised = !is_power(diagram.kind);
+  out.connected.promised = is_localized(diagram.kind);
+  const std::string broken = structure_error(mesh, samples, diagram);
+  if (!broken.empty()) {
+    for (PropertyResult* p : {&out.sample_in_cell, &out.connected, &out.equidistant, &out.disjoint, &out.coverage,
+                              &out.conforming})
+      p->fail("diagram is malformed: " + broken);
+  } else {
+    DiagramChecker(mesh, samples, diagram, options, out).run();
+  }
+  out.passed = true;
+  for (const PropertyResult* p : {&out.sample_in_cell, &out.connected, &out.equidistant, &out.disjoint, &out.coverage,
+                                  &out.conforming})
+    if (p->promised && !p->passed) out.passed = false;
+  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,198 @@
+// Properties decided along mesh edges: (2) each cell is one connected region, (6) both triangles
+// beside a mesh edge split it at the same points with the same cells. Recomputed here from the
+// polygons and the exact parameters of their vertices along the edge, independently of the
+// diagram's own helpers (cell_components), so a bug there shows up.
+#include <algorithm>
+#include <numeric>
+#include <tuple>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "verification/diagram_geometry.h"
+
+namespace lrvd::verify_detail {
+
+namespace {
+
+// A polygon edge lying along a mesh edge (lo, hi), lo < hi, oriented from lo towards hi.
+struct Segment {
+  int start = -1, end = -1;  // exact vertex ids
+  const Q* s0 = nullptr;     // exact parameters along the edge, 0 at lo, 1 at hi
+  const Q* s1 = nullptr;
+  int cell = -1;
+  int polygon = -1;
+};
+
+bool symbolic_less(const SymbolicVertex& a, const SymbolicVertex& b) {
+  return std::tie(a.type, a.v, a.label) < std::tie(b.type, b.v, b.label);
+}
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+class EdgeChecker {
+ public:
+  EdgeChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
+              const std::vector<char>& polygon_ok, VertexIndex& vertices, DiagramVerification& out)
+      : mesh_(mesh), samples_(samples), diagram_(diagram), polygon_ok_(polygon_ok), vertices_(vertices),
+        out_(out), parent_(diagram.polygons.size()) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+
+  void run() {
+    for (int t = 0; t < mesh_.triangle_count(); ++t)
+      for (int e = 0; e < 3; ++e) {
+        const int across = mesh_.neighbor(t, e);
+        if (across < t) continue;  // boundary edge, or seen from the other side already
+        check_edge(t, e, across, mesh_.neighbor_edge(t, e));
+      }
+    count_components();
+  }
+
+ private:
+  const Q& parameter(int id, int lo) const {
+    const SymbolicVertex& q = vertices_.exact.symbolic(id);
+    if (q.type == SymbolicVertex::Type::A) return q.v[0] == lo ? zero_ : one_;
+    return vertices_.exact[id].edge_parameter;  // type B: stored from its lower endpoint
+  }
+
+  // The segments of triangle t's polygons along its edge e, sorted from lo to hi.
+  void collect(int t, int e, std::vector<Segment>& out) const {
+    out.clear();
+    const Triangle& tri = mesh_.triangle(t);
+    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b);
+    for (int p = diagram_.triangle_offsets[t]; p < diagram_.triangle_offsets[t + 1]; ++p) {
+      if (!polygon_ok_[p]) continue;
+      const CellPolygon& poly = diagram_.polygons[p];
+      const SymbolicVertex* verts = diagram_.polygon_vertices(poly);
+      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const int k1 = (k + 1) % poly.vertex_count;
+        if (!verts[k].on_mesh_edge(a, b) || !verts[k1].on_mesh_edge(a, b)) continue;
+        Segment s{ids[k], ids[k1], &parameter(ids[k], lo), &parameter(ids[k1], lo), poly.cell, p};
+        // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
+        if (*s.s1 < *s.s0 || (*s.s1 == *s.s0 && symbolic_less(vertices_.exact.symbolic(s.end),
+                                                               vertices_.exact.symbolic(s.start)))) {
+          std::swap(s.start, s.end);
+          std::swap(s.s0, s.s1);
+        }
+        out.push_back(s);
+      }
+    }
+    std::sort(out.begin(), out.end(), [&](const Segment& x, const Segment& y) {
+      if (*x.s0 != *y.s0) return *x.s0 < *y.s0;
+      if (*x.s1 != *y.s1) return *x.s1 < *y.s1;
+      if (x.cell != y.cell) return x.cell < y.cell;
+      if (x.start != y.start) return symbolic_less(vertices_.exact.symbolic(x.start), vertices_.exact.symbolic(y.start));
+      return symbolic_less(vertices_.exact.symbolic(x.end), vertices_.exact.symbolic(y.end));
+    });
+  }
+
+  void check_edge(int t, int e, int across, int e_across) {
+    collect(t, e, mine_);
+    collect(across, e_across, theirs_);
+    const Triangle& tri = mesh_.triangle(t);
+    const int lo = std::min(tri[e], tri[(e + 1) % 3]), hi = std::max(tri[e], tri[(e + 1) % 3]);
+
+    // (6) the same split points (same symbolic vertices) and the same cell on each segment.
+    ++out_.conforming.checked;
+    bool same = mine_.size() == theirs_.size();
+    for (size_t k = 0; same && k < mine_.size(); ++k)
+      same = mine_[k].start == theirs_[k].start && mine_[k].end == theirs_[k].end && mine_[k].cell == theirs_[k].cell;
+    if (!same) {
+      const auto cells_mine = cells_of(mine_), cells_theirs = cells_of(theirs_);
+      if (cells_mine != cells_theirs)
+        out_.conforming.fail(fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]", lo, hi, t,
+                                         fmt::join(cells_mine, ", "), across, fmt::join(cells_theirs, ", ")));
+      else
+        out_.conforming.fail(fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it at different "
+                                         "points: [{}] vs [{}]",
+                                         lo, hi, t, across, fmt::join(cells_mine, ", "), split_points(mine_),
+                                         split_points(theirs_)));
+    }
+
+    // (2) polygons of one cell are joined when their segments overlap in positive length.
+    for (const Segment& m : mine_)
+      for (const Segment& o : theirs_) {
+        if (m.cell != o.cell) continue;
+        const Q& from = std::max(*m.s0, *o.s0);
+        const Q& to = std::min(*m.s1, *o.s1);
+        if (from < to) {
+          const int ra = find_root(parent_, m.polygon), rb = find_root(parent_, o.polygon);
+          if (ra != rb) parent_[ra] = rb;
+        }
+      }
+  }
+
+  static std::vector<int> cells_of(const std::vector<Segment>& segments) {
+    std::vector<int> cells;
+    for (const Segment& s : segments) cells.push_back(s.cell);
+    return cells;
+  }
+
+  std::string split_points(const std::vector<Segment>& segments) const {
+    std::vector<std::string> names;
+    for (const Segment& s : segments) {
+      if (names.empty()) names.push_back(describe(vertices_.exact.symbolic(s.start)));
+      names.push_back(describe(vertices_.exact.symbolic(s.end)));
+    }
+    return fmt::format("{}", fmt::join(names, ", "));
+  }
+
+  void count_components() {
+    const int n = diagram_.sample_count;
+    std::vector<std::vector<int>> polygons_of_cell(n);
+    for (int p = 0; p < static_cast<int>(diagram_.polygons.size()); ++p)
+      if (polygon_ok_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
+    std::vector<int> roots;
+    for (int i = 0; i < n; ++i) {
+      ++out_.connected.checked;
+      const std::vector<int>& polys = polygons_of_cell[i];
+      roots.clear();
+      for (int p : polys) roots.push_back(find_root(parent_, p));
+      std::vector<int> distinct = roots;
+      std::sort(distinct.begin(), distinct.end());
+      distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+      if (distinct.size() <= 1) continue;  // an empty cell is (1)'s business, not connectedness
+      ++out_.cells_with_multiple_components;
+      // The main piece holds the sample; the first other piece is named as the stray one.
+      int home = roots.front();
+      for (size_t k = 0; k < polys.size(); ++k)
+        if (i < samples_.size() && diagram_.polygons[polys[k]].triangle == samples_.triangles[i]) home = roots[k];
+      int stray = -1;
+      std::vector<int> triangles;
+      for (size_t k = 0; k < polys.size(); ++k) {
+        if (roots[k] == home || (stray >= 0 && roots[k] != stray)) continue;
+        stray = roots[k];
+        triangles.push_back(diagram_.polygons[polys[k]].triangle);
+      }
+      const size_t shown = std::min<size_t>(triangles.size(), 8);
+      out_.connected.fail(fmt::format("cell {}: {} pieces, stray piece in triangle{} {}{}", i, distinct.size(),
+                                      triangles.size() > 1 ? "s" : "",
+                                      fmt::join(triangles.begin(), triangles.begin() + shown, ", "),
+                                      triangles.size() > shown ? ", ..." : ""));
+    }
+  }
+
+  const SurfaceMesh& mesh_;
+  const Samples& samples_;
+  const Diagram& diagram_;
+  const std::vector<char>& polygon_ok_;
+  VertexIndex& vertices_;
+  DiagramVerification& out_;
+  std::vector<int> parent_;
+  std::vector<Segment> mine_, theirs_;
+  const Q zero_{0}, one_{1};
+};
+
+}  // namespace
+
+void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
+                 const std::vector<char>& polygon_ok, VertexIndex& vertices, DiagramVerification& out) {
+  EdgeChecker(mesh, samples, diagram, polygon_ok, vertices, out).run();
+}
+
+}  // namespace lrvd::verify_detail

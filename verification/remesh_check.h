@@ -1,0 +1,36 @@
+// Verification of a remesh (the dual of a diagram, or any triangle mesh checked against its
+// input): vertex count, closed 2-manifold, genus per component, orientation, degenerate and
+// self-intersecting triangles.
+#pragma once
+
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mesh/surface_mesh.h"
+#include "verification/diagram_check.h"
+
+namespace lrvd {
+
+struct RemeshVerification {
+  bool passed = true;
+  double time_s = 0;
+  PropertyResult vertex_count;        //!< exactly the requested number of vertices, all used
+  PropertyResult manifold;            //!< every edge in two triangles (closed input) or one/two, every vertex one fan
+  PropertyResult closed;              //!< no boundary edge when the input is closed
+  PropertyResult oriented;            //!< each interior edge traversed once in each direction
+  PropertyResult topology;            //!< same components and Euler characteristic (genus) as the input
+  PropertyResult non_degenerate;      //!< no triangle with (exactly) collinear corners
+  PropertyResult no_self_intersection;  //!< no two triangles intersect beyond their shared elements
+  int components = 0, euler_characteristic = 0, genus = 0;  //!< of the output (genus of a closed connected output)
+  int self_intersecting_pairs = 0;
+  nlohmann::json to_json() const;
+  std::string summary() const;
+};
+
+//! Checks `triangles` over `positions` as a remesh of `input` that must have `expected_vertices`
+//! vertices (pass -1 to skip that check).
+RemeshVerification verify_remesh(const SurfaceMesh& input, const std::vector<Vec3>& positions,
+                                 const std::vector<Triangle>& triangles, int expected_vertices);
+
+}  // namespace lrvd
