@@ -239,32 +239,23 @@ struct Gen {
   bool power = false;
   double uni() { return std::uniform_real_distribution<double>(-1, 1)(rng); }
   double grid() { return double(std::uniform_int_distribution<int>(-2, 2)(rng)); }
-  // Coordinates and weights scaled by s and s^2 keep the grid's exact ties.
-  double coord() {
+  // Coordinates scaled by 2^e and weights by 2^2e keep the grid's exact ties (weights get at
+  // least 2^-1074 at the subnormal scale).
+  double value(bool is_weight) {
+    const int k = is_weight ? 2 : 1;
     switch (scale) {
-      case Scale::Uniform: return uni();
+      case Scale::Uniform: return is_weight ? 0.5 * uni() : uni();
       case Scale::Grid: return grid();
-      case Scale::Tiny: return std::ldexp(grid(), -500);
-      case Scale::Denormal: return std::ldexp(grid(), -1060);
-      case Scale::Huge: return std::ldexp(grid(), 500);
+      case Scale::Tiny: return std::ldexp(grid(), -500 * k);
+      case Scale::Denormal: return std::ldexp(grid(), is_weight ? -1074 : -1060);
+      case Scale::Huge: return std::ldexp(grid(), 500 * k);
       case Scale::HugeUniform: return uni() * 1e300;
       case Scale::Mixed: return std::ldexp(grid(), 1000 * std::uniform_int_distribution<int>(-1, 1)(rng));
     }
     return 0;
   }
-  double weight() {
-    if (!power) return 0;
-    switch (scale) {
-      case Scale::Uniform: return 0.5 * uni();
-      case Scale::Grid: return grid();
-      case Scale::Tiny: return std::ldexp(grid(), -1000);
-      case Scale::Denormal: return std::ldexp(grid(), -1074);
-      case Scale::Huge: return std::ldexp(grid(), 1000);
-      case Scale::HugeUniform: return uni() * 1e300;
-      case Scale::Mixed: return std::ldexp(grid(), 1000 * std::uniform_int_distribution<int>(-1, 1)(rng));
-    }
-    return 0;
-  }
+  double coord() { return value(false); }
+  double weight() { return power ? value(true) : 0.0; }
   Vec3 point() { return {coord(), coord(), coord()}; }
   // N sites with distinct ids in a random order.
   template <std::size_t N>

@@ -4,6 +4,7 @@
 // in its cell. (2) and (6) are decided along mesh edges (diagram_edges.cpp).
 #include <algorithm>
 #include <chrono>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -114,7 +115,9 @@ class DiagramChecker {
 
   void check_triangle(int t) {
     const int begin = d_.triangle_offsets[t], end = d_.triangle_offsets[t + 1];
-    const Frame f = triangle_frame(mesh_, t);
+    const Triangle& tri = mesh_.triangle(t);
+    for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
+    const Frame f = triangle_frame(mesh_, t, corner_);
     ++out_.coverage.checked;
     if (!f.valid) {
       out_.coverage.fail(fmt::format("triangle {}: degenerate, it has no 2D frame", t));
@@ -124,11 +127,7 @@ class DiagramChecker {
       out_.coverage.fail(fmt::format("triangle {}: no polygon", t));
       return;
     }
-    const Triangle& tri = mesh_.triangle(t);
-    for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
-
     bool areas_known = true;
-    Q area_sum(0);
     for (int p = begin; p < end; ++p) {
       ++out_.disjoint.checked;
       if (!polygon_ok_[p]) {
@@ -139,45 +138,25 @@ class DiagramChecker {
       }
       if (!options_.exact_geometry) continue;
       const std::string problem = polygon_problem(p, tri, f);
-      if (!problem.empty()) out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
-      if (full_triangle(d_.polygons[p], tri)) {
-        area_sign_[p] = Sign::Positive;
-        if (end - begin == 1) continue;  // exactly the triangle: coverage holds
+      if (!problem.empty()) {
+        out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
+        area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(twice_area(points_, f))));
       }
-      const Q area = twice_area(points_, f);
-      area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(area)));
-      area_sum += area;
     }
     if (!options_.exact_geometry) return;
-    if (!areas_known) {
+    if (!areas_known)
       out_.coverage.fail(fmt::format("triangle {}: a polygon's area is unknown (malformed vertex)", t));
-    } else if (!(end - begin == 1 && full_triangle(d_.polygons[begin], tri))) {
-      points_.assign(corner_, corner_ + 3);
-      const Q triangle_area = twice_area(points_, f);
-      if (area_sum != triangle_area)
-        out_.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
-                                       CGAL::to_double(area_sum / triangle_area)));
-    }
+    else
+      check_area_sum(t, begin, end, f);
     check_overlaps(t, begin, end, f);
     check_equidistance(t, begin, end);
-  }
-
-  // Whether the polygon is the whole triangle: its corners, in the triangle's cyclic order.
-  bool full_triangle(const CellPolygon& poly, const Triangle& tri) const {
-    if (poly.vertex_count != 3) return false;
-    const SymbolicVertex* verts = d_.polygon_vertices(poly);
-    for (int shift = 0; shift < 3; ++shift) {
-      bool same = true;
-      for (int c = 0; c < 3 && same; ++c) same = verts[c] == SymbolicVertex::mesh_vertex(tri[(c + shift) % 3]);
-      if (same) return true;
-    }
-    return false;
   }
 
   // (4) for one polygon: at least three distinct vertices, each a point of the triangle (by
   // definition and exactly inside it), convex and counterclockwise (every vertex on the closed left
   // side of every edge). Zero turns are allowed: at a degenerate input the unperturbed limit of a
-  // polygon may have collinear or coincident vertices. Leaves the polygon's points in points_.
+  // polygon may have collinear or coincident vertices. Sets area_sign_[p] when there is no problem
+  // (positive iff some turn is strictly left) and leaves the polygon's points in points_.
   std::string polygon_problem(int p, const Triangle& tri, const Frame& f) {
     const CellPolygon& poly = d_.polygons[p];
     const SymbolicVertex* verts = d_.polygon_vertices(poly);
@@ -189,22 +168,98 @@ class DiagramChecker {
       for (int m = 0; m < k; ++m)
         if (verts[k] == verts[m]) return fmt::format("repeats vertex {}", describe(verts[k]));
     for (int k = 0; k < n; ++k) {
-      if (!defined_on_triangle(verts[k], tri)) return fmt::format("has vertex {} of another triangle", describe(verts[k]));
-      if (verts[k].type == SymbolicVertex::Type::A) continue;
-      for (int c = 0; c < 3; ++c)
-        if (orient(*corner_[c], *corner_[(c + 1) % 3], *points_[k], f) == Sign::Negative)
-          return fmt::format("has vertex {} outside the triangle", describe(verts[k]));
+      const SymbolicVertex& q = verts[k];
+      if (!defined_on_triangle(q, tri)) return fmt::format("has vertex {} of another triangle", describe(q));
+      bool inside = true;
+      if (q.type == SymbolicVertex::Type::B) {  // exactly on its edge's line: inside iff within the edge
+        const Q& s = points_[k]->edge_parameter;
+        inside = !CGAL::is_negative(s) && s <= Q(1);
+      } else if (q.type == SymbolicVertex::Type::C) {
+        for (int c = 0; c < 3 && inside; ++c)
+          inside = orient(*corner_[c], *corner_[(c + 1) % 3], *points_[k], f) != Sign::Negative;
+      }
+      if (!inside) return fmt::format("has vertex {} outside the triangle", describe(q));
     }
+    bool strictly_left = false;
     for (int k = 0; k < n; ++k) {
       const int k1 = (k + 1) % n;
       for (int m = 0; m < n; ++m) {
-        if (m == k || m == k1) continue;
-        if (orient(*points_[k], *points_[k1], *points_[m], f) == Sign::Negative)
+        if (m == k || m == k1 || on_one_mesh_edge(tri, verts[k], verts[k1], verts[m])) continue;
+        const Sign s = orient(*points_[k], *points_[k1], *points_[m], f);
+        if (s == Sign::Negative)
           return fmt::format("is not convex and counterclockwise: {} is right of edge {} -> {}", describe(verts[m]),
                              describe(verts[k]), describe(verts[k1]));
+        strictly_left = strictly_left || s == Sign::Positive;
       }
     }
+    area_sign_[p] = strictly_left ? Sign::Positive : Sign::Zero;
     return {};
+  }
+
+  // Whether three vertices lie on one edge of the triangle by definition (then exactly collinear).
+  static bool on_one_mesh_edge(const Triangle& tri, const SymbolicVertex& a, const SymbolicVertex& b,
+                               const SymbolicVertex& c) {
+    for (int e = 0; e < 3; ++e) {
+      const int x = tri[e], y = tri[(e + 1) % 3];
+      if (a.on_mesh_edge(x, y) && b.on_mesh_edge(x, y) && c.on_mesh_edge(x, y)) return true;
+    }
+    return false;
+  }
+
+  // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
+  Q parameter_along(const SymbolicVertex& q, int id, int from) const {
+    if (q.type == SymbolicVertex::Type::A) return Q(q.v[0] == from ? 0 : 1);
+    const Q& s = vertices_.exact[id].edge_parameter;  // from v[0] towards v[1]
+    return q.v[0] == from ? s : Q(1) - s;
+  }
+
+  // (5) The polygons' areas sum to the triangle's, exactly. The sum of the shoelace formulas with
+  // the origin at corner a is the sum over directed polygon edges (u, w) of cross(u - a, w - a):
+  // an edge used in both directions cancels exactly; an edge along a mesh edge through a adds 0;
+  // an edge along (b, c) with parameters s_u, s_w from b adds (s_w - s_u) cross(b - a, c - b), and
+  // cross(b - a, c - b) is twice the triangle's area. Any other edge left over is summed in full.
+  void check_area_sum(int t, int begin, int end, const Frame& f) {
+    const Triangle& tri = mesh_.triangle(t);
+    edges_.clear();
+    for (int p = begin; p < end; ++p) {
+      const CellPolygon& poly = d_.polygons[p];
+      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const int k1 = (k + 1) % poly.vertex_count;
+        const int u = poly.first_vertex + k, w = poly.first_vertex + k1;
+        if (ids[k] < ids[k1]) edges_.push_back({ids[k], ids[k1], u, w, 1});
+        else edges_.push_back({ids[k1], ids[k], w, u, -1});
+      }
+    }
+    std::sort(edges_.begin(), edges_.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
+      return std::tie(x.from, x.to) < std::tie(y.from, y.to);
+    });
+    Q along_bc(0), rest(0);
+    for (size_t k = 0; k < edges_.size();) {
+      size_t m = k;
+      int count = 0;
+      for (; m < edges_.size() && edges_[m].from == edges_[k].from && edges_[m].to == edges_[k].to; ++m)
+        count += edges_[m].direction;
+      const DirectedEdge& e = edges_[k];
+      k = m;
+      if (count == 0) continue;
+      const SymbolicVertex &u = d_.vertices[e.from_vertex], &w = d_.vertices[e.to_vertex];
+      if (u.on_mesh_edge(tri[0], tri[1]) && w.on_mesh_edge(tri[0], tri[1])) continue;
+      if (u.on_mesh_edge(tri[2], tri[0]) && w.on_mesh_edge(tri[2], tri[0])) continue;
+      if (u.on_mesh_edge(tri[1], tri[2]) && w.on_mesh_edge(tri[1], tri[2])) {
+        along_bc += Q(count) * (parameter_along(w, e.to, tri[1]) - parameter_along(u, e.from, tri[1]));
+        continue;
+      }
+      points_ = {corner_[0], &vertices_.exact[e.from], &vertices_.exact[e.to]};
+      rest += Q(count) * twice_area(points_, f);
+    }
+    if (CGAL::is_zero(rest) && along_bc == Q(1)) return;  // sum = along_bc * area + rest = area
+    points_.assign(corner_.begin(), corner_.end());
+    const Q triangle = twice_area(points_, f);
+    const Q ratio = along_bc + rest / triangle;
+    if (ratio != Q(1))
+      out_.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
+                                     CGAL::to_double(ratio)));
   }
 
   // (4) pairwise: two convex polygons with interiors are interior-disjoint iff the line of an edge
@@ -214,13 +269,14 @@ class DiagramChecker {
       for (int q = p + 1; q < end; ++q) {
         if (!polygon_ok_[p] || !polygon_ok_[q]) continue;
         if (area_sign_[p] != Sign::Positive || area_sign_[q] != Sign::Positive) continue;
-        if (separated(p, q, f) || separated(q, p, f)) continue;
+        const Triangle& tri = mesh_.triangle(t);
+        if (separated(p, q, tri, f) || separated(q, p, tri, f)) continue;
         out_.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
                                        d_.polygons[q].cell));
       }
   }
 
-  bool separated(int p, int q, const Frame& f) const {
+  bool separated(int p, int q, const Triangle& tri, const Frame& f) const {
     const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
     const SymbolicVertex* pv = d_.polygon_vertices(pp);
     const SymbolicVertex* qv = d_.polygon_vertices(qq);
@@ -228,7 +284,8 @@ class DiagramChecker {
       const int k1 = (k + 1) % pp.vertex_count;
       bool outside = true;
       for (int m = 0; m < qq.vertex_count && outside; ++m) {
-        if (qv[m] == pv[k] || qv[m] == pv[k1]) continue;  // a shared vertex lies on the line
+        // A shared vertex, or a third point of a mesh edge the polygon edge runs along, is on the line.
+        if (qv[m] == pv[k] || qv[m] == pv[k1] || on_one_mesh_edge(tri, pv[k], pv[k1], qv[m])) continue;
         outside = orient(vertex(pp, k), vertex(pp, k1), vertex(qq, m), f) != Sign::Positive;
       }
       if (outside) return true;
@@ -314,14 +371,15 @@ class DiagramChecker {
         x.z += *w[c] * corner.z / sum;
       }
       const ExactVertex point = make_exact_vertex(x);
-      const Frame f = triangle_frame(mesh_, t);
+      for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
+      const Frame f = triangle_frame(mesh_, t, corner_);
       bool has_polygon = false, inside = false;
       int holder = -1;
       for (int p = d_.triangle_offsets[t]; p < d_.triangle_offsets[t + 1] && !inside; ++p) {
         if (!polygon_ok_[p] || !f.valid) continue;
         const bool own = d_.polygons[p].cell == i;
         has_polygon = has_polygon || own;
-        const bool contains = contains_point(d_.polygons[p], point, f);
+        const bool contains = contains_point(p, point, f);
         if (contains && own) inside = true;
         if (contains && !own && holder < 0) holder = d_.polygons[p].cell;
       }
@@ -336,11 +394,13 @@ class DiagramChecker {
 
   // Exact point-in-closed-convex-polygon in the frame. A polygon of zero area (a degenerate
   // input's limit) contains the points of its segment.
-  bool contains_point(const CellPolygon& poly, const ExactVertex& x, const Frame& f) {
+  bool contains_point(int p, const ExactVertex& x, const Frame& f) {
+    const CellPolygon& poly = d_.polygons[p];
     points_.clear();
     for (int k = 0; k < poly.vertex_count; ++k) points_.push_back(&vertex(poly, k));
     if (points_.size() < 3) return false;
-    const bool flat = !CGAL::is_positive(twice_area(points_, f));
+    // The triangle pass knows the area's sign unless it skipped the geometry.
+    const bool flat = options_.exact_geometry ? area_sign_[p] != Sign::Positive : !CGAL::is_positive(twice_area(points_, f));
     for (size_t k = 0; k < points_.size(); ++k) {
       const Sign s = orient(*points_[k], *points_[(k + 1) % points_.size()], x, f);
       if (s == Sign::Negative || (flat && s != Sign::Zero)) return false;
@@ -368,8 +428,14 @@ class DiagramChecker {
   std::vector<Sign> area_sign_;
   std::vector<signed char> label_state_;  // per exact vertex: -1 unchecked, 0 failed, 1 passed
   std::vector<const ExactVertex*> points_;
+  struct DirectedEdge {
+    int from, to;                // exact vertex ids, from < to
+    int from_vertex, to_vertex;  // indices into Diagram::vertices
+    int direction;               // +1 if a polygon runs from -> to, -1 if to -> from
+  };
+  std::vector<DirectedEdge> edges_;
   std::vector<int> present_;
-  const ExactVertex* corner_[3] = {nullptr, nullptr, nullptr};
+  std::array<const ExactVertex*, 3> corner_{};
 };
 
 }  // namespace

@@ -57,17 +57,14 @@ int ExactVertices::index(const SymbolicVertex& q) {
   return it->second;
 }
 
-Frame triangle_frame(const SurfaceMesh& mesh, int t) {
+Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners) {
   const Triangle& tri = mesh.triangle(t);
-  const Vec3 &a = mesh.position(tri[0]), &b = mesh.position(tri[1]), &c = mesh.position(tri[2]);
   Frame f;
-  const int drop = predicates::projection_axis(a, b, c);
+  const int drop = predicates::projection_axis(mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
   if (drop < 0) return f;
   f.u = (drop + 1) % 3;
   f.v = (drop + 2) % 3;
-  const ExactVertex ea = make_exact_vertex(to_exact(a)), eb = make_exact_vertex(to_exact(b)),
-                    ec = make_exact_vertex(to_exact(c));
-  const Sign s = orient(ea, eb, ec, f);  // with sign = +1: the plain projected orientation
+  const Sign s = orient(*corners[0], *corners[1], *corners[2], f);  // with sign = +1: the plain projected orientation
   if (s == Sign::Zero) return f;
   f.sign = s == Sign::Positive ? 1 : -1;
   f.valid = true;
@@ -76,8 +73,11 @@ Frame triangle_frame(const SurfaceMesh& mesh, int t) {
 
 Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f) {
   const int u = f.u, v = f.v;
-  const Interval d = (b.box[u] - a.box[u]) * (c.box[v] - a.box[v]) - (b.box[v] - a.box[v]) * (c.box[u] - a.box[u]);
-  Sign s = filtered_sign(d);
+  Sign s;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    s = filtered_sign((b.box[u] - a.box[u]) * (c.box[v] - a.box[v]) - (b.box[v] - a.box[v]) * (c.box[u] - a.box[u]));
+  }
   if (s == Sign::Zero) {
     const Q& ax = coordinate(a.p, u);
     const Q& ay = coordinate(a.p, v);
@@ -105,12 +105,15 @@ Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
 
 Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) {
   // d_a(q) - d_b(q) = 2 q.(p_b - p_a) + (|p_a|^2 - w_a) - (|p_b|^2 - w_b): affine in q.
-  Interval value(0);
-  for (int c = 0; c < 3; ++c) value += 2 * q.box[c] * (Interval(b.p[c]) - Interval(a.p[c]));
-  for (int c = 0; c < 3; ++c) value += Interval(a.p[c]) * Interval(a.p[c]) - Interval(b.p[c]) * Interval(b.p[c]);
-  value += Interval(b.w) - Interval(a.w);
-  const Sign s = filtered_sign(value);
-  if (s != Sign::Zero) return s;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    Interval value(0);
+    for (int c = 0; c < 3; ++c) value += 2 * q.box[c] * (Interval(b.p[c]) - Interval(a.p[c]));
+    for (int c = 0; c < 3; ++c) value += Interval(a.p[c]) * Interval(a.p[c]) - Interval(b.p[c]) * Interval(b.p[c]);
+    value += Interval(b.w) - Interval(a.w);
+    const Sign s = filtered_sign(value);
+    if (s != Sign::Zero) return s;
+  }
   Q exact(0);
   for (int c = 0; c < 3; ++c) {
     const Q pa(a.p[c]), pb(b.p[c]);

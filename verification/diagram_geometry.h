@@ -18,7 +18,9 @@
 namespace lrvd::verify_detail {
 
 using Q = CGAL::Gmpq;
-using Interval = CGAL::Interval_nt<>;
+//! Unprotected intervals: every function that computes with them sets the rounding mode once
+//! (CGAL::Protect_FPU_rounding) instead of once per operation.
+using Interval = CGAL::Interval_nt<false>;
 
 //! A point with its exact rational coordinates and an interval enclosure of each.
 struct ExactVertex {
@@ -55,7 +57,8 @@ struct Frame {
   int sign = 1;      //!< +1 if the triangle's corners are counterclockwise in (u, v), else -1
   bool valid = false;
 };
-Frame triangle_frame(const SurfaceMesh& mesh, int t);
+//! \pre corners[c] is the exact vertex of the triangle's corner c.
+Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners);
 
 //! Exact orientation of a, b, c projected into the frame, relative to the triangle's normal:
 //! Positive for a counterclockwise turn seen from the normal.

@@ -18,5 +18,7 @@ using Action = std::function<int()>;
 Action add_stress_command(CLI::App& app);
 Action add_compute_command(CLI::App& app);
 Action add_verify_command(CLI::App& app);
+Action add_remesh_command(CLI::App& app);
+Action add_quality_command(CLI::App& app);
 
 }  // namespace lrvd::cli

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   };
   add(add_compute_command);
   add(add_verify_command);
+  add(add_remesh_command);
+  add(add_quality_command);
   add(add_stress_command);
 
   try {

@@ -411,6 +411,23 @@ bool RepairReport::changed() const {
          reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
 }
 
+PolygonSoup read_polygon_soup(const std::string& path) {
+  check_readable(path);
+  const Format format = input_format(path);
+  if (format == Format::Stl)
+    if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
+  std::vector<Point> points;
+  std::vector<Polygon> polygons;
+  if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
+  check_soup(path, format, points, polygons);
+  RepairReport ignored;
+  PolygonSoup soup;
+  for (const SoupTriangle& t : triangulate(points, polygons, ignored))
+    soup.triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  for (const Point& p : points) soup.positions.push_back({p.x(), p.y(), p.z()});
+  return soup;
+}
+
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   check_readable(path);
   const Format format = input_format(path);

@@ -43,6 +43,16 @@ struct LoadedMesh {
 //!        unwelded triangle soup (suggests --repair), and every SurfaceMesh precondition.
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
 
+//! Positions and triangles exactly as a file holds them (polygons triangulated), without the
+//! manifold validation: for measuring other tools' output, which may be non-manifold.
+//! \throw InputError for a missing, unknown, empty, truncated or unparsable file, non-finite
+//!        coordinates or out-of-range indices.
+struct PolygonSoup {
+  std::vector<Vec3> positions;
+  std::vector<std::array<int, 3>> triangles;
+};
+PolygonSoup read_polygon_soup(const std::string& path);
+
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
 //! \throw InputError on an unknown extension or a path that cannot be written;

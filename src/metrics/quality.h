@@ -24,10 +24,13 @@ struct DistanceOptions {
   unsigned long long seed = 20140701;  //!< the same points every run
 };
 
-//! Triangle-shape metrics alone.
+//! Triangle-shape metrics alone (degenerate triangles count with Q = 0 and angles 0/180).
+//! \throw InputError when a triangle names a missing vertex or a used vertex is not finite.
 QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);
 
-//! Shape metrics plus distances between the triangles and the reference surface.
+//! Shape metrics plus distances between the triangles and the reference surface. The triangles
+//! may be non-manifold; formulas and sampling: docs/metrics.md.
+//! \throw InputError as shape_metrics, and when no triangle has three non-collinear corners.
 QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<Vec3>& positions,
                                const std::vector<Triangle>& triangles, const DistanceOptions& options = {});
 

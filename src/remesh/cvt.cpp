@@ -18,14 +18,15 @@ namespace lrvd {
 
 namespace {
 
-// Puts every point on the surface (closest point) and records its triangle.
-void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples) {
+// Records the closest triangle of every point; with `onto_surface`, also moves the point there.
+void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples,
+             bool onto_surface = true) {
   samples.positions.resize(points.size());
   samples.triangles.resize(points.size());
   samples.barycentric.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const ClosestPoint c = index.query(points[i]);
-    samples.positions[i] = c.point;
+    samples.positions[i] = onto_surface ? c.point : points[i];
     samples.triangles[i] = c.triangle;
     samples.barycentric[i] = c.barycentric;
   }
@@ -137,7 +138,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     int lbfgs_evaluations = 0;
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
       ++lbfgs_evaluations;
-      project(index, to_points(x), samples);
+      project(index, to_points(x), samples, false);
       const CvtEnergy e = cvt_energy(mesh, samples, options.diagram, density);
       ++result.diagram_evaluations;
       grad.resize(3 * n);
@@ -172,7 +173,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
       lbfgs_iterations = lbfgs_evaluations;
     }
     iteration += lbfgs_iterations;
-    samples = best;
+    project(index, best.positions, samples);
     current = cvt_energy(mesh, samples, options.diagram, density);
     ++result.diagram_evaluations;
     report(current.energy);

@@ -1,0 +1,140 @@
+// `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
+// `lrvd quality` (the metrics alone, for any remesher's output).
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "common/error.h"
+#include "metrics/quality.h"
+#include "predicates/predicates.h"
+#include "remesh/cvt.h"
+#include "verification/remesh_check.h"
+#include "voronoi/dual.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd::cli {
+
+namespace {
+
+struct RemeshOptions {
+  InputOptions input;
+  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform";
+  int iterations = 200;
+  std::string output, report;
+};
+
+int run_remesh(const RemeshOptions& opt) {
+  const DiagramKind kind = diagram_kind_from_string(opt.kind);
+  if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
+  if (opt.output.empty()) throw InputError("give an output file with -o");
+  Input input = load_input(opt.input);
+  if (input.refined_from >= 0)
+    progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+
+  CvtOptions cvt;
+  cvt.diagram = kind;
+  cvt.optimizer = opt.optimizer == "lloyd" ? CvtOptimizer::Lloyd : CvtOptimizer::Lbfgs;
+  cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
+  cvt.iterations = opt.iterations;
+  cvt.on_iteration = [](int iteration, double energy) {
+    if (iteration % 10 == 0) progress(fmt::format("iteration {}: energy {:.6g}", iteration, energy));
+  };
+  reset_predicate_stats();
+  progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
+  const CvtResult result = optimize_cvt(input.mesh, input.samples, cvt);
+  const DualMesh dual = compute_dual(result.diagram, input.mesh, result.samples);
+  write_mesh(opt.output, dual.positions, dual.triangles);
+
+  progress("checking the remesh");
+  const RemeshVerification check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
+  const QualityMetrics quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
+
+  nlohmann::json report;
+  report["input"] = input_json(input);
+  report["input"]["path"] = opt.input.mesh_path;
+  report["output"] = {{"path", opt.output}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
+  nlohmann::json q = quality.to_json();
+  q["closed_manifold"] = check.manifold.passed && check.closed.passed;
+  q["genus_preserved"] = check.topology.passed;
+  q["self_intersections"] = check.self_intersecting_pairs;
+  report["quality"] = q;
+  report["verification"] = check.to_json();
+  report["diagram"] = opt.kind;
+  report["optimizer"] = opt.optimizer;
+  report["density"] = opt.density;
+  report["iterations"] = result.iterations;
+  report["diagram_evaluations"] = result.diagram_evaluations;
+  report["energy"] = result.energy;
+  report["initial_energy"] = result.energy_history.front();
+  report["time_s"] = result.time_s;
+  report["predicates"] = predicates_json();
+  if (!opt.report.empty()) write_json(opt.report, report);
+
+  std::printf("remesh (%s): %zu vertices, %zu triangles, %d iterations, %.3f s -> %s\n", opt.kind.c_str(),
+              dual.positions.size(), dual.triangles.size(), result.iterations, result.time_s, opt.output.c_str());
+  std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%%\n",
+              quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
+              quality.hausdorff_pct);
+  std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
+  if (!check.passed) std::fputs(check.summary().c_str(), stdout);
+  return check.passed ? kOk : kCheckFailed;
+}
+
+struct QualityOptions {
+  std::string reference, mesh, report;
+};
+
+int run_quality(const QualityOptions& opt) {
+  const SurfaceMesh reference = read_mesh(opt.reference).mesh;
+  const PolygonSoup soup = read_polygon_soup(opt.mesh);
+  const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
+  const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
+  nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
+  nlohmann::json q = quality.to_json();
+  q["closed_manifold"] = check.manifold.passed && check.closed.passed;
+  q["genus_preserved"] = check.topology.passed;
+  q["self_intersections"] = check.self_intersecting_pairs;
+  report["quality"] = q;
+  report["verification"] = check.to_json();
+  if (!opt.report.empty()) write_json(opt.report, report);
+  std::printf("%s: %d vertices, %d triangles\n", opt.mesh.c_str(), quality.vertices, quality.triangles);
+  std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%% RMS %.3f%%\n",
+              quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
+              quality.hausdorff_pct, quality.rms_pct);
+  std::printf("closed manifold: %s, genus preserved: %s, self-intersecting pairs: %d\n",
+              q["closed_manifold"].get<bool>() ? "yes" : "no", check.topology.passed ? "yes" : "no",
+              check.self_intersecting_pairs);
+  return kOk;
+}
+
+}  // namespace
+
+Action add_remesh_command(CLI::App& app) {
+  auto opt = std::make_shared<RemeshOptions>();
+  CLI::App* cmd = app.add_subcommand("remesh", "Remesh to exactly N vertices with a CVT on the LRVD, check the output");
+  add_input_options(cmd, opt->input, true);
+  cmd->add_option("--diagram", opt->kind, "Diagram of the CVT: lrvd (default) or rvd (the baseline)")
+      ->check(CLI::IsMember({"lrvd", "rvd"}))
+      ->capture_default_str();
+  cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
+  cmd->add_option("--iterations", opt->iterations, "Iteration cap")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--density", opt->density, "uniform or curvature")
+      ->check(CLI::IsMember({"uniform", "curvature"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", opt->output, "Output mesh (.off, .obj, .ply)")->required();
+  cmd->add_option("--report", opt->report, "Write a JSON report");
+  return [opt]() { return run_remesh(*opt); };
+}
+
+Action add_quality_command(CLI::App& app) {
+  auto opt = std::make_shared<QualityOptions>();
+  CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
+  cmd->add_option("reference", opt->reference, "The input surface")->required();
+  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required();
+  cmd->add_option("--report", opt->report, "Write a JSON report");
+  return [opt]() { return run_quality(*opt); };
+}
+
+}  // namespace lrvd::cli

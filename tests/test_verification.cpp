@@ -1,0 +1,321 @@
+// The diagram verification: valid LRVDs and RVDs pass every property they promise, and each
+// property fails, naming the offender, when a valid diagram is broken in exactly its way.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "test_meshes.h"
+#include "verification/diagram_check.h"
+#include "voronoi/lrvd.h"
+
+using namespace lrvd;
+
+namespace {
+
+bool names(const PropertyResult& p, const std::string& part) {
+  for (const std::string& s : p.first_offenders)
+    if (s.find(part) != std::string::npos) return true;
+  return false;
+}
+
+std::string offenders(const PropertyResult& p) {
+  std::string out;
+  for (const std::string& s : p.first_offenders) out += "  " + s + "\n";
+  return out;
+}
+
+// Polygon indices of triangle t.
+std::vector<int> polygons_of(const Diagram& d, int t) {
+  std::vector<int> out;
+  for (int p = d.triangle_offsets[t]; p < d.triangle_offsets[t + 1]; ++p) out.push_back(p);
+  return out;
+}
+
+bool cell_in_triangle(const Diagram& d, int t, int cell) {
+  for (int p : polygons_of(d, t))
+    if (d.polygons[p].cell == cell) return true;
+  return false;
+}
+
+// First triangle with at least `count` polygons, or -1.
+int triangle_with_polygons(const Diagram& d, int count) {
+  for (int t = 0; t + 1 < static_cast<int>(d.triangle_offsets.size()); ++t)
+    if (d.triangle_offsets[t + 1] - d.triangle_offsets[t] >= count) return t;
+  return -1;
+}
+
+void insert_polygon(Diagram& d, int at, const CellPolygon& poly) {
+  d.polygons.insert(d.polygons.begin() + at, poly);
+  for (size_t t = poly.triangle + 1; t < d.triangle_offsets.size(); ++t) ++d.triangle_offsets[t];
+}
+
+void erase_polygon(Diagram& d, int at) {
+  const int triangle = d.polygons[at].triangle;
+  d.polygons.erase(d.polygons.begin() + at);
+  for (size_t t = triangle + 1; t < d.triangle_offsets.size(); ++t) --d.triangle_offsets[t];
+}
+
+struct Case {
+  SurfaceMesh mesh;
+  Samples samples;
+  Diagram diagram;
+};
+
+// A valid LRVD with enough cells and boundaries to break: icosphere(2), 30 samples.
+Case valid_lrvd() {
+  Case c{test::icosphere(2), {}, {}};
+  c.samples = sample_uniform(c.mesh, 30, 7);
+  c.diagram = compute_lrvd(c.mesh, c.samples);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  INFO(v.summary());
+  REQUIRE(v.passed);
+  return c;
+}
+
+void require_only_broken(const DiagramVerification& v, const PropertyResult& broken, const std::string& offender) {
+  INFO(v.summary() << "offenders of the broken property:\n" << offenders(broken));
+  REQUIRE_FALSE(v.passed);
+  REQUIRE_FALSE(broken.passed);
+  REQUIRE(broken.violations >= 1);
+  REQUIRE(names(broken, offender));
+}
+
+}  // namespace
+
+TEST_CASE("Valid LRVDs pass all six properties on a sphere and a sheet", "[verification]") {
+  const std::vector<std::pair<std::string, SurfaceMesh>> meshes = {{"icosphere(2)", test::icosphere(2)},
+                                                                   {"grid(8, 8)", test::grid(8, 8)}};
+  for (const auto& [name, mesh] : meshes)
+    for (int n : {1, 2, 10, 50})
+      for (std::uint64_t seed : {1u, 2u, 3u}) {
+        const Samples samples = sample_uniform(mesh, n, seed);
+        const Diagram d = compute_lrvd(mesh, samples);
+        const DiagramVerification v = verify_diagram(mesh, samples, d);
+        INFO(name << " n=" << n << " seed=" << seed << "\n" << v.summary());
+        CHECK(v.passed);
+        for (const PropertyResult* p : {&v.sample_in_cell, &v.connected, &v.equidistant, &v.disjoint, &v.coverage,
+                                        &v.conforming}) {
+          CHECK(p->passed);
+          CHECK(p->promised);
+          CHECK(p->checked > 0);
+        }
+        CHECK(v.cells_with_multiple_components == 0);
+        CHECK(v.sample_in_cell.checked == n);
+        CHECK(v.coverage.checked == mesh.triangle_count());
+      }
+}
+
+TEST_CASE("Valid RVDs pass every property but connectedness, which they do not promise", "[verification]") {
+  const std::vector<std::pair<std::string, SurfaceMesh>> meshes = {{"icosphere(2)", test::icosphere(2)},
+                                                                   {"grid(8, 8)", test::grid(8, 8)}};
+  for (const auto& [name, mesh] : meshes)
+    for (int n : {1, 2, 10, 50})
+      for (std::uint64_t seed : {1u, 2u, 3u}) {
+        const Samples samples = sample_uniform(mesh, n, seed);
+        const Diagram d = compute_rvd(mesh, samples);
+        const DiagramVerification v = verify_diagram(mesh, samples, d);
+        INFO(name << " n=" << n << " seed=" << seed << "\n" << v.summary());
+        CHECK(v.passed);
+        CHECK_FALSE(v.connected.promised);
+        for (const PropertyResult* p : {&v.sample_in_cell, &v.equidistant, &v.disjoint, &v.coverage, &v.conforming})
+          CHECK(p->passed);
+      }
+}
+
+TEST_CASE("On nearby sheets the RVD's split cells are reported, not promised; the LRVD's are whole", "[verification]") {
+  const SurfaceMesh mesh = test::merge(test::grid(6, 6), test::grid(6, 6), {0, 0, 0.05});
+  int rvd_split = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const Samples samples = sample_uniform(mesh, 6, seed);
+    const Diagram rvd = compute_rvd(mesh, samples);
+    const DiagramVerification v = verify_diagram(mesh, samples, rvd);
+    INFO("seed " << seed << "\n" << v.summary());
+    CHECK(v.passed);  // connectedness is not promised by the RVD
+    CHECK(v.connected.passed == (v.cells_with_multiple_components == 0));
+    if (!v.connected.passed) {
+      ++rvd_split;
+      CHECK(names(v.connected, "pieces, stray piece in triangle"));
+    }
+    const Diagram lrvd = compute_lrvd(mesh, samples);
+    const DiagramVerification w = verify_diagram(mesh, samples, lrvd);
+    INFO(w.summary());
+    CHECK(w.passed);
+    CHECK(w.connected.passed);
+  }
+  CHECK(rvd_split > 0);
+}
+
+TEST_CASE("Power diagrams do not promise that a sample lies in its cell", "[verification]") {
+  const SurfaceMesh mesh = test::icosphere(1);
+  Samples samples = sample_uniform(mesh, 10, 5);
+  samples.weights.assign(10, 0.0);
+  samples.weights[3] = 2.0;  // cell 3 swallows its neighbours' samples
+  const Diagram d = compute_diagram(mesh, samples, DiagramKind::Rpd);
+  const DiagramVerification v = verify_diagram(mesh, samples, d);
+  INFO(v.summary());
+  CHECK_FALSE(v.sample_in_cell.promised);
+  CHECK_FALSE(v.sample_in_cell.passed);
+  CHECK(v.passed);
+}
+
+TEST_CASE("Mutation: swapped cells in a sample's triangle break sample_in_cell", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  int sample = -1, other = -1, own = -1;
+  for (int i = 0; i < c.samples.size() && sample < 0; ++i)
+    for (int p : polygons_of(c.diagram, c.samples.triangles[i])) {
+      if (c.diagram.polygons[p].cell == i) own = p;
+      else other = p;
+      if (own >= 0 && other >= 0) sample = i;
+    }
+  REQUIRE(sample >= 0);
+  std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  require_only_broken(v, v.sample_in_cell, fmt::format("sample {}:", sample));
+}
+
+TEST_CASE("Mutation: a far-away polygon relabelled to a cell breaks connectedness", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  const Diagram& d = c.diagram;
+  // A triangle holding one polygon, and a cell absent from it and from its three neighbours.
+  int target = -1, cell = -1;
+  for (int t = 0; t < c.mesh.triangle_count() && target < 0; ++t) {
+    if (polygons_of(d, t).size() != 1) continue;
+    for (int k = 0; k < d.sample_count && target < 0; ++k) {
+      bool absent = !cell_in_triangle(d, t, k);
+      for (int e = 0; e < 3; ++e) absent = absent && !cell_in_triangle(d, c.mesh.neighbor(t, e), k);
+      if (absent) {
+        target = t;
+        cell = k;
+      }
+    }
+  }
+  REQUIRE(target >= 0);
+  c.diagram.polygons[d.triangle_offsets[target]].cell = cell;
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  require_only_broken(v, v.connected, fmt::format("cell {}: 2 pieces, stray piece in triangle {}", cell, target));
+  CHECK(v.cells_with_multiple_components >= 1);
+}
+
+TEST_CASE("Mutation: a type B vertex with a wrong bisector breaks equidistance", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  Diagram& d = c.diagram;
+  int index = -1, triangle = -1;
+  SymbolicVertex wrong;
+  for (const CellPolygon& poly : d.polygons) {
+    for (int k = 0; k < poly.vertex_count && index < 0; ++k) {
+      const SymbolicVertex& q = d.vertices[poly.first_vertex + k];
+      if (q.type != SymbolicVertex::Type::B) continue;
+      for (int third = 0; third < d.sample_count; ++third)  // a sample with no polygon in the triangle
+        if (!cell_in_triangle(d, poly.triangle, third)) {
+          wrong = SymbolicVertex::on_edge(q.v[0], q.v[1], poly.cell, third);
+          index = poly.first_vertex + k;
+          triangle = poly.triangle;
+          break;
+        }
+    }
+    if (index >= 0) break;
+  }
+  REQUIRE(index >= 0);
+  d.vertices[index] = wrong;
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
+  const std::string name = fmt::format("B(edge {}-{}, cells {}|{})", wrong.v[0], wrong.v[1], wrong.label[0], wrong.label[1]);
+  require_only_broken(v, v.equidistant, fmt::format("triangle {}: vertex {}", triangle, name));
+}
+
+TEST_CASE("Mutation: a duplicated polygon breaks disjointness and coverage", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  const int t = triangle_with_polygons(c.diagram, 2);
+  REQUIRE(t >= 0);
+  const CellPolygon copy = c.diagram.polygons[c.diagram.triangle_offsets[t]];
+  insert_polygon(c.diagram, c.diagram.triangle_offsets[t] + 1, copy);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  require_only_broken(v, v.disjoint, fmt::format("triangle {}: polygons of cells {} and {} overlap", t, copy.cell, copy.cell));
+  CHECK(names(v.coverage, fmt::format("triangle {}: polygon areas sum to", t)));
+}
+
+TEST_CASE("Mutation: a deleted polygon breaks coverage", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  const int t = triangle_with_polygons(c.diagram, 2);
+  REQUIRE(t >= 0);
+  erase_polygon(c.diagram, c.diagram.triangle_offsets[t] + 1);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  require_only_broken(v, v.coverage, fmt::format("triangle {}: polygon areas sum to", t));
+  CHECK(v.disjoint.passed);
+}
+
+TEST_CASE("Mutation: a polygon relabelled on one side of a mesh edge breaks conformity", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  Diagram& d = c.diagram;
+  // A whole-triangle polygon of cell j beside a triangle also holding j: relabel it to a neighbour
+  // cell k, so the edge reads j from one side and k from the other.
+  int target = -1, old_cell = -1, new_cell = -1;
+  for (int t = 0; t < c.mesh.triangle_count() && target < 0; ++t) {
+    if (polygons_of(d, t).size() != 1) continue;
+    const int j = d.polygons[d.triangle_offsets[t]].cell;
+    for (int e = 0; e < 3 && target < 0; ++e)
+      for (int p : polygons_of(d, c.mesh.neighbor(t, e)))
+        if (d.polygons[p].cell != j && cell_in_triangle(d, c.mesh.neighbor(t, e), j)) {
+          target = t;
+          old_cell = j;
+          new_cell = d.polygons[p].cell;
+          break;
+        }
+  }
+  REQUIRE(target >= 0);
+  d.polygons[d.triangle_offsets[target]].cell = new_cell;
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
+  require_only_broken(v, v.conforming, fmt::format("triangle {} sees", target));
+  CHECK(old_cell != new_cell);
+}
+
+TEST_CASE("Pieces of a cell that touch at a single point of a mesh edge are not connected", "[verification]") {
+  // Unit square, triangles t0 = (0, 1, 3) below the diagonal and t1 = (0, 3, 2) above it; the
+  // diagonal is split at its midpoint M by bisector(0, 1). Cell 0 owns [0, M] seen from t0 and
+  // [M, 3] seen from t1: its two polygons meet at M only.
+  const SurfaceMesh mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 3}, {0, 3, 2}});
+  const Samples samples = locate_points(mesh, {{0.3, 0.1, 0}, {0.7, 0.9, 0}});
+  Diagram d;
+  d.kind = DiagramKind::Lrvd;
+  d.sample_count = 2;
+  d.sites = make_sites(samples, false);
+  const SymbolicVertex m = SymbolicVertex::on_edge(0, 3, 0, 1);
+  auto a = [](int v) { return SymbolicVertex::mesh_vertex(v); };
+  auto add = [&](int t, int cell, std::vector<SymbolicVertex> verts) {
+    d.polygons.push_back({t, cell, static_cast<int>(d.vertices.size()), static_cast<int>(verts.size())});
+    d.vertices.insert(d.vertices.end(), verts.begin(), verts.end());
+  };
+  add(0, 0, {a(0), a(1), m});
+  add(0, 1, {a(1), a(3), m});
+  add(1, 0, {m, a(3), a(2)});
+  add(1, 1, {a(0), m, a(2)});
+  d.triangle_offsets = {0, 2, 4};
+  const DiagramVerification v = verify_diagram(mesh, samples, d);
+  INFO(v.summary() << offenders(v.connected));
+  CHECK(names(v.connected, "cell 0: 2 pieces"));
+  CHECK(names(v.connected, "cell 1: 2 pieces"));
+  CHECK(v.cells_with_multiple_components == 2);
+  CHECK(v.disjoint.passed);   // each triangle is still cut into two convex pieces
+  CHECK(v.coverage.passed);
+  CHECK_FALSE(v.conforming.passed);
+}
+
+TEST_CASE("The report has the documented JSON keys", "[verification]") {
+  const SurfaceMesh mesh = test::octahedron();
+  const Samples samples = sample_uniform(mesh, 4, 1);
+  const DiagramVerification v = verify_diagram(mesh, samples, compute_lrvd(mesh, samples));
+  const nlohmann::json j = v.to_json();
+  REQUIRE(j.at("passed").get<bool>());
+  REQUIRE(j.at("time_s").get<double>() >= 0);
+  for (const char* name : {"sample_in_cell", "connected", "equidistant", "disjoint", "coverage", "conforming"}) {
+    const nlohmann::json& p = j.at("properties").at(name);
+    CHECK(p.at("passed").get<bool>());
+    CHECK(p.at("violations").get<int>() == 0);
+    CHECK(p.contains("checked"));
+    CHECK(p.contains("promised"));
+    CHECK(p.at("first_offenders").is_array());
+  }
+  CHECK(v.summary().empty());
+}

@@ -1,0 +1,398 @@
+// Verification of a remesh: combinatorics from a sorted edge list (manifoldness, boundary,
+// orientation, per-component Euler characteristic), exact geometry through CGAL (collinear corners,
+// self-intersections from box_intersection_d candidates and exact Epick triangle tests).
+#include "verification/remesh_check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+#include <tuple>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/intersections.h>
+#include <fmt/format.h>
+
+#include "predicates/predicates.h"
+
+namespace lrvd {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+
+class UnionFind {
+ public:
+  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int x) {
+    while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+//! One side of an edge: triangle t traverses the edge (lo, hi) from lo to hi when `forward`.
+struct HalfEdge {
+  int lo, hi, triangle;
+  bool forward;
+};
+
+//! What the checks share: which triangles take part, and the edges grouped by their two vertices.
+struct Combinatorics {
+  std::vector<char> usable;            //!< indices in range and three distinct vertices
+  std::vector<HalfEdge> half_edges;    //!< sorted by (lo, hi, triangle)
+  std::vector<std::size_t> edge_begin;  //!< start of each edge's run in half_edges, plus the end
+  std::size_t edge_size(std::size_t e) const { return edge_begin[e + 1] - edge_begin[e]; }
+  std::size_t edge_count() const { return edge_begin.size() - 1; }
+};
+
+std::string triangle_text(int t, const Triangle& f) { return fmt::format("triangle {} ({}, {}, {})", t, f[0], f[1], f[2]); }
+
+void check_vertex_count(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                        int expected, RemeshVerification& r, Combinatorics& c) {
+  PropertyResult& p = r.vertex_count;
+  const int n = static_cast<int>(positions.size());
+  p.checked = n;
+  if (expected >= 0 && n != expected) p.fail(fmt::format("the remesh has {} vertices, {} were requested", n, expected));
+  std::vector<char> used(n, 0);
+  c.usable.assign(triangles.size(), 1);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int v : triangles[t]) {
+      if (v < 0 || v >= n) {
+        p.fail(fmt::format("triangle {} refers to vertex {}, but the remesh has {} vertices", t, v, n));
+        c.usable[t] = 0;
+      } else {
+        used[v] = 1;
+      }
+    }
+  for (int v = 0; v < n; ++v)
+    if (!used[v]) p.fail(fmt::format("vertex {} is used by no triangle", v));
+}
+
+//! Triangles repeating a vertex, duplicate triangles, edges in more than two triangles, vertices
+//! whose triangles form several fans. Also builds the edge list the other checks read.
+void check_manifold(int vertex_count, const std::vector<Triangle>& triangles, RemeshVerification& r,
+                    Combinatorics& c) {
+  PropertyResult& p = r.manifold;
+  const int m = static_cast<int>(triangles.size());
+  for (int t = 0; t < m; ++t) {
+    const Triangle& f = triangles[t];
+    if (!c.usable[t] || (f[0] != f[1] && f[1] != f[2] && f[2] != f[0])) continue;
+    p.fail(fmt::format("{} repeats a vertex", triangle_text(t, f)));
+    c.usable[t] = 0;
+  }
+
+  std::vector<std::pair<Triangle, int>> sorted;
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t]) {
+      Triangle key = triangles[t];
+      std::sort(key.begin(), key.end());
+      sorted.push_back({key, t});
+    }
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i].first == sorted[i - 1].first)
+      p.fail(fmt::format("triangles {} and {} have the same vertices ({}, {}, {})", sorted[i - 1].second,
+                         sorted[i].second, sorted[i].first[0], sorted[i].first[1], sorted[i].first[2]));
+
+  for (int t = 0; t < m; ++t) {
+    if (!c.usable[t]) continue;
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
+      c.half_edges.push_back({std::min(a, b), std::max(a, b), t, a < b});
+    }
+  }
+  std::sort(c.half_edges.begin(), c.half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return std::tie(x.lo, x.hi, x.triangle) < std::tie(y.lo, y.hi, y.triangle);
+  });
+  for (std::size_t i = 0; i < c.half_edges.size(); ++i)
+    if (i == 0 || c.half_edges[i].lo != c.half_edges[i - 1].lo || c.half_edges[i].hi != c.half_edges[i - 1].hi)
+      c.edge_begin.push_back(i);
+  c.edge_begin.push_back(c.half_edges.size());
+  for (std::size_t e = 0; e < c.edge_count(); ++e)
+    if (c.edge_size(e) > 2) {
+      const HalfEdge& h = c.half_edges[c.edge_begin[e]];
+      p.fail(fmt::format("edge ({}, {}) has {} triangles", h.lo, h.hi, c.edge_size(e)));
+    }
+
+  // Fans: around v, two triangles are joined when they share an edge (v, x); one class per fan.
+  std::vector<int> offsets(vertex_count + 1, 0), incident;
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t])
+      for (int v : triangles[t]) ++offsets[v + 1];
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  incident.resize(offsets.back());
+  std::vector<int> fill(offsets.begin(), offsets.end() - 1);
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t])
+      for (int v : triangles[t]) incident[fill[v]++] = t;
+  std::vector<std::pair<int, int>> around;  // (other vertex x of edge (v, x), local triangle index)
+  for (int v = 0; v < vertex_count; ++v) {
+    const int k = offsets[v + 1] - offsets[v];
+    if (k < 2) continue;
+    around.clear();
+    for (int i = 0; i < k; ++i) {
+      const Triangle& f = triangles[incident[offsets[v] + i]];
+      for (int x : f)
+        if (x != v) around.push_back({x, i});
+    }
+    std::sort(around.begin(), around.end());
+    UnionFind fans(k);
+    for (std::size_t j = 1; j < around.size(); ++j)
+      if (around[j].first == around[j - 1].first) fans.unite(around[j].second, around[j - 1].second);
+    int count = 0;
+    for (int i = 0; i < k; ++i) count += fans.find(i) == i;
+    if (count > 1) p.fail(fmt::format("vertex {} has {} separate triangle fans", v, count));
+  }
+  p.checked = static_cast<std::int64_t>(triangles.size() + c.edge_count()) + vertex_count;
+}
+
+void check_boundary_and_orientation(const SurfaceMesh& input, RemeshVerification& r, const Combinatorics& c) {
+  r.closed.promised = input.is_closed();
+  r.closed.checked = r.oriented.checked = 0;
+  for (std::size_t e = 0; e < c.edge_count(); ++e) {
+    const HalfEdge& h = c.half_edges[c.edge_begin[e]];
+    const std::size_t size = c.edge_size(e);
+    if (r.closed.promised) ++r.closed.checked;
+    if (size == 1 && r.closed.promised)
+      r.closed.fail(fmt::format("edge ({}, {}) has only triangle {} (a hole)", h.lo, h.hi, h.triangle));
+    if (size != 2) continue;
+    ++r.oriented.checked;
+    const HalfEdge& g = c.half_edges[c.edge_begin[e] + 1];
+    if (h.forward == g.forward)
+      r.oriented.fail(fmt::format("edge ({}, {}) is traversed from {} to {} by both triangles {} and {}", h.lo, h.hi,
+                                  h.forward ? h.lo : h.hi, h.forward ? h.hi : h.lo, h.triangle, g.triangle));
+  }
+}
+
+//! Components (triangles joined across edges, so a non-manifold vertex does not join two sheets),
+//! their Euler characteristic V - E + F (a vertex counts once in every component it touches) and
+//! boundary loops; compared with the input's.
+void check_topology(const SurfaceMesh& input, int vertex_count, const std::vector<Triangle>& triangles,
+                    RemeshVerification& r, const Combinatorics& c) {
+  const int m = static_cast<int>(triangles.size());
+  UnionFind joined(m);
+  for (std::size_t e = 0; e < c.edge_count(); ++e)
+    for (std::size_t i = c.edge_begin[e] + 1; i < c.edge_begin[e + 1]; ++i)
+      joined.unite(c.half_edges[c.edge_begin[e]].triangle, c.half_edges[i].triangle);
+  std::vector<int> component(m, -1), label(m, -1);
+  int components = 0;
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t]) {
+      int& root_label = label[joined.find(t)];
+      if (root_label < 0) root_label = components++;
+      component[t] = root_label;
+    }
+  std::vector<long long> chi(components, 0);
+  std::vector<int> loops(components, 0);
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t]) ++chi[component[t]];
+  for (std::size_t e = 0; e < c.edge_count(); ++e) --chi[component[c.half_edges[c.edge_begin[e]].triangle]];
+  std::vector<std::pair<int, int>> vertex_component;
+  for (int t = 0; t < m; ++t)
+    if (c.usable[t])
+      for (int v : triangles[t]) vertex_component.push_back({v, component[t]});
+  std::sort(vertex_component.begin(), vertex_component.end());
+  vertex_component.erase(std::unique(vertex_component.begin(), vertex_component.end()), vertex_component.end());
+  for (const auto& vc : vertex_component) ++chi[vc.second];
+
+  // Boundary loops: cycles of edges with one triangle (disjoint cycles when the output is manifold).
+  UnionFind loop_of(vertex_count);
+  for (std::size_t e = 0; e < c.edge_count(); ++e)
+    if (c.edge_size(e) == 1) loop_of.unite(c.half_edges[c.edge_begin[e]].lo, c.half_edges[c.edge_begin[e]].hi);
+  std::vector<int> loop_component(vertex_count, -1);
+  for (std::size_t e = 0; e < c.edge_count(); ++e)
+    if (c.edge_size(e) == 1) {
+      const HalfEdge& h = c.half_edges[c.edge_begin[e]];
+      int& owner = loop_component[loop_of.find(h.lo)];
+      if (owner < 0) ++loops[owner = component[h.triangle]];
+    }
+  r.boundary_loops = std::accumulate(loops.begin(), loops.end(), 0);
+  r.input_boundary_loops = static_cast<int>(input.boundary_loops().size());
+  r.components = components;
+  r.euler_characteristic = static_cast<int>(std::accumulate(chi.begin(), chi.end(), 0LL));
+  r.genus = 0;
+  for (int k = 0; k < components; ++k) r.genus += static_cast<int>((2 - chi[k] - loops[k]) / 2);
+  if (!r.manifold.passed) r.genus = -1;
+
+  // A closed input's holes are the `closed` property's business: compare each component with its
+  // boundary loops capped by disks (χ + b, i.e. the genus), so that a hole fails `closed` alone.
+  const bool cap = input.is_closed();
+  std::vector<long long> output_keys(components), input_keys;
+  for (int k = 0; k < components; ++k) output_keys[k] = chi[k] + (cap ? loops[k] : 0);
+  for (int x : input.component_euler_characteristics()) input_keys.push_back(x);
+  std::sort(output_keys.begin(), output_keys.end());
+  std::sort(input_keys.begin(), input_keys.end());
+  PropertyResult& p = r.topology;
+  p.checked = components;
+  auto list = [](const std::vector<long long>& keys) { return fmt::format("{{{}}}", fmt::join(keys, ", ")); };
+  if (components != input.component_count())
+    p.fail(fmt::format("the remesh has {} connected components, the input {}", components, input.component_count()));
+  if (output_keys != input_keys)
+    p.fail(fmt::format("Euler characteristics per component{} are {}, the input's {}", cap && r.boundary_loops > 0 ? " (holes capped)" : "",
+                       list(output_keys), list(input_keys)));
+}
+
+// Geometry: exact collinearity and self-intersections.
+
+std::vector<char> check_non_degenerate(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                                       const std::vector<char>& usable, PropertyResult& p) {
+  std::vector<char> finite(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    finite[v] = is_finite(positions[v]);
+    if (!finite[v]) p.fail(fmt::format("vertex {} has a non-finite coordinate", v));
+  }
+  std::vector<char> testable(triangles.size(), 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (!usable[t]) continue;  // out-of-range or repeated indices: reported by vertex_count / manifold
+    const Triangle& f = triangles[t];
+    if (!finite[f[0]] || !finite[f[1]] || !finite[f[2]]) continue;
+    ++p.checked;
+    if (predicates::collinear(positions[f[0]], positions[f[1]], positions[f[2]]))
+      p.fail(fmt::format("{} has collinear corners", triangle_text(static_cast<int>(t), f)));
+    else
+      testable[t] = 1;
+  }
+  return testable;
+}
+
+//! A triangle's box; its id (the triangle index) orders the reported pairs.
+class TriangleBox : public CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE> {
+ public:
+  using Base = CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE>;
+  using ID = std::size_t;
+  TriangleBox(const CGAL::Bbox_3& box, int triangle) : Base(box), triangle_(triangle) {}
+  ID id() const { return static_cast<ID>(triangle_); }
+  int triangle() const { return triangle_; }
+
+ private:
+  int triangle_;
+};
+
+//! Whether two non-degenerate triangles meet anywhere but in the vertices / edge they share.
+//! Shared one vertex v: the intersection is convex and contains v, so it holds another point iff
+//! the edge opposite v of one triangle meets the other. Shared edge: triangles in different planes
+//! meet exactly in it; in one plane they overlap iff the opposite corners lie on the same side.
+bool intersect_illegitimately(const Triangle& f, const Triangle& g, const std::vector<Point>& p) {
+  int shared = 0, fi[3], gi[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (f[i] == g[j]) fi[shared] = i, gi[shared] = j, ++shared;
+  const Kernel::Triangle_3 tf(p[f[0]], p[f[1]], p[f[2]]), tg(p[g[0]], p[g[1]], p[g[2]]);
+  if (shared == 0) return CGAL::do_intersect(tf, tg);
+  if (shared == 1) {
+    const int i = fi[0], j = gi[0];
+    const Kernel::Segment_3 ef(p[f[(i + 1) % 3]], p[f[(i + 2) % 3]]), eg(p[g[(j + 1) % 3]], p[g[(j + 2) % 3]]);
+    return CGAL::do_intersect(ef, tg) || CGAL::do_intersect(eg, tf);
+  }
+  if (shared == 2) {
+    const Point &u = p[f[fi[0]]], &w = p[f[fi[1]]];
+    const Point& pf = p[f[3 - fi[0] - fi[1]]];
+    const Point& pg = p[g[3 - gi[0] - gi[1]]];
+    if (CGAL::orientation(u, w, pf, pg) != CGAL::COPLANAR) return false;
+    return CGAL::coplanar_orientation(u, w, pf, pg) == CGAL::POSITIVE;
+  }
+  return false;  // the same three vertices: a duplicate, reported by `manifold`
+}
+
+int count_self_intersections(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
+                             const std::vector<char>& testable, PropertyResult& p) {
+  std::vector<Point> points;
+  points.reserve(positions.size());
+  for (const Vec3& v : positions) points.emplace_back(v.x, v.y, v.z);
+  std::vector<TriangleBox> boxes;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable[t]) {
+      const Triangle& f = triangles[t];
+      boxes.emplace_back(points[f[0]].bbox() + points[f[1]].bbox() + points[f[2]].bbox(), static_cast<int>(t));
+    }
+  p.checked = static_cast<std::int64_t>(boxes.size());
+
+  std::vector<std::pair<int, int>> candidates;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
+    candidates.push_back(std::minmax(a.triangle(), b.triangle()));
+  });
+  std::sort(candidates.begin(), candidates.end());  // offenders in a fixed order
+  int pairs = 0;
+  for (const auto& [s, t] : candidates)
+    if (intersect_illegitimately(triangles[s], triangles[t], points)) {
+      ++pairs;
+      p.fail(fmt::format("{} and {} intersect", triangle_text(s, triangles[s]), triangle_text(t, triangles[t])));
+    }
+  return pairs;
+}
+
+}  // namespace
+
+RemeshVerification verify_remesh(const SurfaceMesh& input, const std::vector<Vec3>& positions,
+                                 const std::vector<Triangle>& triangles, int expected_vertices) {
+  const auto start = std::chrono::steady_clock::now();
+  RemeshVerification r;
+  Combinatorics c;
+  const int n = static_cast<int>(positions.size());
+  check_vertex_count(positions, triangles, expected_vertices, r, c);
+  check_manifold(n, triangles, r, c);
+  check_boundary_and_orientation(input, r, c);
+  check_topology(input, n, triangles, r, c);
+  const std::vector<char> testable = check_non_degenerate(positions, triangles, c.usable, r.non_degenerate);
+  r.self_intersecting_pairs = count_self_intersections(positions, triangles, testable, r.no_self_intersection);
+
+  for (const PropertyResult* p : {&r.vertex_count, &r.manifold, &r.closed, &r.oriented, &r.topology,
+                                  &r.non_degenerate, &r.no_self_intersection})
+    if (!p->passed && p->promised) r.passed = false;
+  r.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+namespace {
+nlohmann::json property_json(const PropertyResult& p) {
+  return {{"passed", p.passed}, {"promised", p.promised}, {"checked", p.checked},
+          {"violations", p.violations}, {"first_offenders", p.first_offenders}};
+}
+}  // namespace
+
+nlohmann::json RemeshVerification::to_json() const {
+  return {{"passed", passed},
+          {"time_s", time_s},
+          {"components", components},
+          {"euler_characteristic", euler_characteristic},
+          {"genus", genus},
+          {"boundary_loops", boundary_loops},
+          {"input_boundary_loops", input_boundary_loops},
+          {"self_intersecting_pairs", self_intersecting_pairs},
+          {"properties",
+           {{"vertex_count", property_json(vertex_count)},
+            {"manifold", property_json(manifold)},
+            {"closed", property_json(closed)},
+            {"oriented", property_json(oriented)},
+            {"topology", property_json(topology)},
+            {"non_degenerate", property_json(non_degenerate)},
+            {"no_self_intersection", property_json(no_self_intersection)}}}};
+}
+
+std::string RemeshVerification::summary() const {
+  std::string out;
+  auto add = [&](const char* name, const PropertyResult& p) {
+    if (p.passed) return;
+    out += fmt::format("{}{}: {} violation(s), first: {}\n", name, p.promised ? "" : " (not promised)", p.violations,
+                       p.first_offenders.empty() ? "-" : p.first_offenders.front());
+  };
+  add("vertex_count", vertex_count);
+  add("manifold", manifold);
+  add("closed", closed);
+  add("oriented", oriented);
+  add("topology", topology);
+  add("non_degenerate", non_degenerate);
+  add("no_self_intersection", no_self_intersection);
+  return out;
+}
+
+
+}  // namespace lrvd
