@@ -275,7 +275,7 @@ struct Gen {
 
 }  // namespace
 
-TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition on random inputs") {
+TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
   int ties = 0;
   for (int n = 0; n < 100000; ++n) {
@@ -293,7 +293,7 @@ TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition o
   CHECK(ties > 1000);  // the grids must exercise the perturbation
 }
 
-TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition on random inputs") {
+TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
   int ties = 0;
   for (int n = 0; n < 100000;) {
@@ -313,7 +313,7 @@ TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition o
   CHECK(ties > 1000);
 }
 
-TEST_CASE("side3 agrees with the Gmpq determinant and the perturbed definition on random inputs") {
+TEST_CASE("side3 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
   int ties = 0;
   for (int n = 0; n < 100000;) {
@@ -334,7 +334,7 @@ TEST_CASE("side3 agrees with the Gmpq determinant and the perturbed definition o
   CHECK(ties > 500);
 }
 
-TEST_CASE("The two references agree wherever the determinant is nonzero") {
+TEST_CASE("The two references agree wherever the determinant is nonzero", "[predicates]") {
   Gen g;
   for (int n = 0; n < 3000; ++n) {
     g.next_mode(n);
@@ -359,7 +359,7 @@ Site scaled(const Site& s, int e) { return {scaled(s.p, e), std::ldexp(s.w, 2 * 
 constexpr int kExponents[] = {0, -500, 500, -1000, 1000};  // 2^+-1000 ~ 1e+-301 (weights 0 there)
 }  // namespace
 
-TEST_CASE("Sites equidistant from a mesh vertex: the lower id wins") {
+TEST_CASE("Sites equidistant from a mesh vertex: the lower id wins", "[predicates]") {
   const Vec3 q{1, 2, 3};
   for (int e : kExponents) {
     const bool w = std::abs(e) < 1000;
@@ -376,7 +376,7 @@ TEST_CASE("Sites equidistant from a mesh vertex: the lower id wins") {
   }
 }
 
-TEST_CASE("Duplicate samples (same point, different ids): the lower id owns the point") {
+TEST_CASE("Duplicate samples (same point, different ids): the lower id owns the point", "[predicates]") {
   Gen g;
   g.scale = Scale::Grid;
   for (int n = 0; n < 2000; ++n) {
@@ -394,7 +394,7 @@ TEST_CASE("Duplicate samples (same point, different ids): the lower id owns the 
   }
 }
 
-TEST_CASE("A bisector through a mesh vertex, and one along a mesh edge") {
+TEST_CASE("A bisector through a mesh vertex, and one along a mesh edge", "[predicates]") {
   const Vec3 q1{0, 0, 0}, q2{4, 0, 0}, q3{0, 4, 0};
   for (int e : kExponents) {
     const Vec3 a = scaled(q1, e), b = scaled(q2, e), c = scaled(q3, e);
@@ -416,7 +416,7 @@ TEST_CASE("A bisector through a mesh vertex, and one along a mesh edge") {
   }
 }
 
-TEST_CASE("Four cospherical samples put the type (c) vertex on the fourth bisector") {
+TEST_CASE("Four cospherical samples put the type (c) vertex on the fourth bisector", "[predicates]") {
   // Sites at power distance 25 from the origin, which lies in the plane of the triangle.
   const std::vector<Site> sphere = {{{3, 4, 0}, 0, 3},  {{-3, 0, 4}, 0, 1}, {{0, -5, 0}, 0, 5},
                                     {{4, 0, -3}, 0, 0}, {{0, 0, 5}, 0, 4},  {{1, 0, 0}, -24, 2},
@@ -444,7 +444,7 @@ TEST_CASE("Four cospherical samples put the type (c) vertex on the fourth bisect
   CHECK(checked > 1000);
 }
 
-TEST_CASE("Samples placed on mesh vertices and edge points") {
+TEST_CASE("Samples placed on mesh vertices and edge points", "[predicates]") {
   const Vec3 t[3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
   const std::vector<Vec3> spots = {t[0], t[1], t[2], {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {1, 1, 1}, {0, 0, -1}};
   std::mt19937_64 rng(7);
@@ -462,7 +462,7 @@ TEST_CASE("Samples placed on mesh vertices and edge points") {
   }
 }
 
-TEST_CASE("Interval overflow and underflow fall through to the exact path") {
+TEST_CASE("Interval overflow and underflow fall through to the exact path", "[predicates]") {
   // Squares of 1e300 overflow doubles; products of 1e-300 underflow to zero.
   const Site i{{1e300, 0, 0}, 0, 1}, l{{-1e300, 1e-300, 0}, 0, 0};
   const Vec3 q{0, 0, 0};
@@ -475,7 +475,7 @@ TEST_CASE("Interval overflow and underflow fall through to the exact path") {
         expect2(a, b, c, Vec3{-1e-300, 0, 0}, Vec3{0, 1e300, 0}));
 }
 
-TEST_CASE("Predicate counters count calls, exact evaluations and perturbations on every thread") {
+TEST_CASE("Predicate counters count calls, exact evaluations and perturbations on every thread", "[predicates]") {
   const Site i{{1, 0, 0}, 0, 0}, l{{-1, 0, 0}, 0, 1};
   auto work = [&] {
     for (int n = 0; n < 100; ++n) {
@@ -497,7 +497,7 @@ TEST_CASE("Predicate counters count calls, exact evaluations and perturbations o
   CHECK(lrvd::predicate_stats().total.calls == 0);
 }
 
-TEST_CASE("collinear, orient3d, orient2d and projection_axis are exact") {
+TEST_CASE("collinear, orient3d, orient2d and projection_axis are exact", "[predicates]") {
   for (int e : {0, -1000, 1000}) {
     const Vec3 a = scaled(Vec3{1, 1, 1}, e), b = scaled(Vec3{3, 5, 7}, e), c = scaled(Vec3{4, 7, 10}, e);
     CHECK(pr::collinear(a, b, c));

@@ -99,6 +99,14 @@ TEST_CASE("Closest point on a triangle covers vertex, edge and face regions") {
   check({0.5, -2, 0}, {0.5, 0, 0}, 2);
   check({-3, 0.5, 0}, {0, 0.5, 0}, 3);
   check({1, 1, 0}, {0.5, 0.5, 0}, std::sqrt(0.5));
+  // Degenerate triangles (coincident or collinear corners) give a finite answer on their edges.
+  for (const auto& [u, v, w] : {std::array<Vec3, 3>{a, a, b}, std::array<Vec3, 3>{a, b, b}, std::array<Vec3, 3>{a, a, a},
+                                std::array<Vec3, 3>{a, b, Vec3{2, 0, 0}}}) {
+    const ClosestPoint q = closest_point_on_triangle({0.5, 1, 0}, u, v, w);
+    REQUIRE(std::isfinite(q.distance));
+    REQUIRE(q.distance >= 1.0);
+    REQUIRE(q.distance <= distance(Vec3{0.5, 1, 0}, a));
+  }
 }
 
 TEST_CASE("Points are located on the mesh by closest point") {

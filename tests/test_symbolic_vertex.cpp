@@ -45,7 +45,7 @@ std::array<int, N> nth_permutation(int n) {
 
 }  // namespace
 
-TEST_CASE("Symbolic vertices store their defining data canonically") {
+TEST_CASE("Symbolic vertices store their defining data canonically", "[predicates][symbolic_vertex]") {
   static_assert(std::is_trivially_copyable<SymbolicVertex>::value, "hot-loop value type");
   static_assert(sizeof(SymbolicVertex) <= 28, "small");
   const SymbolicVertex b1 = SymbolicVertex::on_edge(7, 3, 9, 2), b2 = SymbolicVertex::on_edge(3, 7, 2, 9);
@@ -65,7 +65,7 @@ TEST_CASE("Symbolic vertices store their defining data canonically") {
   CHECK(!c1.on_mesh_edge(5, 1));
 }
 
-TEST_CASE("Type (a): side is antisymmetric, never zero and transitive on a 3x3x3 grid") {
+TEST_CASE("Type (a): side is antisymmetric, never zero and transitive on a 3x3x3 grid", "[predicates][symbolic_vertex]") {
   const std::vector<Vec3> g = grid3();
   for (int power = 0; power < 2; ++power) {
     std::vector<Site> sites(g.size());
@@ -92,7 +92,7 @@ TEST_CASE("Type (a): side is antisymmetric, never zero and transitive on a 3x3x3
   }
 }
 
-TEST_CASE("Type (b): side does not depend on the reference label or the edge direction") {
+TEST_CASE("Type (b): side does not depend on the reference label or the edge direction", "[predicates][symbolic_vertex]") {
   const std::vector<Vec3> g = grid3();
   const std::vector<std::pair<int, int>> edges = {{0, 18}, {0, 24}, {0, 26}, {9, 17}, {5, 21}, {1, 16}};
   int checked = 0, config = 0;
@@ -120,7 +120,7 @@ TEST_CASE("Type (b): side does not depend on the reference label or the edge dir
   CHECK(checked > 50000);
 }
 
-TEST_CASE("Type (c): side does not depend on the reference label or the triangle's vertex order") {
+TEST_CASE("Type (c): side does not depend on the reference label or the triangle's vertex order", "[predicates][symbolic_vertex]") {
   const std::vector<Vec3> g = grid3();
   // Corners: one triangle in the plane z = 0, one tilted; appended after the 27 grid points.
   const std::vector<std::array<Vec3, 3>> triangles = {{Vec3{0, 0, 0}, Vec3{2, 0, 0}, Vec3{0, 2, 0}},
@@ -152,7 +152,7 @@ TEST_CASE("Type (c): side does not depend on the reference label or the triangle
   CHECK(checked > 100000);
 }
 
-TEST_CASE("The birth rule: type (b) on a shared mesh edge, type (c) inside the triangle") {
+TEST_CASE("The birth rule: type (b) on a shared mesh edge, type (c) inside the triangle", "[predicates][symbolic_vertex]") {
   const std::array<int, 3> t = {10, 20, 30};
   const SymbolicVertex a10 = SymbolicVertex::mesh_vertex(10), a20 = SymbolicVertex::mesh_vertex(20);
   const SymbolicVertex b = SymbolicVertex::on_edge(20, 10, 1, 4), b2 = SymbolicVertex::on_edge(10, 20, 1, 6);
@@ -207,7 +207,7 @@ Q twice_area(const std::vector<lrvd::ExactPoint>& p, int axis) {
 
 }  // namespace
 
-TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consistent shared vertices") {
+TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consistent shared vertices", "[predicates][symbolic_vertex]") {
   std::mt19937_64 rng(42);
   const std::vector<std::array<Vec3, 3>> triangles = {{Vec3{0, 0, 0}, Vec3{4, 0, 0}, Vec3{0, 4, 0}},
                                                       {Vec3{0, 0, 0}, Vec3{4, 2, 0}, Vec3{0, 2, 4}}};
@@ -253,7 +253,7 @@ TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consiste
   CHECK(type_c > 1000);
 }
 
-TEST_CASE("position and exact_position of vertices at extreme scales") {
+TEST_CASE("position and exact_position of vertices at extreme scales", "[predicates][symbolic_vertex]") {
   for (int e : {-1000, -500, 0, 500, 1000}) {
     auto s = [e](double x) { return std::ldexp(x, e); };
     const Vec3 tri[3] = {{s(0), s(0), s(0)}, {s(4), s(0), s(0)}, {s(0), s(4), s(0)}};

@@ -82,7 +82,9 @@ class DiagramChecker {
     index_vertices();
     for (int t = 0; t < mesh_.triangle_count(); ++t) check_triangle(t);
     check_samples();
-    check_edges(mesh_, samples_, d_, polygon_ok_, vertices_, out_);
+    std::vector<char> piece(d_.polygons.size());
+    for (size_t p = 0; p < piece.size(); ++p) piece[p] = polygon_ok_[p] && area_sign_[p] == Sign::Positive;
+    check_edges(mesh_, samples_, d_, polygon_ok_, piece, vertices_, out_);
   }
 
  private:
@@ -136,7 +138,12 @@ class DiagramChecker {
         areas_known = false;
         continue;
       }
-      if (!options_.exact_geometry) continue;
+      if (!options_.exact_geometry) {  // (1) and (2) still need to know which polygons are flat
+        points_.clear();
+        for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(d_.polygons[p], k));
+        area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(twice_area(points_, f))));
+        continue;
+      }
       const std::string problem = polygon_problem(p, tri, f);
       if (!problem.empty()) {
         out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
@@ -399,8 +406,7 @@ class DiagramChecker {
     points_.clear();
     for (int k = 0; k < poly.vertex_count; ++k) points_.push_back(&vertex(poly, k));
     if (points_.size() < 3) return false;
-    // The triangle pass knows the area's sign unless it skipped the geometry.
-    const bool flat = options_.exact_geometry ? area_sign_[p] != Sign::Positive : !CGAL::is_positive(twice_area(points_, f));
+    const bool flat = area_sign_[p] != Sign::Positive;  // known from the triangle pass
     for (size_t k = 0; k < points_.size(); ++k) {
       const Sign s = orient(*points_[k], *points_[(k + 1) % points_.size()], x, f);
       if (s == Sign::Negative || (flat && s != Sign::Zero)) return false;

@@ -36,8 +36,9 @@ int find_root(std::vector<int>& parent, int x) {
 class EdgeChecker {
  public:
   EdgeChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-              const std::vector<char>& polygon_ok, VertexIndex& vertices, DiagramVerification& out)
-      : mesh_(mesh), samples_(samples), diagram_(diagram), polygon_ok_(polygon_ok), vertices_(vertices),
+              const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
+              DiagramVerification& out)
+      : mesh_(mesh), samples_(samples), diagram_(diagram), polygon_ok_(polygon_ok), piece_(piece), vertices_(vertices),
         out_(out), parent_(diagram.polygons.size()) {
     std::iota(parent_.begin(), parent_.end(), 0);
   }
@@ -117,7 +118,7 @@ class EdgeChecker {
     // (2) polygons of one cell are joined when their segments overlap in positive length.
     for (const Segment& m : mine_)
       for (const Segment& o : theirs_) {
-        if (m.cell != o.cell) continue;
+        if (m.cell != o.cell || !piece_[m.polygon] || !piece_[o.polygon]) continue;
         const Q& from = std::max(*m.s0, *o.s0);
         const Q& to = std::min(*m.s1, *o.s1);
         if (from < to) {
@@ -146,7 +147,7 @@ class EdgeChecker {
     const int n = diagram_.sample_count;
     std::vector<std::vector<int>> polygons_of_cell(n);
     for (int p = 0; p < static_cast<int>(diagram_.polygons.size()); ++p)
-      if (polygon_ok_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
+      if (piece_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
     std::vector<int> roots;
     for (int i = 0; i < n; ++i) {
       ++out_.connected.checked;
@@ -181,6 +182,7 @@ class EdgeChecker {
   const Samples& samples_;
   const Diagram& diagram_;
   const std::vector<char>& polygon_ok_;
+  const std::vector<char>& piece_;
   VertexIndex& vertices_;
   DiagramVerification& out_;
   std::vector<int> parent_;
@@ -191,8 +193,9 @@ class EdgeChecker {
 }  // namespace
 
 void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                 const std::vector<char>& polygon_ok, VertexIndex& vertices, DiagramVerification& out) {
-  EdgeChecker(mesh, samples, diagram, polygon_ok, vertices, out).run();
+                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
+                 DiagramVerification& out) {
+  EdgeChecker(mesh, samples, diagram, polygon_ok, piece, vertices, out).run();
 }
 
 }  // namespace lrvd::verify_detail

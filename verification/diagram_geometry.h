@@ -80,7 +80,11 @@ struct VertexIndex {
 };
 
 //! (2) connectedness and (6) conformity, from the polygons' segments along mesh edges.
+//! polygon_ok: the polygon's cell and vertices are valid (both checks use it); piece: it also has
+//! positive area (only those make up a cell's region: a zero-area polygon is the unperturbed
+//! limit of an infinitesimal sliver at a degenerate input, no piece of its own).
 void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                 const std::vector<char>& polygon_ok, VertexIndex& vertices, DiagramVerification& out);
+                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
+                 DiagramVerification& out);
 
 }  // namespace lrvd::verify_detail

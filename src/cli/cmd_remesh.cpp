@@ -9,7 +9,7 @@
 #include "common/error.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
-#include "remesh/cvt.h"
+#include "remesh/remesh.h"
 #include "verification/remesh_check.h"
 #include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
@@ -18,14 +18,14 @@ namespace lrvd::cli {
 
 namespace {
 
-struct RemeshOptions {
+struct RemeshCommandOptions {
   InputOptions input;
   std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform";
   int iterations = 200;
   std::string output, report;
 };
 
-int run_remesh(const RemeshOptions& opt) {
+int run_remesh(const RemeshCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
   if (opt.output.empty()) throw InputError("give an output file with -o");
@@ -33,7 +33,8 @@ int run_remesh(const RemeshOptions& opt) {
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
 
-  CvtOptions cvt;
+  RemeshOptions remesh;
+  CvtOptions& cvt = remesh.cvt;
   cvt.diagram = kind;
   cvt.optimizer = opt.optimizer == "lloyd" ? CvtOptimizer::Lloyd : CvtOptimizer::Lbfgs;
   cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
@@ -43,8 +44,9 @@ int run_remesh(const RemeshOptions& opt) {
   };
   reset_predicate_stats();
   progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
-  const CvtResult result = optimize_cvt(input.mesh, input.samples, cvt);
-  const DualMesh dual = compute_dual(result.diagram, input.mesh, result.samples);
+  const RemeshResult remeshed = remesh_cvt(input.loaded.mesh, input.mesh, input.samples, remesh);
+  const CvtResult& result = remeshed.cvt;
+  const DualMesh& dual = remeshed.dual;
   write_mesh(opt.output, dual.positions, dual.triangles);
 
   progress("checking the remesh");
@@ -64,16 +66,17 @@ int run_remesh(const RemeshOptions& opt) {
   report["diagram"] = opt.kind;
   report["optimizer"] = opt.optimizer;
   report["density"] = opt.density;
-  report["iterations"] = result.iterations;
+  report["iterations"] = remeshed.total_iterations;
+  report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = result.diagram_evaluations;
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
-  report["time_s"] = result.time_s;
+  report["time_s"] = remeshed.time_s;
   report["predicates"] = predicates_json();
   if (!opt.report.empty()) write_json(opt.report, report);
 
   std::printf("remesh (%s): %zu vertices, %zu triangles, %d iterations, %.3f s -> %s\n", opt.kind.c_str(),
-              dual.positions.size(), dual.triangles.size(), result.iterations, result.time_s, opt.output.c_str());
+              dual.positions.size(), dual.triangles.size(), remeshed.total_iterations, remeshed.time_s, opt.output.c_str());
   std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%%\n",
               quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
               quality.hausdorff_pct);
@@ -112,7 +115,7 @@ int run_quality(const QualityOptions& opt) {
 }  // namespace
 
 Action add_remesh_command(CLI::App& app) {
-  auto opt = std::make_shared<RemeshOptions>();
+  auto opt = std::make_shared<RemeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand("remesh", "Remesh to exactly N vertices with a CVT on the LRVD, check the output");
   add_input_options(cmd, opt->input, true);
   cmd->add_option("--diagram", opt->kind, "Diagram of the CVT: lrvd (default) or rvd (the baseline)")

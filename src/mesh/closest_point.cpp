@@ -1,6 +1,7 @@
 // Closest-point queries on a triangle mesh with Embree 3 user geometry (double-precision distances).
 #include "mesh/closest_point.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,7 +12,38 @@
 
 namespace lrvd {
 
+namespace {
+
+// Closest point of segment [a, b] to p, as barycentric weights (1 - s, s).
+double segment_parameter(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double len2 = dot(ab, ab);
+  if (!(len2 > 0)) return 0;
+  return std::clamp(dot(p - a, ab) / len2, 0.0, 1.0);
+}
+
+// A triangle with coincident or collinear corners: the best of its three edges.
+ClosestPoint closest_point_on_degenerate(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 corner[3] = {a, b, c};
+  ClosestPoint best;
+  best.distance = std::numeric_limits<double>::infinity();
+  for (int e = 0; e < 3; ++e) {
+    const int i = e, j = (e + 1) % 3;
+    const double s = segment_parameter(p, corner[i], corner[j]);
+    ClosestPoint r;
+    r.point = (1 - s) * corner[i] + s * corner[j];
+    r.barycentric[i] = 1 - s;
+    r.barycentric[j] = s;
+    r.distance = distance(p, r.point);
+    if (r.distance < best.distance) best = r;
+  }
+  return best;
+}
+
+}  // namespace
+
 ClosestPoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  if (!(squared_norm(cross(b - a, c - a)) > 0)) return closest_point_on_degenerate(p, a, b, c);
   // Region classification over the triangle's Voronoi regions (vertices, edges, face).
   auto make = [&](double u, double v, double w) {
     ClosestPoint r;

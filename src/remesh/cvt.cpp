@@ -100,7 +100,11 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
   const ClosestPointIndex index(mesh);
   std::vector<double> density_storage;
   const std::vector<double>* density = nullptr;
-  if (options.density == CvtDensity::Curvature) {
+  if (!options.triangle_density.empty()) {
+    if (static_cast<int>(options.triangle_density.size()) != mesh.triangle_count())
+      throw InputError("the CVT density needs one value per mesh triangle");
+    density = &options.triangle_density;
+  } else if (options.density == CvtDensity::Curvature) {
     density_storage = curvature_density(mesh, n);
     density = &density_storage;
   }

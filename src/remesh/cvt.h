@@ -21,6 +21,7 @@ struct CvtOptions {
   double relative_gradient = 1e-7;              //!< stop when ||∇F|| < this · F / (mean cell size)
   double relative_energy_change = 1e-9;         //!< stop when F changes less than this, relatively
   CvtDensity density = CvtDensity::Uniform;
+  std::vector<double> triangle_density;         //!< if not empty: ρ per mesh triangle, overrides `density`
   //! Called after every iteration with (iteration, energy); for progress output.
   std::function<void(int, double)> on_iteration;
 };

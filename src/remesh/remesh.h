@@ -1,0 +1,38 @@
+// Low-resolution remeshing (paper §4.1): CVT on the LRVD, its dual with exactly N vertices, and
+// repair of the dual where thin parts are too coarsely sampled (paper Fig. 13) by moving samples
+// there through a locally raised density.
+#pragma once
+
+#include "remesh/cvt.h"
+#include "voronoi/dual.h"
+
+namespace lrvd {
+
+struct RemeshOptions {
+  CvtOptions cvt;
+  int repair_rounds = 12;          //!< rounds of "move a sample to a defect, optimise again"
+  int repair_iterations = 60;      //!< CVT iterations after each move
+};
+
+struct RemeshResult {
+  CvtResult cvt;            //!< the final CVT (samples, diagram, energy, iterations of the last run)
+  DualMesh dual;            //!< the output mesh: one vertex per sample
+  int total_iterations = 0; //!< over the first optimisation and every repair round
+  int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
+  double time_s = 0;
+};
+
+//! Edges of a dual that are not shared by exactly two triangles, and triangles repeated on the
+//! same three vertices: the samples around them (empty when the dual is a closed 2-manifold).
+std::vector<int> dual_defect_samples(const DualMesh& dual, const SurfaceMesh& mesh, bool input_closed);
+
+//! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
+//! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
+//! After the first CVT, while the dual has edge defects (a thin part wrapped by too few cells), the
+//! density is doubled over the defect cells and their neighbours and the CVT runs again, which
+//! moves samples from elsewhere into the thin part; the result is the last state (the caller
+//! verifies it).
+RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
+                        const RemeshOptions& options = {});
+
+}  // namespace lrvd
