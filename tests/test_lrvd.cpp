@@ -143,7 +143,8 @@ TEST_CASE("Degenerate samples: on mesh vertices and edges, cospherical, shared t
         "three samples in one triangle");
   check(sample_uniform(sphere, 1, 3), "n = 1");
   // Samples symmetric about a mesh vertex (it is equidistant from both).
-  check(locate_points(sphere, {Vec3{0.3, 0, 1}, Vec3{-0.3, 0, 1}, Vec3{0, 0, -1}}), "symmetric pair");
+  const Vec3 left = Vec3{0.3, 0, 1} / norm(Vec3{0.3, 0, 1}), right = Vec3{-0.3, 0, 1} / norm(Vec3{-0.3, 0, 1});
+  check(locate_points(sphere, {left, right, Vec3{0, 0, -1}}), "symmetric pair");
 }
 
 TEST_CASE("The power variants pass their promised properties", "[lrpd]") {

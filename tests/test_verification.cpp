@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <string>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -148,6 +149,33 @@ TEST_CASE("On nearby sheets the RVD's split cells are reported, not promised; th
   CHECK(rvd_split > 0);
 }
 
+TEST_CASE("Degenerate inputs pass: bisectors along mesh edges and through mesh vertices, zero-area slivers",
+          "[verification][degenerate]") {
+  // At such inputs the perturbed diagram has slivers that collapse to points or segments in the
+  // exact (unperturbed) geometry; they are no pieces of a cell and no overlap.
+  const SurfaceMesh grid = test::grid(4, 4);
+  const SurfaceMesh sphere = test::icosphere(2);
+  std::vector<Vec3> mixed;  // samples on sphere vertices and edge midpoints
+  for (int v = 0; v < sphere.vertex_count(); v += 7) mixed.push_back(sphere.position(v));
+  for (int t = 0; t < sphere.triangle_count(); t += 23) {
+    const Triangle& tri = sphere.triangle(t);
+    mixed.push_back(0.5 * (sphere.position(tri[0]) + sphere.position(tri[1])));
+  }
+  const std::vector<std::tuple<std::string, const SurfaceMesh*, Samples>> cases = {
+      {"four quadrants of a grid", &grid, locate_points(grid, {{0.25, 0.25, 0}, {0.75, 0.25, 0}, {0.25, 0.75, 0}, {0.75, 0.75, 0}})},
+      {"samples on grid vertices", &grid, locate_points(grid, grid.positions())},
+      {"sphere vertices and edge midpoints", &sphere, locate_points(sphere, mixed)},
+      {"all sphere vertices (cospherical)", &sphere, locate_points(sphere, sphere.positions())}};
+  for (const auto& [name, mesh, samples] : cases)
+    for (DiagramKind kind : {DiagramKind::Lrvd, DiagramKind::Rvd}) {
+      const Diagram d = compute_diagram(*mesh, samples, kind);
+      const DiagramVerification v = verify_diagram(*mesh, samples, d);
+      INFO(name << " " << to_string(kind) << "\n" << v.summary());
+      CHECK(v.passed);
+      CHECK(v.connected.passed);
+    }
+}
+
 TEST_CASE("Power diagrams do not promise that a sample lies in its cell", "[verification]") {
   const SurfaceMesh mesh = test::icosphere(1);
   Samples samples = sample_uniform(mesh, 10, 5);
@@ -173,7 +201,9 @@ TEST_CASE("Mutation: swapped cells in a sample's triangle break sample_in_cell",
   REQUIRE(sample >= 0);
   std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
-  require_only_broken(v, v.sample_in_cell, fmt::format("sample {}:", sample));
+  require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: outside its cell's polygon", sample));
+  CHECK(v.disjoint.passed);  // the same pieces, differently named: geometry is untouched
+  CHECK(v.coverage.passed);
 }
 
 TEST_CASE("Mutation: a far-away polygon relabelled to a cell breaks connectedness", "[verification][mutation]") {
@@ -197,6 +227,8 @@ TEST_CASE("Mutation: a far-away polygon relabelled to a cell breaks connectednes
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
   require_only_broken(v, v.connected, fmt::format("cell {}: 2 pieces, stray piece in triangle {}", cell, target));
   CHECK(v.cells_with_multiple_components >= 1);
+  CHECK(v.disjoint.passed);
+  CHECK(v.coverage.passed);
 }
 
 TEST_CASE("Mutation: a type B vertex with a wrong bisector breaks equidistance", "[verification][mutation]") {
@@ -234,6 +266,7 @@ TEST_CASE("Mutation: a duplicated polygon breaks disjointness and coverage", "[v
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
   require_only_broken(v, v.disjoint, fmt::format("triangle {}: polygons of cells {} and {} overlap", t, copy.cell, copy.cell));
   CHECK(names(v.coverage, fmt::format("triangle {}: polygon areas sum to", t)));
+  CHECK(v.equidistant.passed);  // the same cells meet at the same points
 }
 
 TEST_CASE("Mutation: a deleted polygon breaks coverage", "[verification][mutation]") {
@@ -269,6 +302,8 @@ TEST_CASE("Mutation: a polygon relabelled on one side of a mesh edge breaks conf
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
   require_only_broken(v, v.conforming, fmt::format("triangle {} sees", target));
   CHECK(old_cell != new_cell);
+  CHECK(v.disjoint.passed);
+  CHECK(v.coverage.passed);
 }
 
 TEST_CASE("Pieces of a cell that touch at a single point of a mesh edge are not connected", "[verification]") {
@@ -318,4 +353,36 @@ TEST_CASE("The report has the documented JSON keys", "[verification]") {
     CHECK(p.at("first_offenders").is_array());
   }
   CHECK(v.summary().empty());
+}
+
+TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {
+  SECTION("a cell that is no sample") {
+    Case c = valid_lrvd();
+    c.diagram.polygons[0].cell = 999;
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.disjoint, "names cell 999, which is no sample");
+  }
+  SECTION("a vertex index out of range") {
+    Case c = valid_lrvd();
+    c.diagram.vertices[0] = SymbolicVertex::mesh_vertex(100000);
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.disjoint, "A(100000), which is malformed");
+  }
+  SECTION("triangle offsets that do not match the mesh") {
+    Case c = valid_lrvd();
+    c.diagram.triangle_offsets.pop_back();
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.coverage, "diagram is malformed");
+  }
+  SECTION("a type B vertex whose edge is parallel to its bisector") {
+    // Samples above each other: bisector(0, 1) is the line y = 0.5, parallel to edge (0, 1).
+    const SurfaceMesh mesh = test::grid(1, 1);
+    const Samples samples = locate_points(mesh, {{0.25, 0.25, 0}, {0.25, 0.75, 0}});
+    Diagram d = compute_lrvd(mesh, samples);
+    REQUIRE(verify_diagram(mesh, samples, d).passed);
+    d.vertices[d.polygons[0].first_vertex] = SymbolicVertex::on_edge(0, 1, 0, 1);
+    const DiagramVerification v = verify_diagram(mesh, samples, d);
+    require_only_broken(v, v.equidistant, "B(edge 0-1, cells 0|1) of cell");
+    CHECK(names(v.disjoint, "names no point"));
+  }
 }

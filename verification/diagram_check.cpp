@@ -133,8 +133,7 @@ class DiagramChecker {
     for (int p = begin; p < end; ++p) {
       ++out_.disjoint.checked;
       if (!polygon_ok_[p]) {
-        out_.disjoint.fail(fmt::format("triangle {}: polygon {} (cell {}) has a malformed or non-existent vertex", t, p,
-                                       d_.polygons[p].cell));
+        report_unusable(t, p);
         areas_known = false;
         continue;
       }
@@ -157,6 +156,26 @@ class DiagramChecker {
       check_area_sum(t, begin, end, f);
     check_overlaps(t, begin, end, f);
     check_equidistance(t, begin, end);
+  }
+
+  // A polygon the geometric checks cannot use: a cell that is no sample, or a vertex that is
+  // malformed (indices out of range) or names no point (e.g. its edge is parallel to its bisector).
+  void report_unusable(int t, int p) {
+    const CellPolygon& poly = d_.polygons[p];
+    if (poly.cell < 0 || poly.cell >= d_.sample_count) {
+      out_.disjoint.fail(fmt::format("triangle {}: polygon {} names cell {}, which is no sample", t, p, poly.cell));
+      return;
+    }
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
+      const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
+      if (id >= 0 && vertices_.exact[id].valid) continue;
+      const std::string what = id < 0 ? "is malformed" : "names no point";
+      out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} has vertex {}, which {}", t, poly.cell, describe(q), what));
+      if (id >= 0)  // a vertex that does not exist is equidistant from nothing
+        out_.equidistant.fail(fmt::format("triangle {}: vertex {} of cell {} {}", t, describe(q), poly.cell, what));
+      return;
+    }
   }
 
   // (4) for one polygon: at least three distinct vertices, each a point of the triangle (by

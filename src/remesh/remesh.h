@@ -22,16 +22,27 @@ struct RemeshResult {
   double time_s = 0;
 };
 
-//! Edges of a dual that are not shared by exactly two triangles, and triangles repeated on the
-//! same three vertices: the samples around them (empty when the dual is a closed 2-manifold).
-std::vector<int> dual_defect_samples(const DualMesh& dual, const SurfaceMesh& mesh, bool input_closed);
+//! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
+//! repeated on the same three vertices, samples in no triangle, and triangles that intersect each
+//! other: the samples involved (empty when the dual has none of these defects).
+struct DualDefects {
+  std::vector<int> topological;  //!< samples at bad edges, repeated triangles, unused samples
+  std::vector<int> crossing;     //!< samples of triangles that intersect others
+  bool empty() const { return topological.empty() && crossing.empty(); }
+  bool fewer_than(const DualDefects& o) const {
+    return topological.size() != o.topological.size() ? topological.size() < o.topological.size()
+                                                       : crossing.size() < o.crossing.size();
+  }
+};
+DualDefects find_dual_defects(const DualMesh& dual, bool input_closed);
 
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
-//! After the first CVT, while the dual has edge defects (a thin part wrapped by too few cells), the
+//! After the first CVT, while the dual has defects (a thin part wrapped by too few cells, sheets
+//! that cut through each other), the
 //! density is doubled over the defect cells and their neighbours and the CVT runs again, which
-//! moves samples from elsewhere into the thin part; the result is the last state (the caller
-//! verifies it).
+//! moves samples from elsewhere into the thin part; the result is the state with the fewest
+//! defects (the caller verifies it).
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
 

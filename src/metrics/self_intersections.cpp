@@ -1,0 +1,82 @@
+// Self-intersections of a triangle soup: candidate pairs from CGAL's box intersection, decided by
+// exact Epick triangle / segment tests that account for the vertices or edge a pair shares.
+#include "metrics/self_intersections.h"
+
+#include <algorithm>
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/intersections.h>
+
+namespace lrvd {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_3;
+
+//! A triangle's box; its id (the triangle index) orders the reported pairs.
+class TriangleBox : public CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE> {
+ public:
+  using Base = CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE>;
+  using ID = std::size_t;
+  TriangleBox(const CGAL::Bbox_3& box, int triangle) : Base(box), triangle_(triangle) {}
+  ID id() const { return static_cast<ID>(triangle_); }
+  int triangle() const { return triangle_; }
+
+ private:
+  int triangle_;
+};
+
+//! Whether two non-degenerate triangles meet anywhere but in the vertices / edge they share.
+//! Shared one vertex v: the intersection is convex and contains v, so it holds another point iff
+//! the edge opposite v of one triangle meets the other. Shared edge: triangles in different planes
+//! meet exactly in it; in one plane they overlap iff the opposite corners lie on the same side.
+bool intersect_illegitimately(const Triangle& f, const Triangle& g, const std::vector<Point>& p) {
+  int shared = 0, fi[3], gi[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (f[i] == g[j]) fi[shared] = i, gi[shared] = j, ++shared;
+  const Kernel::Triangle_3 tf(p[f[0]], p[f[1]], p[f[2]]), tg(p[g[0]], p[g[1]], p[g[2]]);
+  if (shared == 0) return CGAL::do_intersect(tf, tg);
+  if (shared == 1) {
+    const int i = fi[0], j = gi[0];
+    const Kernel::Segment_3 ef(p[f[(i + 1) % 3]], p[f[(i + 2) % 3]]), eg(p[g[(j + 1) % 3]], p[g[(j + 2) % 3]]);
+    return CGAL::do_intersect(ef, tg) || CGAL::do_intersect(eg, tf);
+  }
+  if (shared == 2) {
+    const Point &u = p[f[fi[0]]], &w = p[f[fi[1]]];
+    const Point& pf = p[f[3 - fi[0] - fi[1]]];
+    const Point& pg = p[g[3 - gi[0] - gi[1]]];
+    if (CGAL::orientation(u, w, pf, pg) != CGAL::COPLANAR) return false;
+    return CGAL::coplanar_orientation(u, w, pf, pg) == CGAL::POSITIVE;
+  }
+  return false;  // the same three vertices: a duplicate, reported by `manifold`
+}
+
+}  // namespace
+
+std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
+                                                         const std::vector<Triangle>& triangles,
+                                                         const std::vector<char>& testable) {
+  std::vector<Point> points;
+  points.reserve(positions.size());
+  for (const Vec3& v : positions) points.emplace_back(v.x, v.y, v.z);
+  std::vector<TriangleBox> boxes;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable.empty() || testable[t]) {
+      const Triangle& f = triangles[t];
+      boxes.emplace_back(points[f[0]].bbox() + points[f[1]].bbox() + points[f[2]].bbox(), static_cast<int>(t));
+    }
+  std::vector<std::pair<int, int>> candidates;
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
+    candidates.push_back(std::minmax(a.triangle(), b.triangle()));
+  });
+  std::sort(candidates.begin(), candidates.end());
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& [s, t] : candidates)
+    if (intersect_illegitimately(triangles[s], triangles[t], points)) pairs.emplace_back(s, t);
+  return pairs;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,18 @@
+// Self-intersections of a triangle mesh or soup, decided exactly.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+
+namespace lrvd {
+
+//! Pairs (s, t), s < t, of triangles that meet anywhere but in the vertices or the edge they share,
+//! in increasing order. Only triangles with testable[t] != 0 take part (all when it is empty);
+//! \pre the tested triangles have three distinct, non-collinear corners.
+std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
+                                                         const std::vector<Triangle>& triangles,
+                                                         const std::vector<char>& testable = {});
+
+}  // namespace lrvd

@@ -1,0 +1,79 @@
+// Maximal Poisson-disk sampling on a triangle mesh (paper §4.2, after Yan & Wonka 2013): edge
+// splitting to r_min, dart throwing with conflict checks through triangles (no 3D grid), gap
+// detection with the localized restricted power diagram (LRPD, §2.4, §3.5) and gap filling until
+// no gap is left; uniform or curvature-adaptive radius. Details and the conflict rule: docs/mps.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "voronoi/samples.h"
+
+namespace lrvd {
+
+//! How the gaps are kept up to date while darts fill them.
+enum class MpsGapUpdate {
+  Local,  //!< LRPD once; every inserted disk re-clips the gap pieces of the triangles it reaches (exact, fast)
+  Lrpd    //!< the paper's loop: darts into the gaps until too many rejections, then a new LRPD
+};
+
+struct MpsOptions {
+  double radius = 0.01;                  //!< r (uniform) or r_min (adaptive), relative to the longest bounding-box side
+  bool adaptive = false;                 //!< radius from curvature, never below r_min
+  double max_radius_ratio = 4.0;         //!< adaptive: r_max / r_min (flat parts get r_max)
+  double curvature_fraction = 0.5;       //!< adaptive: on curved parts r ≈ this fraction of the radius of curvature
+  double gradation = 0.3;                //!< adaptive: Lipschitz bound of r along mesh edges (|Δr| <= g·length)
+  std::uint64_t seed = 1;                //!< the same seed gives the same samples on every machine
+  int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
+  MpsGapUpdate gap_update = MpsGapUpdate::Local;
+  int max_gap_rounds = 200;              //!< LRPD evaluations allowed for gap detection before giving up
+  double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
+  //! Called with a short message at each stage (for progress output); may be empty.
+  std::function<void(const std::string&)> on_progress;
+};
+
+struct MpsTimings {
+  double init = 0;           //!< bounding box, edge splitting, radius field, area table
+  double dart_throwing = 0;  //!< the initial dart throwing
+  double gap_filling = 0;    //!< LRPD gap detection and darts into the gaps
+  double total = 0;
+};
+
+struct MpsResult {
+  SurfaceMesh mesh;               //!< the input with its long edges split: the samples' triangles index it
+  Samples samples;                //!< positions, weights = radius², triangles, barycentric; in insertion order
+  std::vector<double> radii;      //!< radius of each sample (sqrt of its weight)
+  double scale = 0;               //!< longest side of the input's bounding box (the unit-cube normalisation)
+  double radius = 0;              //!< absolute r (r_min when adaptive)
+  double max_radius = 0;          //!< absolute largest radius of the radius field
+  int dart_samples = 0;           //!< samples placed by the initial dart throwing
+  int gap_samples = 0;            //!< samples placed into gaps
+  std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)
+  int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
+  int gap_pieces = 0;             //!< gap pieces the first LRPD showed
+  int dropped_gap_pieces = 0;     //!< pieces dropped for an uncovered area below 1e-12·r² (see docs/mps.md)
+  int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
+  bool gaps_closed = false;       //!< the sampler found no gap left (verify_mps checks it independently)
+  MpsTimings time_s;
+};
+
+//! Maximal Poisson-disk samples of the surface: no sample lies in another sample's disk and the
+//! disks cover the surface (each cell of the samples' LRPD lies in its own disk).
+//! \pre options.radius > 0.
+//! \throw InputError when the radius is not a positive finite number, or so small for this mesh
+//!        that more than options.max_expected_samples samples would be needed.
+MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options = {});
+
+//! The radius of the adaptive sampling at each vertex (absolute): r_max / sqrt(1 + (κ r_max / (f·... )))
+//! — r_max on flat parts, about `curvature_fraction` times the radius of curvature on curved parts,
+//! never below r_min, then limited to change by at most `gradation` per unit length along edges.
+std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min, const MpsOptions& options);
+
+//! Expected number of samples for a radius (absolute) on this mesh: area / (√3/2 · r²), the
+//! count of a hexagonal packing at spacing r (an upper estimate for MPS).
+double expected_sample_count(const SurfaceMesh& mesh, double radius);
+
+}  // namespace lrvd

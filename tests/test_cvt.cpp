@@ -1,0 +1,128 @@
+// CVT remeshing: the energy gradient, both optimisers, and the dual's validity and quality.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "mesh/mesh_io.h"
+#include "mesh/stress.h"
+#include "metrics/quality.h"
+#include "remesh/remesh.h"
+#include "test_meshes.h"
+#include "verification/remesh_check.h"
+#include "voronoi/lrvd.h"
+
+using namespace lrvd;
+
+namespace {
+
+SurfaceMesh cgal_mesh(const std::string& name) { return read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + name).mesh; }
+
+SurfaceMesh for_samples(const SurfaceMesh& mesh, int n) {
+  const double length = suggested_refinement_length(mesh, n);
+  return length > 0 && mesh.max_edge_length() > length ? refine_long_edges(mesh, length) : mesh;
+}
+
+struct Remeshed {
+  RemeshResult result;
+  RemeshVerification check;
+  QualityMetrics quality;
+};
+
+Remeshed remesh(const SurfaceMesh& input, int n, int seed = 1) {
+  const SurfaceMesh mesh = for_samples(input, n);
+  Remeshed r;
+  r.result = remesh_cvt(input, mesh, sample_uniform(mesh, n, seed));
+  r.check = verify_remesh(input, r.result.dual.positions, r.result.dual.triangles, n);
+  r.quality = quality_metrics(input, r.result.dual.positions, r.result.dual.triangles);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("The CVT gradient 2 m_i (x_i - c_i) matches finite differences", "[cvt]") {
+  const SurfaceMesh mesh = test::icosphere(4);
+  const Samples samples = sample_uniform(mesh, 60, 3);
+  for (DiagramKind kind : {DiagramKind::Lrvd, DiagramKind::Rvd}) {
+    const CvtEnergy e = cvt_energy(mesh, samples, kind);
+    const double h = 1e-6;
+    for (int i : {0, 17, 42})
+      for (int c = 0; c < 3; ++c) {
+        Samples plus = samples, minus = samples;
+        plus.positions[i][c] += h;
+        minus.positions[i][c] -= h;
+        const double fd = (cvt_energy(mesh, plus, kind).energy - cvt_energy(mesh, minus, kind).energy) / (2 * h);
+        INFO(to_string(kind) << " sample " << i << " axis " << c);
+        REQUIRE(fd == Approx(e.gradient[i][c]).margin(1e-6 * norm(e.gradient[i]) + 1e-9).epsilon(1e-4));
+      }
+  }
+}
+
+TEST_CASE("Lloyd and L-BFGS both lower the CVT energy", "[cvt]") {
+  const SurfaceMesh mesh = cgal_mesh("knot.off");
+  const Samples initial = sample_uniform(mesh, 200, 2);
+  for (CvtOptimizer optimizer : {CvtOptimizer::Lloyd, CvtOptimizer::Lbfgs}) {
+    CvtOptions options;
+    options.optimizer = optimizer;
+    options.iterations = 40;
+    const CvtResult r = optimize_cvt(mesh, initial, options);
+    REQUIRE(r.energy_history.size() >= 2);
+    REQUIRE(r.energy < 0.8 * r.energy_history.front());
+    REQUIRE(r.iterations > 0);
+    REQUIRE(r.iterations <= 40);
+    // Samples stay on the surface.
+    for (int i = 0; i < r.samples.size(); ++i) {
+      const Triangle& t = mesh.triangle(r.samples.triangles[i]);
+      const Vec3 w = r.samples.barycentric[i];
+      REQUIRE(distance(w.x * mesh.position(t[0]) + w.y * mesh.position(t[1]) + w.z * mesh.position(t[2]),
+                       r.samples.positions[i]) < 1e-9);
+    }
+    if (optimizer == CvtOptimizer::Lloyd)  // Lloyd lowers the energy at (almost) every step
+      for (size_t k = 1; k < r.energy_history.size(); ++k)
+        REQUIRE(r.energy_history[k] <= r.energy_history[k - 1] * (1 + 1e-3));
+  }
+}
+
+TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's topology at low N", "[cvt][remesh]") {
+  // The stress meshes where the remesh is valid today; folded_sheet (n = 300), comb (n = 100) and
+  // the crossings of open_cup (n = 300) are open problems, listed in docs/results.md.
+  const std::pair<const char*, int> cases[] = {{"thin_plate", 100},     {"thin_plate", 300}, {"open_cup", 100},
+                                               {"flat_ellipsoid", 100}, {"flat_ellipsoid", 300}, {"knot_tube", 100},
+                                               {"knot_tube", 300},      {"comb", 300},       {"thin_tube", 100},
+                                               {"thin_tube", 300},      {"folded_sheet", 100}};
+  for (const auto& [name, n] : cases) {
+    const SurfaceMesh input = make_stress_mesh(name, 0.5);
+    {
+      const Remeshed r = remesh(input, n);
+      INFO(name << " n=" << n << "\n" << r.check.summary());
+      REQUIRE(r.result.dual.positions.size() == static_cast<size_t>(n));
+      REQUIRE(r.check.vertex_count.passed);
+      REQUIRE(r.check.manifold.passed);
+      REQUIRE(r.check.closed.passed);
+      REQUIRE(r.check.oriented.passed);
+      REQUIRE(r.check.topology.passed);
+      REQUIRE(r.check.non_degenerate.passed);
+      if (std::string(name) != "folded_sheet") REQUIRE(r.check.passed);  // no crossings either
+    }
+  }
+}
+
+TEST_CASE("Remeshing CGAL's models gives valid meshes of the requested size and quality", "[cvt][remesh]") {
+  struct Case {
+    const char* model;
+    int n;
+    double q_min, theta_min, hausdorff_pct;  // floors: the paper's LRVD figures or better
+  };
+  for (const Case& c : {Case{"elk.off", 516, 0.41, 16.7, 3.0}, Case{"elk.off", 2000, 0.52, 22.2, 1.5},
+                        Case{"knot.off", 516, 0.41, 16.7, 3.0}, Case{"knot.off", 2000, 0.53, 30.0, 0.87},
+                        Case{"ellipsoid.off", 300, 0.5, 25.0, 3.0}}) {
+    const Remeshed r = remesh(cgal_mesh(c.model), c.n);
+    INFO(c.model << " n=" << c.n << "\n" << r.check.summary() << r.quality.to_json().dump());
+    REQUIRE(r.check.passed);
+    REQUIRE(r.check.vertex_count.passed);
+    REQUIRE(r.check.topology.passed);
+    REQUIRE(r.check.self_intersecting_pairs == 0);
+    REQUIRE(r.quality.q_min >= c.q_min);
+    REQUIRE(r.quality.theta_min >= c.theta_min);
+    REQUIRE(r.quality.hausdorff_pct <= c.hausdorff_pct);
+  }
+}
