@@ -171,7 +171,7 @@ TEST_CASE("an unwelded triangle soup is refused without --repair and welded into
   REQUIRE(loaded.repair.changed());
 }
 
-TEST_CASE("--repair orients, removes duplicates and degenerate faces, and cuts non-manifold configurations") {
+TEST_CASE("Repair orients, removes duplicates and degenerate faces, and cuts non-manifold configurations") {
   SECTION("one reversed face of a closed octahedron is the one reoriented") {
     const LoadedMesh loaded = read_mesh(data("inconsistent_orientation.off"), {true});
     REQUIRE(loaded.repair.reoriented_faces == 1);

@@ -1,0 +1,113 @@
+// The disks of maximal Poisson-disk sampling as the triangles know them (paper §4.2, second
+// change): region growing from a dart's triangle instead of a 3D grid, per-triangle lists of the
+// disks that cover or reach each triangle, and the exact point-in-disk test.
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/closest_point.h"
+#include "predicates/exact.h"
+#include "remesh/mps_gaps.h"
+
+namespace lrvd::mps_detail {
+
+bool inside_disk(const Vec3& p, const Vec3& c, double w) {
+  const double d = squared_distance(p, c);
+  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
+  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
+  // d is so small that the squares may have underflowed.
+  if (d >= 1e-250) {
+    const double margin = 1e-15 * (d + w);
+    if (d - w > margin) return false;
+    if (w - d > margin) return true;
+  }
+  return CGAL::sign(exact_power_distance(to_exact(p), Site{c, w, 0})) == CGAL::NEGATIVE;
+}
+
+double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p) {
+  const Triangle& tri = mesh.triangle(t);
+  const ClosestPoint c = closest_point_on_triangle(p, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
+  return squared_distance(p, c.point);
+}
+
+Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p) {
+  const Triangle& tri = mesh.triangle(t);
+  const Vec3 a = mesh.position(tri[0]);
+  const Vec3 v0 = mesh.position(tri[1]) - a, v1 = mesh.position(tri[2]) - a, v2 = p - a;
+  const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
+  const double det = d00 * d11 - d01 * d01;
+  double u = (d11 * d20 - d01 * d21) / det, v = (d00 * d21 - d01 * d20) / det;
+  u = std::clamp(u, 0.0, 1.0);
+  v = std::clamp(v, 0.0, 1.0);
+  if (u + v > 1) {
+    const double s = u + v;
+    u /= s;
+    v /= s;
+  }
+  return {1 - u - v, u, v};
+}
+
+DiskIndex::DiskIndex(const SurfaceMesh& mesh)
+    : mesh_(mesh),
+      covered_head_(mesh.triangle_count(), -1),
+      partial_head_(mesh.triangle_count(), -1),
+      center_head_(mesh.triangle_count(), -1),
+      stamp_(mesh.triangle_count(), 0) {}
+
+bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
+  if (covered_head_[t] >= 0) return true;
+  for (int k = partial_head_[t]; k >= 0; k = links_[k].next) {
+    const int j = links_[k].item;
+    if (inside_disk(p, centers_[j], weights_[j])) return true;
+  }
+  return false;
+}
+
+const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
+  if (++stamp_value_ == 0) {  // wrapped: forget every old visit
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    stamp_value_ = 1;
+  }
+  region_.clear();
+  region_.push_back(t);
+  stamp_[t] = stamp_value_;
+  for (size_t k = 0; k < region_.size(); ++k) {
+    const int s = region_[k];
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh_.neighbor(s, e);
+      if (n < 0 || stamp_[n] == stamp_value_) continue;
+      stamp_[n] = stamp_value_;
+      if (triangle_squared_distance(mesh_, n, p) < w) region_.push_back(n);
+    }
+  }
+  return region_;
+}
+
+int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {
+  const int i = size();
+  centers_.push_back(p);
+  barycentric_.push_back(barycentric);
+  weights_.push_back(w);
+  triangles_.push_back(t);
+  center_next_.push_back(center_head_[t]);
+  center_head_[t] = i;
+  for (int s : region) {
+    const Triangle& tri = mesh_.triangle(s);
+    bool covers = true;  // the ball is convex: it holds the triangle iff it holds its corners
+    for (int c = 0; c < 3 && covers; ++c) covers = inside_disk(mesh_.position(tri[c]), p, w);
+    int& head = covers ? covered_head_[s] : partial_head_[s];
+    links_.push_back({i, head});
+    head = static_cast<int>(links_.size()) - 1;
+  }
+  return i;
+}
+
+Samples DiskIndex::samples() const {
+  Samples s;
+  s.positions = centers_;
+  s.weights = weights_;
+  s.triangles = triangles_;
+  s.barycentric = barycentric_;
+  return s;
+}
+
+}  // namespace lrvd::mps_detail

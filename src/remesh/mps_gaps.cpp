@@ -1,0 +1,400 @@
+// Gap pieces of maximal Poisson-disk sampling (paper §4.2, third change): the parts of the LRPD
+// cells their own disks leave uncovered, kept exact under later insertions by splitting each
+// piece along the power bisector of its owner and the new disk, and drawn from uniformly by area.
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/closest_point.h"
+#include "predicates/exact.h"
+#include "remesh/mps_gaps.h"
+
+namespace lrvd::mps_detail {
+
+namespace {
+
+constexpr int kMaxBisections = 6;        // depth of the halving that tightens a loose piece polygon
+constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fraction of the polygon
+constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
+constexpr double kVertexMargin = 1e-6;   // |d| <= this·w: decide a cell vertex's coverage exactly
+
+struct P2 {
+  double x, y;
+};
+double cross2(const P2& a, const P2& b) { return a.x * b.y - a.y * b.x; }
+double dot2(const P2& a, const P2& b) { return a.x * b.x + a.y * b.y; }
+
+double polygon_area(const std::vector<Vec3>& q) {
+  Vec3 s{};
+  for (size_t k = 1; k + 1 < q.size(); ++k) s += cross(q[k] - q[0], q[k + 1] - q[0]);
+  return 0.5 * norm(s);
+}
+
+// Signed area of (triangle (0, a, b)) ∩ (disk of squared radius r2 centred at 0).
+double triangle_disk_area(const P2& a, const P2& b, double r2) {
+  const P2 d{b.x - a.x, b.y - a.y};
+  const double A = dot2(d, d);
+  if (!(A > 0)) return 0;
+  const double B = dot2(a, d), C = dot2(a, a) - r2;
+  double s[4];
+  int n = 0;
+  s[n++] = 0;
+  const double disc = B * B - A * C;
+  if (disc > 0) {
+    const double sq = std::sqrt(disc);
+    const double s1 = (-B - sq) / A, s2 = (-B + sq) / A;
+    if (s1 > 0 && s1 < 1) s[n++] = s1;
+    if (s2 > 0 && s2 < 1) s[n++] = s2;
+  }
+  s[n++] = 1;
+  double area = 0;
+  for (int k = 0; k + 1 < n; ++k) {
+    const P2 p{a.x + s[k] * d.x, a.y + s[k] * d.y}, q{a.x + s[k + 1] * d.x, a.y + s[k + 1] * d.y};
+    const double sm = 0.5 * (s[k] + s[k + 1]);
+    const P2 m{a.x + sm * d.x, a.y + sm * d.y};
+    if (dot2(m, m) <= r2)
+      area += 0.5 * cross2(p, q);
+    else
+      area += 0.5 * r2 * std::atan2(cross2(p, q), dot2(p, q));
+  }
+  return area;
+}
+
+// Area of polygon q (convex, in the plane with unit normal n) outside the ball (x, w), and the
+// polygon's area.
+double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double& area) {
+  area = polygon_area(q);
+  const double h = dot(x - q[0], n);
+  const double r2 = w - h * h;
+  if (!(r2 > 0)) return area;
+  const Vec3 o = x - h * n;
+  Vec3 u = std::abs(n.x) < 0.9 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
+  u = u / norm(u);
+  const Vec3 v = cross(n, u);
+  double inside = 0;
+  for (size_t k = 0; k < q.size(); ++k) {
+    const Vec3 a = q[k] - o, b = q[(k + 1) % q.size()] - o;
+    inside += triangle_disk_area({dot(a, u), dot(a, v)}, {dot(b, u), dot(b, v)}, r2);
+  }
+  return std::max(0.0, area - std::min(std::abs(inside), area));
+}
+
+// Keeps the part of convex polygon `in` where h <= 0, h affine (given at the vertices).
+template <class H>
+void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
+  out.clear();
+  const size_t n = in.size();
+  if (n == 0) return;
+  double ha = h(in[n - 1]);
+  for (size_t k = 0; k < n; ++k) {
+    const Vec3& a = in[(k + n - 1) % n];
+    const Vec3& b = in[k];
+    const double hb = h(b);
+    if ((ha <= 0) != (hb <= 0)) out.push_back(a + (ha / (ha - hb)) * (b - a));
+    if (hb <= 0) out.push_back(b);
+    ha = hb;
+  }
+  if (out.size() < 3) out.clear();
+}
+
+bool ball_meets_polygon(const std::vector<Vec3>& q, const Vec3& x, double w) {
+  for (size_t k = 1; k + 1 < q.size(); ++k)
+    if (squared_distance(x, closest_point_on_triangle(x, q[0], q[k], q[k + 1]).point) < w) return true;
+  return false;
+}
+
+}  // namespace
+
+GapSet::GapSet(const SurfaceMesh& mesh, const DiskIndex& disks, bool local_updates, double min_piece_area)
+    : mesh_(mesh), disks_(disks), local_(local_updates), head_(mesh.triangle_count(), -1), drop_area_(min_piece_area) {}
+
+void GapSet::clear() {
+  for (const Piece& p : pieces_) head_[p.triangle] = -1;
+  pieces_.clear();
+  points_.clear();
+  fenwick_.clear();
+  total_ = 0;
+  alive_ = 0;
+  dead_since_rebuild_ = 0;
+}
+
+void GapSet::extract(const Diagram& lrpd) {
+  clear();
+  const SymbolicContext ctx = lrpd.context(mesh_);
+  std::vector<Vec3> polygon;
+  std::vector<int> fresh;
+  for (const CellPolygon& cp : lrpd.polygons) {
+    const int t = cp.triangle, i = cp.cell;
+    if (disks_.fully_covered(t)) continue;
+    const Site& site = lrpd.sites[i];
+    polygon.clear();
+    bool covered = true;
+    for (int k = 0; k < cp.vertex_count; ++k) {
+      const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
+      polygon.push_back(position(q, ctx));
+      if (!covered) continue;
+      const double d = squared_distance(polygon.back(), site.p) - site.w;
+      if (std::abs(d) <= kVertexMargin * site.w)
+        covered = CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) != CGAL::POSITIVE;
+      else
+        covered = d < 0;
+    }
+    if (covered) continue;
+    if (!local_) {
+      add_outside(polygon, t, i);
+      continue;
+    }
+    // Local updates: the gap must be exactly what no disk reaching t covers. Start from the cell
+    // minus its own disk (when that disk reaches t), then split by every other disk reaching t.
+    bool own = false;
+    disks_.for_each_disk(t, [&](int j) { own |= j == i; });
+    const size_t before = pieces_.size();
+    add_outside(polygon, t, own ? i : -1);
+    disks_.for_each_disk(t, [&](int j) {
+      fresh.clear();
+      for (size_t p = before; p < pieces_.size(); ++p)
+        if (pieces_[p].alive) fresh.push_back(static_cast<int>(p));
+      for (int p : fresh) split(p, j);
+    });
+  }
+  rebuild();
+}
+
+void GapSet::update_after_insert(int sample, const std::vector<int>& region) {
+  const Vec3& x = disks_.center(sample);
+  const double w = disks_.weight(sample);
+  for (int t : region) {
+    scratch_pieces_.clear();
+    for (int p = head_[t]; p >= 0; p = pieces_[p].next_in_triangle)
+      if (pieces_[p].alive) scratch_pieces_.push_back(p);
+    for (int p : scratch_pieces_) {
+      if (local_) {
+        if (disks_.fully_covered(t))
+          kill(p);
+        else
+          split(p, sample);
+      } else {
+        const Piece& pc = pieces_[p];
+        bool inside = true;
+        for (int k = 0; k < pc.count && inside; ++k) inside = squared_distance(points_[pc.first + k], x) < w;
+        if (inside) kill(p);
+      }
+    }
+  }
+}
+
+void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
+  if (polygon.size() < 3) return;
+  const Vec3 n = mesh_.triangle_normal(t);
+  // One piece: bounded by q, gap = q minus the owner's disk; halved while its polygon is loose.
+  auto add_piece = [&](const std::vector<Vec3>& q, auto&& self, int depth) -> void {
+    double area = 0;
+    const double gap = owner < 0 ? polygon_area(q) : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
+    if (owner < 0) area = gap;
+    if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
+      if (gap > 0) ++dropped_;
+      return;
+    }
+    if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {
+      // Halve across the polygon's longest diagonal; halves inside the disk vanish.
+      size_t a = 0, b = 0;
+      double best = -1;
+      for (size_t i = 0; i < q.size(); ++i)
+        for (size_t j = i + 1; j < q.size(); ++j)
+          if (squared_distance(q[i], q[j]) > best) best = squared_distance(q[i], q[j]), a = i, b = j;
+      const Vec3 dir = q[b] - q[a], mid = 0.5 * (q[a] + q[b]);
+      std::vector<Vec3> half;
+      clip(q, [&](const Vec3& y) { return dot(y - mid, dir); }, half);
+      if (!half.empty()) self(half, self, depth + 1);
+      clip(q, [&](const Vec3& y) { return -dot(y - mid, dir); }, half);
+      if (!half.empty()) self(half, self, depth + 1);
+      return;
+    }
+    Piece piece;
+    piece.triangle = t;
+    piece.owner = owner;
+    piece.first = static_cast<int>(points_.size());
+    piece.count = static_cast<int>(q.size());
+    piece.area = area;
+    piece.gap_area = gap;
+    piece.alive = true;
+    piece.next_in_triangle = head_[t];
+    points_.insert(points_.end(), q.begin(), q.end());
+    const int index = static_cast<int>(pieces_.size());
+    pieces_.push_back(piece);
+    head_[t] = index;
+    ++alive_;
+    ++created_;
+    total_ += area;
+    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
+  };
+
+  if (owner < 0) {
+    add_piece(polygon, add_piece, 0);
+    return;
+  }
+  const Vec3& x = disks_.center(owner);
+  const double w = disks_.weight(owner);
+  const size_t m = polygon.size();
+  // Walk the boundary: corners outside the disk and the points where edges enter or leave it.
+  // Each stretch outside, from an exit to the next entry, bounds one corner region of the gap.
+  struct Event {
+    Vec3 p;
+    int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
+  };
+  std::vector<Event> events;
+  bool any_out = false, any_cross = false;
+  std::vector<char> out(m);
+  for (size_t k = 0; k < m; ++k) any_out |= (out[k] = !(squared_distance(polygon[k], x) < w));
+  if (!any_out) return;
+  for (size_t k = 0; k < m; ++k) {
+    const Vec3& a = polygon[k];
+    const Vec3& b = polygon[(k + 1) % m];
+    events.push_back({a, out[k] ? 1 : 0});
+    const Vec3 d = b - a, ax = a - x;
+    const double A = dot(d, d), B = dot(ax, d), C = dot(ax, ax) - w;
+    if (!(A > 0)) continue;
+    const double sq = std::sqrt(std::max(0.0, B * B - A * C));
+    const double s1 = std::clamp((-B - sq) / A, 0.0, 1.0), s2 = std::clamp((-B + sq) / A, 0.0, 1.0);
+    const bool oa = out[k], ob = out[(k + 1) % m];
+    if (oa && !ob) {
+      events.push_back({a + s1 * d, 2});
+    } else if (!oa && ob) {
+      events.push_back({a + s2 * d, 3});
+    } else if (oa && ob && B * B - A * C > 0 && s1 > 0 && s2 < 1 && s1 < s2) {
+      events.push_back({a + s1 * d, 2});
+      events.push_back({a + s2 * d, 3});
+    } else {
+      continue;
+    }
+    any_cross = true;
+  }
+  if (!any_cross) {  // the disk misses the boundary: the gap is the polygon minus (all or none of) it
+    add_piece(polygon, add_piece, 0);
+    return;
+  }
+  size_t start = 0;
+  while (events[start].kind != 3) ++start;
+  std::vector<Vec3> run;
+  bool open = false;
+  for (size_t k = 0; k < events.size(); ++k) {
+    const Event& e = events[(start + k) % events.size()];
+    if (e.kind == 3) {
+      run.assign(1, e.p);
+      open = true;
+    } else if (e.kind == 1 && open) {
+      run.push_back(e.p);
+    } else if (e.kind == 2 && open) {
+      run.push_back(e.p);
+      open = false;
+      if (run.size() >= 3) add_piece(run, add_piece, 0);
+    }
+  }
+}
+
+void GapSet::split(int index, int sample) {
+  const Piece pc = pieces_[index];
+  if (pc.owner == sample) return;
+  std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
+  const Vec3& xe = disks_.center(sample);
+  const double we = disks_.weight(sample);
+  if (!ball_meets_polygon(q, xe, we)) return;
+  kill(index);
+  if (pc.owner < 0) {
+    add_outside(q, pc.triangle, sample);
+    return;
+  }
+  // Power cells of {owner, sample} inside q: a point outside the disk of the cell it lies in is
+  // outside both disks, and every point outside both lies so.
+  const Vec3& xo = disks_.center(pc.owner);
+  const double wo = disks_.weight(pc.owner);
+  auto h = [&](const Vec3& y) { return (squared_distance(y, xo) - wo) - (squared_distance(y, xe) - we); };
+  std::vector<Vec3> cell;
+  clip(q, h, cell);
+  add_outside(cell, pc.triangle, pc.owner);
+  clip(q, [&](const Vec3& y) { return -h(y); }, cell);
+  add_outside(cell, pc.triangle, sample);
+}
+
+void GapSet::kill(int index) {
+  Piece& p = pieces_[index];
+  if (!p.alive) return;
+  p.alive = false;
+  --alive_;
+  ++dead_since_rebuild_;
+  total_ -= p.area;
+  if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, -p.area);
+}
+
+void GapSet::fenwick_add(int index, double delta) {
+  for (int i = index + 1; i <= static_cast<int>(fenwick_.size()); i += i & -i) fenwick_[i - 1] += delta;
+}
+
+void GapSet::rebuild() {
+  // Drop dead pieces, then rebuild the per-triangle lists and the Fenwick tree (capacity: a power
+  // of two with room to grow).
+  std::vector<Piece> pieces;
+  std::vector<Vec3> points;
+  for (const Piece& p : pieces_) head_[p.triangle] = -1;
+  total_ = 0;
+  for (const Piece& p : pieces_) {
+    if (!p.alive) continue;
+    Piece q = p;
+    q.first = static_cast<int>(points.size());
+    points.insert(points.end(), points_.begin() + p.first, points_.begin() + p.first + p.count);
+    q.next_in_triangle = head_[q.triangle];
+    head_[q.triangle] = static_cast<int>(pieces.size());
+    pieces.push_back(q);
+    total_ += q.area;
+  }
+  pieces_.swap(pieces);
+  points_.swap(points);
+  alive_ = static_cast<int>(pieces_.size());
+  dead_since_rebuild_ = 0;
+  size_t capacity = 1024;
+  while (capacity < 2 * pieces_.size()) capacity *= 2;
+  fenwick_.assign(capacity, 0);
+  for (size_t i = 0; i < pieces_.size(); ++i) fenwick_[i] = pieces_[i].area;
+  for (size_t i = 1; i <= capacity; ++i) {
+    const size_t parent = i + (i & (~i + 1));
+    if (parent <= capacity) fenwick_[parent - 1] += fenwick_[i - 1];
+  }
+}
+
+bool GapSet::draw(Random& random, Vec3& point, int& triangle) {
+  if (pieces_.size() > fenwick_.size() || dead_since_rebuild_ > 2 * alive_ + 1024) rebuild();
+  if (alive_ == 0) return false;
+  // Fenwick descent to the piece holding the cumulative area u.
+  double u = random.uniform() * total_;
+  int pos = 0;
+  for (int step = static_cast<int>(fenwick_.size()); step > 0; step >>= 1) {
+    const int next = pos + step;
+    if (next <= static_cast<int>(fenwick_.size()) && fenwick_[next - 1] <= u) {
+      u -= fenwick_[next - 1];
+      pos = next;
+    }
+  }
+  if (pos >= static_cast<int>(pieces_.size()) || !pieces_[pos].alive) return false;
+  const Piece& pc = pieces_[pos];
+  const Vec3* q = points_.data() + pc.first;
+  // A fan triangle by area, then a uniform point in it.
+  double fan[32];
+  const int nf = std::min(pc.count - 2, 32);
+  double sum = 0;
+  for (int k = 0; k < nf; ++k) fan[k] = (sum += norm(cross(q[k + 1] - q[0], q[k + 2] - q[0])));
+  const double v = random.uniform() * sum;
+  int k = 0;
+  while (k + 1 < nf && fan[k] <= v) ++k;
+  const double r = std::sqrt(random.uniform()), s = random.uniform();
+  point = (1 - r) * q[0] + (r * (1 - s)) * q[k + 1] + (r * s) * q[k + 2];
+  triangle = pc.triangle;
+  return pc.owner < 0 || !(squared_distance(point, disks_.center(pc.owner)) < disks_.weight(pc.owner));
+}
+
+double GapSet::gap_area() const {
+  double sum = 0;
+  for (const Piece& p : pieces_)
+    if (p.alive) sum += p.gap_area;
+  return sum;
+}
+
+}  // namespace lrvd::mps_detail

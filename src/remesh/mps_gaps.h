@@ -1,0 +1,143 @@
+// Internals of maximal Poisson-disk sampling (paper §4.2), shared by mps.cpp, mps_disks.cpp and
+// mps_gaps.cpp: the disks as the triangles know them (second change of §4.2) and the gap pieces
+// found with the LRPD (third change). Not part of the public API.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "voronoi/diagram.h"
+#include "voronoi/samples.h"
+
+namespace lrvd::mps_detail {
+
+//! |p - c|² < w, decided exactly: doubles when the rounding error cannot change the answer,
+//! rational arithmetic otherwise.
+bool inside_disk(const Vec3& p, const Vec3& c, double w);
+
+//! The disks of the samples and, per triangle, which of them reach it. The disk of sample i is
+//! the part of the open ball B(x_i, r_i) lying in the triangles of its *local region*: the
+//! triangles within distance r_i of x_i that are edge-connected to x_i's triangle through such
+//! triangles (the paper's region growing). Each triangle lists the disks that cover it fully and
+//! those that reach it only partly, and the sample centres it holds.
+class DiskIndex {
+ public:
+  explicit DiskIndex(const SurfaceMesh& mesh);
+
+  int size() const { return static_cast<int>(centers_.size()); }
+  const Vec3& center(int i) const { return centers_[i]; }
+  double weight(int i) const { return weights_[i]; }
+  int triangle(int i) const { return triangles_[i]; }
+  const Vec3& barycentric(int i) const { return barycentric_[i]; }
+
+  //! Some disk covers triangle t entirely (a dart there is rejected without a distance test).
+  bool fully_covered(int t) const { return covered_head_[t] >= 0; }
+  //! p, a point of triangle t, lies in the disk of a sample that reaches t.
+  bool in_some_disk(const Vec3& p, int t) const;
+
+  //! The local region of a disk (p, w) grown from triangle t: t, then every triangle within
+  //! distance sqrt(w) of p (open) joined to it across mesh edges. Valid until the next call.
+  const std::vector<int>& grow(const Vec3& p, int t, double w);
+
+  //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
+  int insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region);
+
+  //! f(sample) for every disk that reaches t (covering ones first).
+  template <class F>
+  void for_each_disk(int t, F&& f) const {
+    for (int k = covered_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
+    for (int k = partial_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
+  }
+  //! f(sample) for every sample whose centre lies in t.
+  template <class F>
+  void for_each_center(int t, F&& f) const {
+    for (int i = center_head_[t]; i >= 0; i = center_next_[i]) f(i);
+  }
+
+  Samples samples() const;
+
+ private:
+  struct Link {
+    int item, next;
+  };
+  const SurfaceMesh& mesh_;
+  std::vector<Vec3> centers_, barycentric_;
+  std::vector<double> weights_;
+  std::vector<int> triangles_, center_next_;
+  std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
+  std::vector<Link> links_;
+  std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
+  std::uint32_t stamp_value_ = 0;
+  std::vector<int> region_;
+};
+
+//! Squared distance from p to triangle t of the mesh.
+double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
+
+//! Barycentric coordinates of p (a point of the plane of triangle t) in t, clamped to the triangle.
+Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
+
+//! The uncovered parts of the surface as pieces: a convex polygon Q in the plane of a triangle
+//! and the disk of an `owner` sample (or none); the piece's gap is Q minus that disk. With local
+//! updates the pieces' gaps are exactly the points no disk reaching their triangle covers; in the
+//! paper's mode they are the LRPD gaps of the last evaluation, minus pieces a later disk covers.
+class GapSet {
+ public:
+  //! Pieces whose uncovered area is below `min_piece_area` are dropped (counted in dropped()).
+  GapSet(const SurfaceMesh& mesh, const DiskIndex& disks, bool local_updates, double min_piece_area);
+
+  //! Replaces the pieces by the gaps of an LRPD of the current samples: each cell polygon that
+  //! its disk does not cover, minus that disk (and, with local updates, minus every disk that
+  //! reaches its triangle).
+  void extract(const Diagram& lrpd);
+  //! After the insertion of `sample` with local region `region`: with local updates, the pieces
+  //! it reaches lose its disk; in the paper's mode, the pieces inside its disk are removed.
+  void update_after_insert(int sample, const std::vector<int>& region);
+
+  bool empty() const { return alive_ == 0; }
+  int alive() const { return alive_; }
+  //! A point drawn uniformly over the union of the pieces' polygons Q, with its triangle. Returns
+  //! false when it falls in the owner's disk (so accepted points are uniform over the gaps).
+  bool draw(Random& random, Vec3& point, int& triangle);
+
+  double gap_area() const;    //!< total uncovered area of the live pieces
+  int created() const { return created_; }
+  int dropped() const { return dropped_; }
+
+ private:
+  struct Piece {
+    int triangle = -1;
+    int owner = -1;
+    int first = 0, count = 0;  // vertices in points_
+    double area = 0;           // area of Q: the draw weight
+    double gap_area = 0;
+    int next_in_triangle = -1;
+    bool alive = false;
+  };
+
+  void clear();
+  //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
+  void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
+  //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
+  void split(int index, int sample);
+  void kill(int index);
+  void fenwick_add(int index, double delta);
+  void rebuild();
+
+  const SurfaceMesh& mesh_;
+  const DiskIndex& disks_;
+  bool local_;
+  std::vector<Piece> pieces_;
+  std::vector<Vec3> points_;
+  std::vector<int> head_;       // per triangle: first piece, -1 if none
+  std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
+  double total_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
+  double drop_area_ = 0;
+  // scratch
+  std::vector<Vec3> clip_a_, clip_b_, run_;
+  std::vector<int> scratch_pieces_;
+};
+
+}  // namespace lrvd::mps_detail
