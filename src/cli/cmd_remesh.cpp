@@ -21,7 +21,7 @@ namespace {
 struct RemeshCommandOptions {
   InputOptions input;
   std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform";
-  int iterations = 200;
+  int iterations = 60;
   std::string output, report;
 };
 

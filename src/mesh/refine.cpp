@@ -88,9 +88,9 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
 }
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
-  if (mesh.triangle_count() >= 4 * n) return 0;
-  // Equilateral triangles of side a have area sqrt(3)/4 a^2: 8n of them cover the area.
-  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * 8.0 * n));
+  if (mesh.triangle_count() >= 2 * n) return 0;
+  // Equilateral triangles of side a have area sqrt(3)/4 a^2: 4n of them cover the area.
+  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * 4.0 * n));
 }
 
 }  // namespace lrvd

@@ -141,6 +141,23 @@ void SurfaceMesh::build_topology() {
     }
   }
 
+  // Vertex-to-vertex lists (CSR), sorted.
+  vv_offsets_.assign(nv + 1, 0);
+  vv_vertices_.clear();
+  {
+    std::vector<int> around;
+    for (int v = 0; v < nv; ++v) {
+      around.clear();
+      for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t)
+        for (int u : triangles_[*t])
+          if (u != v) around.push_back(u);
+      std::sort(around.begin(), around.end());
+      around.erase(std::unique(around.begin(), around.end()), around.end());
+      vv_vertices_.insert(vv_vertices_.end(), around.begin(), around.end());
+      vv_offsets_[v + 1] = static_cast<int>(vv_vertices_.size());
+    }
+  }
+
   // Connected components over triangle adjacency.
   component_of_triangle_.assign(nt, -1);
   component_count_ = 0;
@@ -190,16 +207,6 @@ int SurfaceMesh::neighbor_edge(int t, int e) const {
   for (int f = 0; f < 3; ++f)
     if (triangles_[across][(f + 1) % 3] == a) return f;
   return -1;
-}
-
-std::vector<int> SurfaceMesh::vertex_neighbors(int v) const {
-  std::vector<int> out;
-  for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t)
-    for (int u : triangles_[*t])
-      if (u != v) out.push_back(u);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
 }
 
 int SurfaceMesh::euler_characteristic() const { return vertex_count() - edge_count_ + triangle_count(); }

@@ -44,8 +44,10 @@ class SurfaceMesh {
   const int* vertex_triangles_begin(int v) const { return vt_triangles_.data() + vt_offsets_[v]; }
   const int* vertex_triangles_end(int v) const { return vt_triangles_.data() + vt_offsets_[v + 1]; }
   int vertex_triangle_count(int v) const { return vt_offsets_[v + 1] - vt_offsets_[v]; }
-  //! Vertices joined to v by an edge.
-  std::vector<int> vertex_neighbors(int v) const;
+  //! Vertices joined to v by an edge, in increasing order.
+  const int* vertex_neighbors_begin(int v) const { return vv_vertices_.data() + vv_offsets_[v]; }
+  const int* vertex_neighbors_end(int v) const { return vv_vertices_.data() + vv_offsets_[v + 1]; }
+  std::vector<int> vertex_neighbors(int v) const { return {vertex_neighbors_begin(v), vertex_neighbors_end(v)}; }
 
   //! Connected component of each triangle (0-based, by first triangle index) and their count.
   const std::vector<int>& triangle_components() const { return component_of_triangle_; }
@@ -75,6 +77,7 @@ class SurfaceMesh {
   std::vector<Triangle> triangles_;
   std::vector<std::array<int, 3>> neighbors_;
   std::vector<int> vt_offsets_, vt_triangles_;
+  std::vector<int> vv_offsets_, vv_vertices_;
   std::vector<int> component_of_triangle_;
   int component_count_ = 0;
   int edge_count_ = 0;
@@ -86,8 +89,8 @@ class SurfaceMesh {
 //! \pre max_length > 0.
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length);
 
-//! The edge length to refine to so that n samples do not crowd the triangles (about eight
-//! triangles a sample), or 0 when the mesh already has at least four triangles a sample.
+//! The edge length to refine to so that n samples do not crowd the triangles (about four
+//! triangles a sample), or 0 when the mesh already has at least two triangles a sample.
 double suggested_refinement_length(const SurfaceMesh& mesh, int n);
 
 }  // namespace lrvd

@@ -16,7 +16,7 @@ enum class CvtDensity { Uniform, Curvature };
 struct CvtOptions {
   DiagramKind diagram = DiagramKind::Lrvd;      //!< Lrvd (the paper) or Rvd (the baseline)
   CvtOptimizer optimizer = CvtOptimizer::Lbfgs;
-  int iterations = 200;                         //!< iteration cap (L-BFGS iterations or Lloyd steps)
+  int iterations = 60;                          //!< iteration cap (L-BFGS iterations or Lloyd steps)
   int lloyd_warmup = 3;                         //!< Lloyd steps before L-BFGS (robust first moves)
   double relative_gradient = 1e-7;              //!< stop when ||∇F|| < this · F / (mean cell size)
   double relative_energy_change = 1e-9;         //!< stop when F changes less than this, relatively

@@ -54,7 +54,7 @@ struct MpsResult {
   std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)
   int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
-  int dropped_gap_pieces = 0;     //!< pieces dropped for an uncovered area below 1e-12·r² (see docs/mps.md)
+  int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
   bool gaps_closed = false;       //!< the sampler found no gap left (verify_mps checks it independently)
   MpsTimings time_s;

@@ -11,7 +11,7 @@ namespace lrvd {
 struct RemeshOptions {
   CvtOptions cvt;
   int repair_rounds = 12;          //!< rounds of "move a sample to a defect, optimise again"
-  int repair_iterations = 60;      //!< CVT iterations after each move
+  int repair_iterations = 30;      //!< CVT iterations after each density raise
 };
 
 struct RemeshResult {

@@ -74,8 +74,6 @@ class LrvdBuilder {
   void assign_vertices() {
     const int nv = mesh_.vertex_count();
     vertex_label_.assign(nv, -1);
-    std::vector<std::vector<int>> adjacency(nv);
-    for (int v = 0; v < nv; ++v) adjacency[v] = mesh_.vertex_neighbors(v);
     using Entry = std::tuple<double, int, int>;  // (power distance, sample, vertex)
     std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
     for (int i = 0; i < samples_.size(); ++i)
@@ -85,8 +83,8 @@ class LrvdBuilder {
       queue.pop();
       if (vertex_label_[v] >= 0) continue;
       vertex_label_[v] = i;
-      for (int u : adjacency[v])
-        if (vertex_label_[u] < 0) queue.emplace(power_distance(mesh_.position(u), i), i, u);
+      for (const int* u = mesh_.vertex_neighbors_begin(v); u != mesh_.vertex_neighbors_end(v); ++u)
+        if (vertex_label_[*u] < 0) queue.emplace(power_distance(mesh_.position(*u), i), i, *u);
     }
   }
 

@@ -1,0 +1,123 @@
+// Maximal Poisson-disk sampling timings (paper Table 3): uniform r = 0.005 and adaptive
+// r_min = 0.004 in the unit cube, init / dart throwing / gap filling / total seconds and sample
+// counts per model, then the independent checks (minimum distance, maximality on a fresh LRPD).
+//
+// Usage: bench_mps [--quick] [--no-verify] [--json FILE] [--gap-update local|lrpd] [MESH ...]
+// Without meshes: CGAL's armadillo, ChineseDragon-10kv and bunny00 (LRVD_CGAL_DATA_DIR), then the
+// Table 3 models of /work/shared/data/meshes when present (feline, vaselion, dragon_100k,
+// gargoyle_100k). --quick runs uniform only with r = 0.01.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mesh/mesh_io.h"
+#include "remesh/mps.h"
+#include "verification/mps_check.h"
+#include "voronoi/lrvd.h"
+
+namespace {
+
+struct Row {
+  std::string model, mode;
+  double r;
+  lrvd::MpsResult result;
+  bool verified = false, maximal = false, min_distance = false;
+  double verify_s = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false, verify = true;
+  std::string json_path;
+  lrvd::MpsGapUpdate update = lrvd::MpsGapUpdate::Local;
+  std::vector<std::string> meshes;
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    if (arg == "--quick") quick = true;
+    else if (arg == "--no-verify") verify = false;
+    else if (arg == "--json" && a + 1 < argc) json_path = argv[++a];
+    else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
+    else meshes.push_back(arg);
+  }
+  if (meshes.empty()) {
+    for (const char* name : {"armadillo.off", "ChineseDragon-10kv.off", "bunny00.off"})
+      meshes.push_back(std::string(LRVD_CGAL_DATA_DIR) + "/" + name);
+    for (const char* name : {"feline.off", "vaselion.off", "dragon_100k.off", "gargoyle_100k.off"}) {
+      const std::string path = std::string("/work/shared/data/meshes/") + name;
+      if (std::filesystem::exists(path)) meshes.push_back(path);
+    }
+  }
+
+  std::vector<Row> rows;
+  nlohmann::json out = nlohmann::json::array();
+  std::printf("%-22s %-8s %6s %8s %7s %7s %7s %7s %9s %s\n", "model", "mode", "r", "#V", "t_init", "t_dt", "t_gap",
+              "t_total", "verify_s", "checks");
+  for (const std::string& path : meshes) {
+    lrvd::SurfaceMesh mesh;
+    try {
+      mesh = lrvd::read_mesh(path, lrvd::ReadOptions{true}).mesh;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
+      continue;
+    }
+    const std::string model = std::filesystem::path(path).stem().string();
+    for (int adaptive = 0; adaptive < (quick ? 1 : 2); ++adaptive) {
+      Row row;
+      row.model = model;
+      row.mode = adaptive ? "adaptive" : "uniform";
+      row.r = quick ? 0.01 : (adaptive ? 0.004 : 0.005);
+      lrvd::MpsOptions options;
+      options.radius = row.r;
+      options.adaptive = adaptive;
+      options.gap_update = update;
+      row.result = lrvd::maximal_poisson_disk_sampling(mesh, options);
+      const lrvd::MpsResult& r = row.result;
+      std::string checks = "-";
+      if (verify) {
+        const lrvd::MpsVerification v = lrvd::verify_mps(r.mesh, r.samples);
+        row.verified = true;
+        row.maximal = v.maximal.passed && v.diagram_covers.passed;
+        row.min_distance = v.min_distance.passed;
+        row.verify_s = v.time_s;
+        if (!v.passed) {
+          std::fputs(v.summary().c_str(), stderr);
+          std::fprintf(stderr, "gaps_closed %d, first LRPD gap pieces %d, dropped %d, clamped %d\n", r.gaps_closed,
+                       r.gap_pieces, r.dropped_gap_pieces, r.clamped_radii);
+        }
+        checks = std::string(row.maximal ? "maximal" : "NOT-MAXIMAL") + "," + (row.min_distance ? "min-dist" : "MIN-DIST-FAIL");
+      }
+      std::printf("%-22s %-8s %6.3f %8d %7.2f %7.2f %7.2f %7.2f %9.2f %s (darts %lld, gap samples %d, LRPDs %d, triangles %d)\n",
+                  model.c_str(), row.mode.c_str(), row.r, r.samples.size(), r.time_s.init, r.time_s.dart_throwing,
+                  r.time_s.gap_filling, r.time_s.total, row.verify_s, checks.c_str(), static_cast<long long>(r.darts),
+                  r.gap_samples, r.lrpd_evaluations, r.mesh.triangle_count());
+      std::fflush(stdout);
+      out.push_back({{"model", model},
+                     {"mode", row.mode},
+                     {"r", row.r},
+                     {"samples", r.samples.size()},
+                     {"dart_samples", r.dart_samples},
+                     {"gap_samples", r.gap_samples},
+                     {"darts", r.darts},
+                     {"lrpd_evaluations", r.lrpd_evaluations},
+                     {"refined_triangles", r.mesh.triangle_count()},
+                     {"input_triangles", mesh.triangle_count()},
+                     {"time_s", {{"init", r.time_s.init}, {"dart_throwing", r.time_s.dart_throwing},
+                                 {"gap_filling", r.time_s.gap_filling}, {"total", r.time_s.total}}},
+                     {"verify_s", row.verify_s},
+                     {"maximal", row.maximal},
+                     {"min_distance_ok", row.min_distance}});
+    }
+  }
+  if (!json_path.empty()) {
+    std::FILE* f = std::fopen(json_path.c_str(), "w");
+    if (f) {
+      std::fputs(out.dump(2).c_str(), f);
+      std::fclose(f);
+    }
+  }
+  return 0;
+}

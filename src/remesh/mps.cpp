@@ -1,0 +1,335 @@
+// Maximal Poisson-disk sampling (paper §4.2): initialisation (edge splitting to r_min, radius
+// field, area table), dart throwing with triangle-based conflict checks, then gap detection with
+// the LRPD and darts into the gaps until none is left. The conflict rule is in docs/mps.md.
+#include "remesh/mps.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/closest_point.h"
+#include "remesh/mps_gaps.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd {
+
+using namespace mps_detail;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+//! Walker's alias table: an index with probability proportional to its weight in O(1).
+class AliasTable {
+ public:
+  explicit AliasTable(const std::vector<double>& weights) : probability_(weights.size()), alias_(weights.size()) {
+    const size_t n = weights.size();
+    double sum = 0;
+    for (double w : weights) sum += w;
+    std::vector<double> scaled(n);
+    std::vector<int> small, large;
+    for (size_t i = 0; i < n; ++i) {
+      scaled[i] = weights[i] * static_cast<double>(n) / sum;
+      (scaled[i] < 1 ? small : large).push_back(static_cast<int>(i));
+    }
+    while (!small.empty() && !large.empty()) {
+      const int s = small.back(), l = large.back();
+      small.pop_back();
+      probability_[s] = scaled[s];
+      alias_[s] = l;
+      scaled[l] -= 1 - scaled[s];
+      if (scaled[l] < 1) {
+        large.pop_back();
+        small.push_back(l);
+      }
+    }
+    for (int i : large) probability_[i] = 1, alias_[i] = i;
+    for (int i : small) probability_[i] = 1, alias_[i] = i;
+  }
+  int pick(Random& random) const {
+    const double u = random.uniform() * static_cast<double>(probability_.size());
+    const int i = std::min(static_cast<int>(u), static_cast<int>(probability_.size()) - 1);
+    return (u - i) < probability_[i] ? i : alias_[i];
+  }
+
+ private:
+  std::vector<double> probability_;
+  std::vector<int> alias_;
+};
+
+Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bary) {
+  const double r = std::sqrt(random.uniform()), s = random.uniform();
+  bary = {1 - r, r * (1 - s), r * s};
+  const Triangle& tri = mesh.triangle(t);
+  return bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
+}
+
+//! The dart test and the insertion (paper §4.2, second change). A dart p in triangle t is
+//! accepted when no disk that reaches t contains it; its radius is r(p), cut to just below the
+//! distance of any sample whose centre lies in its local region closer than that (adaptive; a
+//! dart whose radius would fall below r_min is rejected, and so is every such dart when the
+//! radius is uniform). Hence no sample ever lies in another sample's disk.
+class Sampler {
+ public:
+  Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
+      : mesh_(mesh), r_min2_(r_min * r_min), vertex_radius_(std::move(vertex_radius)), disks_(mesh) {}
+
+  DiskIndex& disks() { return disks_; }
+  const std::vector<int>& last_region() const { return region_; }
+  int clamped() const { return clamped_; }
+
+  double weight_at(int t, const Vec3& bary) const {
+    if (vertex_radius_.empty()) return r_min2_;
+    const Triangle& tri = mesh_.triangle(t);
+    const double r = bary.x * vertex_radius_[tri[0]] + bary.y * vertex_radius_[tri[1]] + bary.z * vertex_radius_[tri[2]];
+    return std::max(r * r, r_min2_);
+  }
+
+  //! Inserts the dart if it is accepted; its local region is then last_region().
+  bool try_insert(const Vec3& p, int t, const Vec3& bary) {
+    if (disks_.in_some_disk(p, t)) return false;
+    const double w = weight_at(t, bary);
+    double w_new = w;
+    const std::vector<int>* region = &disks_.grow(p, t, w);
+    for (int s : *region)
+      disks_.for_each_center(s, [&](int i) {
+        if (inside_disk(disks_.center(i), p, w_new))
+          w_new = std::min(w_new, squared_distance(disks_.center(i), p) * (1 - 1e-14));
+      });
+    if (w_new < w) {
+      if (vertex_radius_.empty() || w_new < r_min2_) return false;
+      region = &disks_.grow(p, t, w_new);
+      ++clamped_;
+    }
+    region_ = *region;
+    disks_.insert(p, t, bary, w_new, region_);
+    return true;
+  }
+
+ private:
+  const SurfaceMesh& mesh_;
+  double r_min2_;
+  std::vector<double> vertex_radius_;
+  DiskIndex disks_;
+  std::vector<int> region_;
+  int clamped_ = 0;
+};
+
+// Mean curvature magnitude at each vertex, |Δx| / 2 from the cotangent Laplacian over the
+// barycentric vertex area; 0 on the boundary, where it would measure the boundary's bend.
+std::vector<double> mean_curvature(const SurfaceMesh& mesh) {
+  const int nv = mesh.vertex_count();
+  std::vector<Vec3> laplacian(nv, Vec3{});
+  std::vector<double> area(nv, 0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    const double a = mesh.triangle_area(t);
+    for (int c = 0; c < 3; ++c) {
+      const int i = tri[c], j = tri[(c + 1) % 3], k = tri[(c + 2) % 3];
+      const Vec3 u = mesh.position(j) - mesh.position(i), v = mesh.position(k) - mesh.position(i);
+      const double cot = dot(u, v) / std::max(norm(cross(u, v)), 1e-300);
+      laplacian[j] += 0.5 * cot * (mesh.position(k) - mesh.position(j));
+      laplacian[k] += 0.5 * cot * (mesh.position(j) - mesh.position(k));
+      area[i] += a / 3;
+    }
+  }
+  std::vector<char> boundary(nv, 0);
+  for (const auto& loop : mesh.boundary_loops())
+    for (int v : loop) boundary[v] = 1;
+  std::vector<double> kappa(nv);
+  for (int v = 0; v < nv; ++v) kappa[v] = boundary[v] ? 0.0 : norm(laplacian[v]) / (2 * std::max(area[v], 1e-300));
+  return kappa;
+}
+
+}  // namespace
+
+double expected_sample_count(const SurfaceMesh& mesh, double radius) {
+  return mesh.area() / (std::sqrt(3.0) / 2 * radius * radius);
+}
+
+std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min, const MpsOptions& options) {
+  const int nv = mesh.vertex_count();
+  const double r_max = r_min * std::max(1.0, options.max_radius_ratio);
+  std::vector<double> kappa = mean_curvature(mesh);
+  // Two passes of neighbour averaging: the cotangent estimate is noisy on scanned meshes.
+  std::vector<std::vector<int>> neighbors(nv);
+  for (int v = 0; v < nv; ++v) neighbors[v] = mesh.vertex_neighbors(v);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<double> next(nv);
+    for (int v = 0; v < nv; ++v) {
+      double sum = kappa[v];
+      for (int u : neighbors[v]) sum += kappa[u];
+      next[v] = sum / (1.0 + neighbors[v].size());
+    }
+    kappa.swap(next);
+  }
+  std::vector<double> r(nv);
+  const double f = std::max(options.curvature_fraction, 1e-6);
+  for (int v = 0; v < nv; ++v) {
+    const double c = kappa[v] * r_max / f;
+    r[v] = std::max(r_min, r_max / std::sqrt(1 + c * c));
+  }
+  // Gradation: r(v) <= r(u) + g·|uv| along every edge (Dijkstra from the smallest radii).
+  const double g = std::max(options.gradation, 0.0);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int v = 0; v < nv; ++v) queue.emplace(r[v], v);
+  while (!queue.empty()) {
+    const auto [rv, v] = queue.top();
+    queue.pop();
+    if (rv > r[v]) continue;
+    for (int u : neighbors[v]) {
+      const double cand = rv + g * distance(mesh.position(u), mesh.position(v));
+      if (cand < r[u]) {
+        r[u] = cand;
+        queue.emplace(cand, u);
+      }
+    }
+  }
+  return r;
+}
+
+MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options) {
+  if (!(options.radius > 0) || !std::isfinite(options.radius))
+    throw InputError(fmt::format("the Poisson-disk radius must be a positive number (got {})", options.radius));
+  if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
+  auto progress = [&](const std::string& message) {
+    if (options.on_progress) options.on_progress(message);
+  };
+  const auto start = Clock::now();
+  MpsResult result;
+  const BoundingBox box = mesh.bounding_box();
+  result.scale = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
+  const double r_min = options.radius * result.scale;
+  result.radius = r_min;
+  const double expected = expected_sample_count(mesh, r_min);
+  if (expected > options.max_expected_samples)
+    throw InputError(fmt::format("radius {} is too small for this mesh: about {:.3g} samples would be needed "
+                                 "(limit {:.3g}); use a larger radius",
+                                 options.radius, expected, options.max_expected_samples));
+
+  // Initialisation: split long edges so a triangle is smaller than any disk (§4.2, first change).
+  progress(fmt::format("splitting edges longer than r = {:.4g}", r_min));
+  result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min) : mesh;
+  const SurfaceMesh& m = result.mesh;
+  std::vector<double> vertex_radius;
+  if (options.adaptive) {
+    const std::vector<double> coarse = adaptive_radius_field(mesh, r_min, options);
+    // The field is linear over each input triangle; the refined vertices take its value there.
+    const ClosestPointIndex index(mesh);
+    vertex_radius.resize(m.vertex_count());
+    for (int v = 0; v < m.vertex_count(); ++v) {
+      if (v < mesh.vertex_count() && m.position(v) == mesh.position(v)) {
+        vertex_radius[v] = coarse[v];
+        continue;
+      }
+      const ClosestPoint c = index.query(m.position(v));
+      const Triangle& tri = mesh.triangle(c.triangle);
+      vertex_radius[v] = c.barycentric.x * coarse[tri[0]] + c.barycentric.y * coarse[tri[1]] + c.barycentric.z * coarse[tri[2]];
+    }
+    result.max_radius = *std::max_element(vertex_radius.begin(), vertex_radius.end());
+  } else {
+    result.max_radius = r_min;
+  }
+  std::vector<double> areas(m.triangle_count());
+  for (int t = 0; t < m.triangle_count(); ++t) areas[t] = m.triangle_area(t);
+  const AliasTable by_area(areas);
+  Sampler sampler(m, r_min, std::move(vertex_radius));
+  Random random(options.seed);
+  result.time_s.init = seconds_since(start);
+
+  // Dart throwing until too many consecutive rejections.
+  progress("dart throwing");
+  const auto dart_start = Clock::now();
+  const double sample_cap = 4 * expected + 1000;
+  for (int rejections = 0; rejections < options.max_consecutive_rejections && sampler.disks().size() < sample_cap;) {
+    const int t = by_area.pick(random);
+    Vec3 bary;
+    const Vec3 p = point_in_triangle(m, t, random, bary);
+    ++result.darts;
+    if (sampler.try_insert(p, t, bary))
+      rejections = 0;
+    else
+      ++rejections;
+  }
+  // Every component needs a sample before the LRPD (a small one may have been missed).
+  {
+    std::vector<char> has_sample(m.component_count(), 0);
+    for (int i = 0; i < sampler.disks().size(); ++i) has_sample[m.triangle_components()[sampler.disks().triangle(i)]] = 1;
+    for (int c = 0; c < m.component_count(); ++c) {
+      if (has_sample[c]) continue;
+      std::vector<int> tris;
+      std::vector<double> weights;
+      for (int t = 0; t < m.triangle_count(); ++t)
+        if (m.triangle_components()[t] == c) tris.push_back(t), weights.push_back(areas[t]);
+      const AliasTable in_component(weights);
+      for (int attempt = 0; attempt < 10000; ++attempt) {
+        const int t = tris[in_component.pick(random)];
+        Vec3 bary;
+        const Vec3 p = point_in_triangle(m, t, random, bary);
+        ++result.darts;
+        if (sampler.try_insert(p, t, bary)) break;
+      }
+    }
+  }
+  result.dart_samples = sampler.disks().size();
+  result.time_s.dart_throwing = seconds_since(dart_start);
+
+  // Gap detection with the LRPD and gap filling (§4.2, third change).
+  const auto gap_start = Clock::now();
+  const bool local = options.gap_update == MpsGapUpdate::Local;
+  GapSet gaps(m, sampler.disks(), local, 1e-15 * r_min * r_min);
+  LrvdOptions lrpd_options;
+  lrpd_options.weighted = true;
+  for (int round = 0; round < options.max_gap_rounds; ++round) {
+    progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
+    const Diagram lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
+    ++result.lrpd_evaluations;
+    gaps.extract(lrpd);
+    if (round == 0) result.gap_pieces = gaps.alive();
+    if (gaps.empty()) {
+      result.gaps_closed = true;
+      break;
+    }
+    progress(fmt::format("filling {} gap pieces", gaps.alive()));
+    // With local updates every point drawn outside its piece's owner disk is a valid dart, so the
+    // limit only guards against rounding trouble; the paper's loop stops after 300 rejections.
+    const std::int64_t limit = local ? std::max<std::int64_t>(100000, 1000 * std::int64_t(gaps.alive()))
+                                     : options.max_consecutive_rejections;
+    for (std::int64_t rejections = 0; !gaps.empty() && rejections < limit;) {
+      Vec3 p;
+      int t = -1;
+      ++result.darts;
+      if (!gaps.draw(random, p, t)) {
+        ++rejections;
+        continue;
+      }
+      if (!sampler.try_insert(p, t, barycentric_in_triangle(m, t, p))) {
+        ++rejections;
+        continue;
+      }
+      rejections = 0;
+      ++result.gap_samples;
+      gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());
+    }
+    if (local && gaps.empty()) {
+      result.gaps_closed = true;
+      break;
+    }
+  }
+  result.dropped_gap_pieces = gaps.dropped();
+  result.clamped_radii = sampler.clamped();
+  result.samples = sampler.disks().samples();
+  result.radii.resize(result.samples.size());
+  for (int i = 0; i < result.samples.size(); ++i) result.radii[i] = std::sqrt(result.samples.weights[i]);
+  result.time_s.gap_filling = seconds_since(gap_start);
+  result.time_s.total = seconds_since(start);
+  return result;
+}
+
+}  // namespace lrvd
