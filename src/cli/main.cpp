@@ -30,7 +30,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
+    std::fprintf(stderr, "lrvd: error: %s (see --help)\n", e.what());
     return kBadInput;
   }
   try {

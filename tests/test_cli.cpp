@@ -1,0 +1,120 @@
+// The `lrvd` command line: exit codes (0 done, 2 bad input, 3 a promised property failed), one-line
+// errors, and the report keys the issue texts promise.
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+using nlohmann::json;
+
+namespace {
+
+const std::string kCli = LRVD_CLI_PATH;
+const std::string kData = LRVD_CGAL_DATA_DIR;
+const std::string kOut = std::string(LRVD_BINARY_DIR) + "/test_cli_";
+
+struct Run {
+  int status;
+  std::string err;
+};
+
+Run run(const std::string& args) {
+  const std::string err_path = kOut + "stderr.txt";
+  const int raw = std::system((kCli + " " + args + " > /dev/null 2> " + err_path).c_str());
+  std::ifstream in(err_path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
+}
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  REQUIRE(in.good());
+  return json::parse(in);
+}
+
+int lines(const std::string& s) {
+  int count = 0;
+  for (char c : s) count += c == '\n';
+  return count;
+}
+
+}  // namespace
+
+TEST_CASE("lrvd compute writes cells and a report with the promised keys", "[cli]") {
+  const std::string report = kOut + "compute.json", cells = kOut + "cells.ply";
+  const Run r = run("compute " + kData + "/elk.off -n 100 --seed 3 -o " + cells + " --report " + report);
+  REQUIRE(r.status == 0);
+  const json j = read_json(report);
+  for (const char* key : {"vertices", "triangles", "area", "bbox_diagonal"}) REQUIRE(j["input"].contains(key));
+  for (const char* key : {"kind", "samples", "polygons", "cells_with_multiple_components", "time_s"})
+    REQUIRE(j["diagram"].contains(key));
+  for (const char* key : {"calls", "filter_failures", "exact", "perturbations"}) REQUIRE(j["predicates"].contains(key));
+  REQUIRE(j["verification"]["passed"] == true);
+  for (const char* key : {"sample_in_cell", "connected", "equidistant", "disjoint", "coverage", "conforming"})
+    REQUIRE(j["verification"]["properties"][key]["passed"] == true);
+  REQUIRE(j["diagram"]["samples"] == 100);
+  REQUIRE(j["diagram"]["cells_with_multiple_components"] == 0);
+  std::ifstream ply(cells);
+  std::string header;
+  std::getline(ply, header);
+  REQUIRE(header == "ply");
+}
+
+TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
+  const std::string points = kOut + "far.xyz";
+  std::ofstream(points) << "0 0 1000\n";
+  for (const std::string& args :
+       {std::string("compute ") + kData + "/missing.off -n 10", "compute " + kData + "/elk.off -n 0",
+        "compute " + kData + "/elk.off --points " + points, "compute " + kData + "/elk.off -n 10 --diagram lrpd",
+        "compute " + kData + "/elk.off -n 10 --refine banana", "remesh " + kData + "/elk.off -n 10",
+        std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand")}) {
+    const Run r = run(args);
+    INFO(args << "\n" << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE(lines(r.err) >= 1);
+    if (args.rfind("nosuch", 0) != 0) REQUIRE(lines(r.err) == 1);
+  }
+}
+
+TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verification", "[cli][remesh]") {
+  const std::string report = kOut + "remesh.json", out = kOut + "remesh.off";
+  const Run r = run("remesh " + kData + "/ellipsoid.off -n 200 -o " + out + " --report " + report);
+  REQUIRE(r.status == 0);
+  const json j = read_json(report);
+  REQUIRE(j["output"]["vertices"] == 200);
+  for (const char* key : {"Qmin", "Qavg", "theta_min", "theta_max", "pct_triangles_below_30", "hausdorff_pct", "rms_pct",
+                          "closed_manifold", "genus_preserved", "self_intersections"})
+    REQUIRE(j["quality"].contains(key));
+  REQUIRE(j["verification"]["passed"] == true);
+  for (const char* key : {"iterations", "energy", "time_s"}) REQUIRE(j.contains(key));
+  // The quality command measures the written file on its own.
+  const std::string quality = kOut + "quality.json";
+  REQUIRE(run("quality " + kData + "/ellipsoid.off " + out + " --report " + quality).status == 0);
+  REQUIRE(read_json(quality)["quality"]["Qmin"] == j["quality"]["Qmin"]);
+}
+
+TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails a check", "[cli][remesh]") {
+  // The comb's fingers at 100 vertices: too few samples to wrap every finger (paper Fig. 13).
+  const std::string comb = kOut + "comb.off", out = kOut + "comb_100.off", report = kOut + "comb.json";
+  REQUIRE(run("stress comb -o " + comb + " --scale 0.5").status == 0);
+  const Run r = run("remesh " + comb + " -n 100 -o " + out + " --report " + report);
+  REQUIRE(r.status == 3);
+  const json j = read_json(report);
+  REQUIRE(j["verification"]["passed"] == false);
+  std::ifstream written(out);
+  REQUIRE(written.good());
+}
+
+TEST_CASE("lrvd stress lists and writes the stress meshes", "[cli]") {
+  REQUIRE(run("stress --list").status == 0);
+  const std::string out = kOut + "plate.obj";
+  REQUIRE(run("stress thin_plate -o " + out).status == 0);
+  std::ifstream in(out);
+  REQUIRE(in.good());
+  REQUIRE(run("--version").status == 0);
+}
