@@ -62,14 +62,17 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
   for (int i = 0; i < s.size(); ++i) {
     const Vec3& x = s.positions[i];
     const double w = s.weights[i];
-    // The local region of disk i: triangles within distance r_i, edge-connected to x_i's.
+    // The local region of disk i: triangles within distance r_i facing like x_i's (normals at
+    // less than 90°), edge-connected to it through such triangles.
     region.assign(1, s.triangles[i]);
     stamp[s.triangles[i]] = i;
+    const Vec3 facing = mesh.triangle_normal(s.triangles[i]);
     for (size_t k = 0; k < region.size(); ++k)
       for (int e = 0; e < 3; ++e) {
         const int n = mesh.neighbor(region[k], e);
         if (n < 0 || stamp[n] == i) continue;
         stamp[n] = i;
+        if (!(dot(mesh.triangle_normal(n), facing) > 0)) continue;
         const Triangle& tri = mesh.triangle(n);
         const ClosestPoint c = closest_point_on_triangle(x, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
         if (squared_distance(x, c.point) < w) region.push_back(n);

@@ -51,7 +51,10 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       covered_head_(mesh.triangle_count(), -1),
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
-      stamp_(mesh.triangle_count(), 0) {}
+      stamp_(mesh.triangle_count(), 0),
+      normals_(mesh.triangle_count()) {
+  for (int t = 0; t < mesh.triangle_count(); ++t) normals_[t] = mesh.triangle_normal(t);
+}
 
 bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
   if (covered_head_[t] >= 0) return true;
@@ -70,13 +73,14 @@ const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
   region_.clear();
   region_.push_back(t);
   stamp_[t] = stamp_value_;
+  const Vec3 facing = normals_[t];
   for (size_t k = 0; k < region_.size(); ++k) {
     const int s = region_[k];
     for (int e = 0; e < 3; ++e) {
       const int n = mesh_.neighbor(s, e);
       if (n < 0 || stamp_[n] == stamp_value_) continue;
       stamp_[n] = stamp_value_;
-      if (triangle_squared_distance(mesh_, n, p) < w) region_.push_back(n);
+      if (dot(normals_[n], facing) > 0 && triangle_squared_distance(mesh_, n, p) < w) region_.push_back(n);
     }
   }
   return region_;

@@ -126,8 +126,13 @@ void GapSet::extract(const Diagram& lrpd) {
     const int t = cp.triangle, i = cp.cell;
     if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
+    // The LRPD's claim "covered by its own disk" counts only where that disk reaches t: the
+    // sampler's coverage (the union of the disks as their local regions bound them) only grows,
+    // whereas the cell that holds a spot may change as samples are added.
+    bool own = false;
+    disks_.for_each_disk(t, [&](int j) { own |= j == i; });
     polygon.clear();
-    bool covered = true;
+    bool covered = own;
     for (int k = 0; k < cp.vertex_count; ++k) {
       const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
       polygon.push_back(position(q, ctx));
@@ -140,13 +145,11 @@ void GapSet::extract(const Diagram& lrpd) {
     }
     if (covered) continue;
     if (!local_) {
-      add_outside(polygon, t, i);
+      add_outside(polygon, t, own ? i : -1);
       continue;
     }
     // Local updates: the gap must be exactly what no disk reaching t covers. Start from the cell
     // minus its own disk (when that disk reaches t), then split by every other disk reaching t.
-    bool own = false;
-    disks_.for_each_disk(t, [&](int j) { own |= j == i; });
     const size_t before = pieces_.size();
     add_outside(polygon, t, own ? i : -1);
     disks_.for_each_disk(t, [&](int j) {

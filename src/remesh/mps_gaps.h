@@ -18,9 +18,11 @@ bool inside_disk(const Vec3& p, const Vec3& c, double w);
 
 //! The disks of the samples and, per triangle, which of them reach it. The disk of sample i is
 //! the part of the open ball B(x_i, r_i) lying in the triangles of its *local region*: the
-//! triangles within distance r_i of x_i that are edge-connected to x_i's triangle through such
-//! triangles (the paper's region growing). Each triangle lists the disks that cover it fully and
-//! those that reach it only partly, and the sample centres it holds.
+//! triangles within distance r_i of x_i that face the same way as x_i's triangle (normals at less
+//! than 90°) and are edge-connected to it through such triangles (the paper's region growing,
+//! stopped where the surface folds back, so that a disk does not wrap around a sheet thinner than
+//! r onto its other side). Each triangle lists the disks that cover it fully and those that reach
+//! it only partly, and the sample centres it holds.
 class DiskIndex {
  public:
   explicit DiskIndex(const SurfaceMesh& mesh);
@@ -37,7 +39,8 @@ class DiskIndex {
   bool in_some_disk(const Vec3& p, int t) const;
 
   //! The local region of a disk (p, w) grown from triangle t: t, then every triangle within
-  //! distance sqrt(w) of p (open) joined to it across mesh edges. Valid until the next call.
+  //! distance sqrt(w) of p (open) facing like t, joined to it across mesh edges. Valid until the
+  //! next call.
   const std::vector<int>& grow(const Vec3& p, int t, double w);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
@@ -70,6 +73,7 @@ class DiskIndex {
   std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
   std::uint32_t stamp_value_ = 0;
   std::vector<int> region_;
+  std::vector<Vec3> normals_;  // unit normal per triangle
 };
 
 //! Squared distance from p to triangle t of the mesh.

@@ -26,6 +26,7 @@ DualDefects find_dual_defects(const DualMesh& dual, bool input_closed) {
     if (count > 2 || (count == 1 && input_closed)) defect.insert({edge.first, edge.second});
   for (const auto& [tri, count] : vertex_sets)
     if (count > 1) defect.insert(tri.begin(), tri.end());
+  for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   // A sample in no triangle: its cell meets fewer than two others at a triple point (an island).
   std::vector<char> used(dual.positions.size(), 0);
   for (const Triangle& t : dual.triangles)

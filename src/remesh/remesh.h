@@ -23,10 +23,11 @@ struct RemeshResult {
 };
 
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
-//! repeated on the same three vertices, samples in no triangle, and triangles that intersect each
+//! repeated on the same three vertices or given by two triple points (merged), samples in no
+//! triangle, and triangles that intersect each
 //! other: the samples involved (empty when the dual has none of these defects).
 struct DualDefects {
-  std::vector<int> topological;  //!< samples at bad edges, repeated triangles, unused samples
+  std::vector<int> topological;  //!< samples at bad edges, repeated or merged triangles, unused samples
   std::vector<int> crossing;     //!< samples of triangles that intersect others
   bool empty() const { return topological.empty() && crossing.empty(); }
   bool fewer_than(const DualDefects& o) const {

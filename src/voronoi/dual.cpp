@@ -2,14 +2,14 @@
 #include "voronoi/dual.h"
 
 #include <algorithm>
-#include <set>
+#include <map>
 
 namespace lrvd {
 
 DualMesh compute_dual(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples) {
   DualMesh dual;
   dual.positions = samples.positions;
-  std::set<Triangle> seen;  // rotated so the smallest index comes first
+  std::map<Triangle, int> seen;  // rotated so the smallest index comes first -> triangle index
   for (const CellPolygon& poly : diagram.polygons) {
     const SymbolicVertex* verts = diagram.polygon_vertices(poly);
     const int a = poly.cell;
@@ -24,9 +24,11 @@ DualMesh compute_dual(const Diagram& diagram, const SurfaceMesh& mesh, const Sam
         if (l != a && prev.has_label(l)) x = l;
       if (x < 0) continue;  // cannot happen in a valid diagram; the remesh check reports the gap
       const int y = q.label[0] + q.label[1] + q.label[2] - a - x;
-      Triangle tri = {a, x, y};
-      if (!seen.insert(tri).second) {
+      const Triangle tri = {a, x, y};
+      const auto [it, fresh] = seen.emplace(tri, static_cast<int>(dual.triangles.size()));
+      if (!fresh) {
         ++dual.merged_duplicates;
+        dual.merged_into.push_back(it->second);
         continue;
       }
       dual.triangles.push_back(tri);

@@ -13,6 +13,8 @@ struct DualMesh {
   std::vector<Vec3> positions;      //!< the samples (every sample is a vertex, used or not)
   std::vector<Triangle> triangles;  //!< oriented like the surface below them
   int merged_duplicates = 0;        //!< type (c) vertices whose triangle another one already gave
+  std::vector<int> merged_into;     //!< the triangles those duplicates were merged into (a thin part
+                                    //!< wrapped by three cells meets them twice: paper Fig. 13)
 };
 
 //! One triangle per type (c) vertex {a, b, c}, ordered as the cells turn counterclockwise around
