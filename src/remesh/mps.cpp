@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 #include <queue>
+#include <cstdio>
+#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -310,6 +312,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
         continue;
       }
       if (!sampler.try_insert(p, t, barycentric_in_triangle(m, t, p))) {
+        if (getenv("MPS_DEBUG") && rejections % 100000 == 0) fprintf(stderr, "reject at tri %d: in_disk %d, pieces %d\n", t, sampler.disks().in_some_disk(p, t), gaps.alive());
         ++rejections;
         continue;
       }
