@@ -122,6 +122,14 @@ nlohmann::json predicates_json() {
           {"perturbations", s.total.perturbations}};
 }
 
+nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check) {
+  nlohmann::json q = quality.to_json();
+  q["closed_manifold"] = check.manifold.passed && check.closed.passed;
+  q["genus_preserved"] = check.topology.passed;
+  q["self_intersections"] = check.self_intersecting_pairs;
+  return q;
+}
+
 void write_json(const std::string& path, const nlohmann::json& report) {
   std::ofstream out(path);
   if (!out) throw InputError(fmt::format("cannot write report '{}'", path));

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.h"
+#include "metrics/quality.h"
+#include "verification/remesh_check.h"
 #include "voronoi/samples.h"
 
 namespace lrvd::cli {
@@ -38,6 +40,9 @@ Input load_input(const InputOptions& opt);
 
 nlohmann::json input_json(const Input& input);
 nlohmann::json predicates_json();
+//! The `quality` object of a remesh report: the metrics plus closed_manifold, genus_preserved and
+//! self_intersections from the remesh check.
+nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check);
 void write_json(const std::string& path, const nlohmann::json& report);
 
 //! Progress on stderr for long work (only when stderr is a terminal or LRVD_PROGRESS is set).

@@ -411,15 +411,24 @@ bool RepairReport::changed() const {
          reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
 }
 
-PolygonSoup read_polygon_soup(const std::string& path) {
+namespace {
+
+// The file's points and polygons, parsed and checked (finite, indices in range, faces present).
+void read_checked_soup(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons) {
   check_readable(path);
   const Format format = input_format(path);
-  if (format == Format::Stl)
+  if (format == Format::Stl)  // before CGAL, whose STL reader would weld a NaN corner into another
     if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
-  std::vector<Point> points;
-  std::vector<Polygon> polygons;
   if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
   check_soup(path, format, points, polygons);
+}
+
+}  // namespace
+
+PolygonSoup read_polygon_soup(const std::string& path) {
+  std::vector<Point> points;
+  std::vector<Polygon> polygons;
+  read_checked_soup(path, points, polygons);
   RepairReport ignored;
   PolygonSoup soup;
   for (const SoupTriangle& t : triangulate(points, polygons, ignored))
@@ -429,14 +438,9 @@ PolygonSoup read_polygon_soup(const std::string& path) {
 }
 
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
-  check_readable(path);
-  const Format format = input_format(path);
-  if (format == Format::Stl)  // before CGAL, whose STL reader would weld a NaN corner into another
-    if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
   std::vector<Point> points;
   std::vector<Polygon> polygons;
-  if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
-  check_soup(path, format, points, polygons);
+  read_checked_soup(path, points, polygons);
 
   LoadedMesh loaded;
   RepairReport& report = loaded.repair;
