@@ -9,6 +9,9 @@ namespace lrvd {
 
 enum class MeshFileFormat { Off, Obj, Ply, Stl };
 
+//! The extension of `path` in lower case, with its dot (".off"), or "" when there is none.
+std::string lowercase_extension(const std::string& path);
+
 //! One-line reason, without the path, why CGAL could not read `path` as `format`
 //! (e.g. "is truncated: the header declares 8 vertices and 6 faces, but the file ends after 5
 //! vertices"). Never empty: falls back to a generic "cannot be parsed as ..." line.

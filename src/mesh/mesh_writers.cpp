@@ -1,0 +1,130 @@
+// Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
+// Voronoi-cell polygons with a cell label and colour per face.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "mesh/mesh_file_diagnosis.h"
+#include "mesh/mesh_io.h"
+
+namespace lrvd {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path + ": " + reason); }
+
+class OutputFile {
+ public:
+  explicit OutputFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+    if (!file_) fail(path, fmt::format("cannot be opened for writing ({})", std::strerror(errno)));
+  }
+  ~OutputFile() {
+    if (file_) std::fclose(file_);
+  }
+  void write(const fmt::memory_buffer& buffer) {
+    if (std::fwrite(buffer.data(), 1, buffer.size(), file_) != buffer.size()) fail(path_, "write failed");
+  }
+  void close() {
+    const bool ok = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!ok) fail(path_, "write failed");
+  }
+
+ private:
+  std::string path_;
+  std::FILE* file_;
+};
+
+void put_le(fmt::memory_buffer& out, uint64_t bits, int bytes) {
+  for (int i = 0; i < bytes; ++i) out.push_back(static_cast<char>((bits >> (8 * i)) & 0xff));
+}
+void put_double(fmt::memory_buffer& out, double value) {
+  uint64_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  put_le(out, bits, 8);
+}
+void put_int(fmt::memory_buffer& out, int value) { put_le(out, static_cast<uint32_t>(value), 4); }
+
+template <class Face>
+void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
+  for (int v : face)
+    if (v < 0 || static_cast<std::size_t>(v) >= vertex_count)
+      throw std::invalid_argument(fmt::format("face {} has vertex index {} out of range [0, {})", f, v, vertex_count));
+}
+
+}  // namespace
+
+void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
+                const std::vector<std::array<int, 3>>& triangles) {
+  const std::string ext = lowercase_extension(path);
+  if (ext != ".off" && ext != ".obj" && ext != ".ply")
+    fail(path, fmt::format("cannot write meshes with extension '{}'; use .off, .obj or .ply", ext));
+  for (std::size_t t = 0; t < triangles.size(); ++t) check_indices(triangles[t], positions.size(), t);
+  OutputFile file(path);
+  fmt::memory_buffer out;
+  if (ext == ".off") {
+    fmt::format_to(std::back_inserter(out), "OFF\n{} {} 0\n", positions.size(), triangles.size());
+    for (const Vec3& p : positions) fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+    for (const auto& t : triangles) fmt::format_to(std::back_inserter(out), "3 {} {} {}\n", t[0], t[1], t[2]);
+  } else if (ext == ".obj") {
+    fmt::format_to(std::back_inserter(out), "# written by lrvd\n");
+    for (const Vec3& p : positions)
+      fmt::format_to(std::back_inserter(out), "v {:.17g} {:.17g} {:.17g}\n", p.x, p.y, p.z);
+    for (const auto& t : triangles)
+      fmt::format_to(std::back_inserter(out), "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  } else {
+    fmt::format_to(std::back_inserter(out),
+                   "ply\nformat binary_little_endian 1.0\ncomment written by lrvd\nelement vertex {}\n"
+                   "property double x\nproperty double y\nproperty double z\nelement face {}\n"
+                   "property list uchar int vertex_indices\nend_header\n",
+                   positions.size(), triangles.size());
+    for (const Vec3& p : positions)
+      for (int c = 0; c < 3; ++c) put_double(out, p[c]);
+    for (const auto& t : triangles) {
+      out.push_back(3);
+      for (int v : t) put_int(out, v);
+    }
+  }
+  file.write(out);
+  file.close();
+}
+
+void write_mesh(const std::string& path, const SurfaceMesh& mesh) {
+  write_mesh(path, mesh.positions(), mesh.triangles());
+}
+
+void write_cells_ply(const std::string& path, const PolygonMesh& mesh) {
+  const std::size_t nf = mesh.faces.size();
+  const bool cells = !mesh.face_cell.empty(), colors = !mesh.face_color.empty();
+  if ((cells && mesh.face_cell.size() != nf) || (colors && mesh.face_color.size() != nf))
+    throw std::invalid_argument("write_cells_ply: face_cell and face_color need 0 or one entry per face");
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (mesh.faces[f].size() > 255) throw std::invalid_argument(fmt::format("face {} has more than 255 vertices", f));
+    check_indices(mesh.faces[f], mesh.positions.size(), f);
+  }
+  OutputFile file(path);
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "ply\nformat binary_little_endian 1.0\ncomment Voronoi cells written by lrvd\nelement vertex {}\n"
+                 "property double x\nproperty double y\nproperty double z\nelement face {}\n"
+                 "property list uchar int vertex_indices\n{}{}end_header\n",
+                 mesh.positions.size(), nf, cells ? "property int cell\n" : "",
+                 colors ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "");
+  for (const Vec3& p : mesh.positions)
+    for (int c = 0; c < 3; ++c) put_double(out, p[c]);
+  for (std::size_t f = 0; f < nf; ++f) {
+    out.push_back(static_cast<char>(mesh.faces[f].size()));
+    for (int v : mesh.faces[f]) put_int(out, v);
+    if (cells) put_int(out, mesh.face_cell[f]);
+    if (colors)
+      for (unsigned char c : mesh.face_color[f]) out.push_back(static_cast<char>(c));
+  }
+  file.write(out);
+  file.close();
+}
+
+}  // namespace lrvd
