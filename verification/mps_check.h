@@ -24,16 +24,19 @@ struct MpsVerifyOptions {
 struct MpsVerification {
   bool passed = true;  //!< min_distance, maximal and diagram_covers all hold
   double time_s = 0;
-  //! No sample lies in the disk of another (exact): for every sample i, no other sample's centre
-  //! in i's local region (triangles within r_i of x_i, edge-connected to x_i's) is closer than r_i.
+  //! Local samples are at least max(r_i, r_j) apart (exact). Samples i and j are local to each
+  //! other when each one's triangle lies in the local region of the other's ball of radius
+  //! max(r_i, r_j): the triangles the ball meets, edge-connected to the centre's triangle through
+  //! triangles it meets, that face like the centre's triangle (normals at less than 90°).
   PropertyResult min_distance;
   //! Every polygon of cell i of the LRPD (weights r²) lies in the ball (x_i, r_i): all its vertices
   //! do, which suffices since the polygon is convex and the ball cut by its plane is a convex disk.
   PropertyResult maximal;
   //! The LRPD's polygons fill every triangle (area sums, relative 1e-9): the cells do cover the surface.
   PropertyResult diagram_covers;
-  double min_distance_ratio = 0;             //!< smallest |x_i - x_j| / max(r_i, r_j) over local pairs
-  std::int64_t close_pairs_across_sheets = 0;  //!< pairs closer than max(r_i, r_j) that are not local (nearby sheets); allowed
+  double min_distance_ratio = 0;           //!< smallest |x_i - x_j| / max(r_i, r_j) over pairs seen in a region, not one-sided
+  std::int64_t close_pairs_not_local = 0;  //!< pairs closer than max(r_i, r_j) that are not local (other sheet, past a notch); allowed
+  std::int64_t one_sided_close_pairs = 0;  //!< of those, pairs where one sees the other in its region but not back (a notch)
   std::int64_t exact_vertex_tests = 0;       //!< maximality decisions that needed rational arithmetic
   nlohmann::json to_json() const;
   std::string summary() const;

@@ -1,5 +1,5 @@
 // Mesh IO: CGAL's readers into a polygon soup, checks with messages naming the first offender,
-// exact ear-clipping triangulation, optional CGAL PMP soup repair, and the OFF/OBJ/PLY writers.
+// exact ear-clipping triangulation and optional CGAL PMP soup repair (writers: mesh_writers.cpp).
 // This is the only translation unit that includes CGAL's IO and repair headers.
 #include "mesh/mesh_io.h"
 

@@ -71,11 +71,14 @@ Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bar
   return bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
 }
 
-//! The dart test and the insertion (paper §4.2, second change). A dart p in triangle t is
-//! accepted when no disk that reaches t contains it; its radius is r(p), cut to just below the
-//! distance of any sample whose centre lies in its local region closer than that (adaptive; a
-//! dart whose radius would fall below r_min is rejected, and so is every such dart when the
-//! radius is uniform). Hence no sample ever lies in another sample's disk.
+//! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each
+//! other when each one's triangle lies in the local region of the other's ball of radius
+//! ρ = max(r_i, r_j); local samples must be at least ρ apart. A dart p in triangle t is rejected
+//! when it lies in the disk of a sample (then they are local, or p lies past a notch from that
+//! sample's point of view — rejecting there is never needed for the rule but keeps coverage simple).
+//! Uniform radius: nothing else can conflict. Adaptive: p's radius r(p) is cut to just below the
+//! distance of every local sample closer than r(p) (never below that sample's radius, hence never
+//! below r_min). So no two local samples are closer than the larger of their radii.
 class Sampler {
  public:
   Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
@@ -97,18 +100,27 @@ class Sampler {
     if (disks_.in_some_disk(p, t)) return false;
     const double w = weight_at(t, bary);
     double w_new = w;
-    const std::vector<int>* region = &disks_.grow(p, t, w);
-    for (int s : *region)
-      disks_.for_each_center(s, [&](int i) {
-        if (inside_disk(disks_.center(i), p, w_new))
-          w_new = std::min(w_new, squared_distance(disks_.center(i), p) * (1 - 1e-14));
-      });
-    if (w_new < w) {
-      if (vertex_radius_.empty() || w_new < r_min2_) return false;
-      region = &disks_.grow(p, t, w_new);
-      ++clamped_;
+    region_ = disks_.grow(p, t, w);
+    if (!vertex_radius_.empty()) {
+      bool reject = false;
+      for (int s : region_)
+        disks_.for_each_center(s, [&](int j) {
+          if (reject || !inside_disk(disks_.center(j), p, w_new)) return;
+          // x_j is in p's region: local if t is in x_j's region at radius max(r(p), r_j).
+          const double rho2 = std::max(w_new, disks_.weight(j));
+          if (!disks_.reaches(disks_.center(j), disks_.triangle(j), rho2, t)) return;
+          if (inside_disk(p, disks_.center(j), disks_.weight(j))) {
+            reject = true;  // closer than r_j: no radius for p helps
+            return;
+          }
+          w_new = squared_distance(disks_.center(j), p) * (1 - 1e-14);  // |p - x_j|² > w_new exactly
+        });
+      if (reject) return false;
+      if (w_new < w) {
+        region_ = disks_.grow(p, t, w_new);
+        ++clamped_;
+      }
     }
-    region_ = *region;
     disks_.insert(p, t, bary, w_new, region_);
     return true;
   }

@@ -65,25 +65,42 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
   return false;
 }
 
-const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
+template <class F>
+bool DiskIndex::search(const Vec3& p, int t, double w, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
     std::fill(stamp_.begin(), stamp_.end(), 0);
     stamp_value_ = 1;
   }
-  region_.clear();
-  region_.push_back(t);
+  // Breadth-first over every triangle the ball meets; f sees those facing like t.
+  queue_.assign(1, t);
   stamp_[t] = stamp_value_;
+  if (f(t)) return true;
   const Vec3 facing = normals_[t];
-  for (size_t k = 0; k < region_.size(); ++k) {
-    const int s = region_[k];
+  for (size_t k = 0; k < queue_.size(); ++k) {
+    const int s = queue_[k];
     for (int e = 0; e < 3; ++e) {
       const int n = mesh_.neighbor(s, e);
       if (n < 0 || stamp_[n] == stamp_value_) continue;
       stamp_[n] = stamp_value_;
-      if (dot(normals_[n], facing) > 0 && triangle_squared_distance(mesh_, n, p) < w) region_.push_back(n);
+      if (!(triangle_squared_distance(mesh_, n, p) < w)) continue;
+      queue_.push_back(n);
+      if (dot(normals_[n], facing) > 0 && f(n)) return true;
     }
   }
+  return false;
+}
+
+const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
+  region_.clear();
+  search(p, t, w, [&](int n) {
+    region_.push_back(n);
+    return false;
+  });
   return region_;
+}
+
+bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
+  return search(p, t, w, [&](int n) { return n == target; });
 }
 
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {

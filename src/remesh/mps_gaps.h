@@ -16,13 +16,13 @@ namespace lrvd::mps_detail {
 //! rational arithmetic otherwise.
 bool inside_disk(const Vec3& p, const Vec3& c, double w);
 
-//! The disks of the samples and, per triangle, which of them reach it. The disk of sample i is
-//! the part of the open ball B(x_i, r_i) lying in the triangles of its *local region*: the
-//! triangles within distance r_i of x_i that face the same way as x_i's triangle (normals at less
-//! than 90°) and are edge-connected to it through such triangles (the paper's region growing,
-//! stopped where the surface folds back, so that a disk does not wrap around a sheet thinner than
-//! r onto its other side). Each triangle lists the disks that cover it fully and those that reach
-//! it only partly, and the sample centres it holds.
+//! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
+//! ball B(x, r) around a point of triangle t: the triangles the ball meets that are edge-connected
+//! to t through triangles the ball meets (the paper's region growing) and face the same way as t
+//! (normals at less than 90°, so a region does not wrap around a sheet thinner than r onto its
+//! other side). The disk of sample i is B(x_i, r_i) on the triangles of its local region. Each
+//! triangle lists the disks that cover it fully and those that reach it only partly, and the
+//! sample centres it holds.
 class DiskIndex {
  public:
   explicit DiskIndex(const SurfaceMesh& mesh);
@@ -38,10 +38,12 @@ class DiskIndex {
   //! p, a point of triangle t, lies in the disk of a sample that reaches t.
   bool in_some_disk(const Vec3& p, int t) const;
 
-  //! The local region of a disk (p, w) grown from triangle t: t, then every triangle within
-  //! distance sqrt(w) of p (open) facing like t, joined to it across mesh edges. Valid until the
-  //! next call.
+  //! The local region of a disk (p, w) grown from triangle t: the triangles within distance
+  //! sqrt(w) of p (open), joined to t across mesh edges through such triangles, that face like t.
+  //! Valid until the next call.
   const std::vector<int>& grow(const Vec3& p, int t, double w);
+  //! Whether `target` is in the local region of (p, w) grown from t (leaves grow()'s result alone).
+  bool reaches(const Vec3& p, int t, double w, int target);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
   int insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region);
@@ -64,6 +66,8 @@ class DiskIndex {
   struct Link {
     int item, next;
   };
+  template <class F>
+  bool search(const Vec3& p, int t, double w, F&& f);
   const SurfaceMesh& mesh_;
   std::vector<Vec3> centers_, barycentric_;
   std::vector<double> weights_;
@@ -72,7 +76,7 @@ class DiskIndex {
   std::vector<Link> links_;
   std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
   std::uint32_t stamp_value_ = 0;
-  std::vector<int> region_;
+  std::vector<int> region_, queue_;
   std::vector<Vec3> normals_;  // unit normal per triangle
 };
 
