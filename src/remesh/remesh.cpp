@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "metrics/self_intersections.h"
 #include "predicates/predicates.h"
@@ -12,7 +13,69 @@
 
 namespace lrvd {
 
-DualDefects find_dual_defects(const DualMesh& dual, bool input_closed) {
+namespace {
+
+// Cells that are not disks (more than one boundary loop: a ring around a thin tube) and pairs of
+// cells that share more than one boundary arc (paper Fig. 13): the dual is wrong there even when
+// it looks like a manifold. Boundary pieces are joined through their shared symbolic vertices.
+void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect) {
+  using Key = std::pair<int, int>;  // (cell, 0) for a cell's whole boundary, (i, j + 1) for arc i|j
+  struct Piece {
+    Key key;
+    SymbolicVertex u, w;
+  };
+  std::vector<Piece> pieces;
+  for (const CellPolygon& poly : diagram.polygons) {
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const SymbolicVertex &u = v[k], &w = v[(k + 1) % poly.vertex_count];
+      int other = -1;  // the neighbour cell across this edge, or -2 on the mesh boundary
+      for (int e = 0; e < 3 && other == -1; ++e)
+        if (u.on_mesh_edge(tri[e], tri[(e + 1) % 3]) && w.on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+          other = mesh.neighbor(poly.triangle, e) < 0 ? -2 : -3;
+      if (other == -3) continue;  // inside the cell, across a mesh edge
+      if (other == -1)
+        for (int l : u.label)
+          if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
+      if (other == -1) continue;
+      pieces.push_back({{poly.cell, 0}, u, w});
+      if (other >= 0 && poly.cell < other) pieces.push_back({{poly.cell, other + 1}, u, w});
+    }
+  }
+  // Count connected components per key with a union-find over (key, vertex).
+  std::map<Key, std::map<std::tuple<int, std::array<int, 3>, std::array<int, 3>>, int>> ids;
+  std::map<Key, std::vector<int>> parents;
+  auto id_of = [&](const Key& key, const SymbolicVertex& q) {
+    auto& table = ids[key];
+    auto [it, fresh] = table.try_emplace(std::make_tuple(static_cast<int>(q.type), q.v, q.label),
+                                         static_cast<int>(table.size()));
+    if (fresh) parents[key].push_back(it->second);
+    return it->second;
+  };
+  auto root = [](std::vector<int>& parent, int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const Piece& p : pieces) {
+    const int a = id_of(p.key, p.u), b = id_of(p.key, p.w);
+    std::vector<int>& parent = parents[p.key];
+    const int ra = root(parent, a), rb = root(parent, b);
+    if (ra != rb) parent[ra] = rb;
+  }
+  for (auto& [key, parent] : parents) {
+    int components = 0;
+    for (int x = 0; x < static_cast<int>(parent.size()); ++x) components += root(parent, x) == x;
+    if (components <= 1) continue;
+    defect.insert(key.first);
+    if (key.second > 0) defect.insert(key.second - 1);
+  }
+}
+
+}  // namespace
+
+DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
+                              bool input_closed) {
   std::map<std::pair<int, int>, int> edge_count;
   std::map<Triangle, int> vertex_sets;
   for (const Triangle& t : dual.triangles) {
@@ -27,6 +90,7 @@ DualDefects find_dual_defects(const DualMesh& dual, bool input_closed) {
   for (const auto& [tri, count] : vertex_sets)
     if (count > 1) defect.insert(tri.begin(), tri.end());
   for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
+  add_cell_topology_defects(diagram, mesh, defect);
   // A sample in no triangle: its cell meets fewer than two others at a triple point (an island).
   std::vector<char> used(dual.positions.size(), 0);
   for (const Triangle& t : dual.triangles)
@@ -86,7 +150,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                                  : std::vector<double>(mesh.triangle_count(), 1.0);
   // Each round raises the density where the worst kind of defect is (topology first, crossings
   // next); the state with the fewest defects is the result.
-  DualDefects defects = find_dual_defects(result.dual, reference.is_closed());
+  DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed());
   RemeshResult best = result;
   DualDefects best_defects = defects;
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
@@ -96,7 +160,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
     result.total_iterations += result.cvt.iterations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-    defects = find_dual_defects(result.dual, reference.is_closed());
+    defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed());
     if (defects.fewer_than(best_defects)) {
       best_defects = defects;
       best = result;

@@ -24,7 +24,8 @@ struct RemeshResult {
 
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
-//! triangle, and triangles that intersect each
+//! triangle, cells that are not disks (a ring around a thin part) or share more than one boundary
+//! arc with a neighbour, and triangles that intersect each
 //! other: the samples involved (empty when the dual has none of these defects).
 struct DualDefects {
   std::vector<int> topological;  //!< samples at bad edges, repeated or merged triangles, unused samples
@@ -35,7 +36,8 @@ struct DualDefects {
                                                        : crossing.size() < o.crossing.size();
   }
 };
-DualDefects find_dual_defects(const DualMesh& dual, bool input_closed);
+DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
+                              bool input_closed);
 
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
