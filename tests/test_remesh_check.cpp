@@ -196,12 +196,29 @@ TEST_CASE("A collinear triangle fails non-degeneracy only") {
 }
 
 TEST_CASE("Two interpenetrating spheres fail self-intersection only") {
+  // Checked against an input whose two spheres are apart: the crossings are the remesh's own.
+  const SurfaceMesh apart = test::merge(test::icosphere(2), test::icosphere(2), {5, 0, 0});
   const SurfaceMesh spheres = test::merge(test::icosphere(2), test::icosphere(2), {1, 0, 0});
-  const RemeshVerification r = verify_self(spheres);
+  const RemeshVerification r = verify_remesh(apart, spheres.positions(), spheres.triangles(), spheres.vertex_count());
   require_only_failing(r, "no_self_intersection");
   REQUIRE(r.self_intersecting_pairs > 0);
+  REQUIRE(r.inherited_intersecting_pairs == 0);
   REQUIRE(r.self_intersecting_pairs == r.no_self_intersection.violations);
   REQUIRE(r.self_intersecting_pairs == pmp_self_intersections(spheres.positions(), spheres.triangles()));
+}
+
+TEST_CASE("Crossings between components that cross in the input too are inherited, not violations") {
+  const SurfaceMesh spheres = test::merge(test::icosphere(2), test::icosphere(2), {1, 0, 0});
+  const RemeshVerification r = verify_self(spheres);
+  REQUIRE(r.passed);
+  REQUIRE(r.self_intersecting_pairs == 0);
+  REQUIRE(r.inherited_intersecting_pairs == pmp_self_intersections(spheres.positions(), spheres.triangles()));
+  // A crossing inside one component still counts: a vertex of the first sphere pushed through it.
+  std::vector<Vec3> dented = spheres.positions();
+  dented[0] = -1.5 * dented[0];
+  const RemeshVerification d = verify_remesh(spheres, dented, spheres.triangles(), spheres.vertex_count());
+  REQUIRE_FALSE(d.no_self_intersection.passed);
+  REQUIRE(d.self_intersecting_pairs > 0);
 }
 
 TEST_CASE("Valid meshes have no self-intersecting pairs, as CGAL's PMP agrees") {

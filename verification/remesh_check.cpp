@@ -258,13 +258,28 @@ std::vector<char> check_non_degenerate(const std::vector<Vec3>& positions, const
   return testable;
 }
 
-int count_self_intersections(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles,
-                             const std::vector<char>& testable, PropertyResult& p) {
+// Counts the pairs of intersecting output triangles. When the input's own components cut through
+// each other, pairs from different output components are the input's intersections carried over,
+// counted in `inherited`, not as violations; pairs within one component always count.
+int count_self_intersections(const SurfaceMesh& input, const std::vector<Vec3>& positions,
+                             const std::vector<Triangle>& triangles, const std::vector<char>& testable,
+                             PropertyResult& p, int& inherited) {
   p.checked = std::count(testable.begin(), testable.end(), 1);
   const auto pairs = find_self_intersections(positions, triangles, testable);
-  for (const auto& [s, t] : pairs)
+  std::vector<int> component;
+  if (!pairs.empty() && components_intersect(input))
+    component = soup_components(static_cast<int>(positions.size()), triangles, testable);
+  int counted = 0;
+  inherited = 0;
+  for (const auto& [s, t] : pairs) {
+    if (!component.empty() && component[s] != component[t]) {
+      ++inherited;
+      continue;
+    }
+    ++counted;
     p.fail(fmt::format("{} and {} intersect", triangle_text(s, triangles[s]), triangle_text(t, triangles[t])));
-  return static_cast<int>(pairs.size());
+  }
+  return counted;
 }
 
 }  // namespace
@@ -280,7 +295,8 @@ RemeshVerification verify_remesh(const SurfaceMesh& input, const std::vector<Vec
   check_boundary_and_orientation(input, r, c);
   check_topology(input, n, triangles, r, c);
   const std::vector<char> testable = check_non_degenerate(positions, triangles, c.usable, r.non_degenerate);
-  r.self_intersecting_pairs = count_self_intersections(positions, triangles, testable, r.no_self_intersection);
+  r.self_intersecting_pairs = count_self_intersections(input, positions, triangles, testable,
+                                                       r.no_self_intersection, r.inherited_intersecting_pairs);
 
   for (const PropertyResult* p : {&r.vertex_count, &r.manifold, &r.closed, &r.oriented, &r.topology,
                                   &r.non_degenerate, &r.no_self_intersection})
@@ -305,6 +321,7 @@ nlohmann::json RemeshVerification::to_json() const {
           {"boundary_loops", boundary_loops},
           {"input_boundary_loops", input_boundary_loops},
           {"self_intersecting_pairs", self_intersecting_pairs},
+          {"inherited_intersecting_pairs", inherited_intersecting_pairs},
           {"properties",
            {{"vertex_count", property_json(vertex_count)},
             {"manifold", property_json(manifold)},

@@ -23,11 +23,13 @@ struct RemeshVerification {
                                       //!< (for a closed input with each hole capped, so a hole fails `closed` only)
   PropertyResult non_degenerate;      //!< no triangle with (exactly) collinear corners
   PropertyResult no_self_intersection;  //!< no two triangles intersect beyond their shared elements
+                                        //!< (but for the input's own: see inherited_intersecting_pairs)
   //! Of the output: components joined across edges, Σ of their V - E + F, Σ of their genus
   //! (2 - χ - boundary loops) / 2, or -1 when the output is not manifold.
   int components = 0, euler_characteristic = 0, genus = 0;
   int boundary_loops = 0, input_boundary_loops = 0;  //!< reported; promised equal only through `topology`
-  int self_intersecting_pairs = 0;
+  int self_intersecting_pairs = 0;       //!< intersecting pairs that count as violations
+  int inherited_intersecting_pairs = 0;  //!< pairs between components whose input components intersect too
   nlohmann::json to_json() const;
   std::string summary() const;
 };

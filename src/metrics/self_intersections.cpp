@@ -79,4 +79,31 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
   return pairs;
 }
 
+bool components_intersect(const SurfaceMesh& mesh) {
+  if (mesh.component_count() < 2) return false;
+  for (const auto& [s, t] : find_self_intersections(mesh.positions(), mesh.triangles()))
+    if (mesh.triangle_components()[s] != mesh.triangle_components()[t]) return true;
+  return false;
+}
+
+std::vector<int> soup_components(int vertex_count, const std::vector<Triangle>& triangles,
+                                 const std::vector<char>& testable) {
+  std::vector<int> parent(vertex_count);
+  for (int v = 0; v < vertex_count; ++v) parent[v] = v;
+  auto root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable.empty() || testable[t])
+      for (int c = 1; c < 3; ++c) {
+        const int a = root(triangles[t][0]), b = root(triangles[t][c]);
+        if (a != b) parent[a] = b;
+      }
+  std::vector<int> component(triangles.size(), -1);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable.empty() || testable[t]) component[t] = root(triangles[t][0]);
+  return component;
+}
+
 }  // namespace lrvd

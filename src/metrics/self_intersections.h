@@ -15,4 +15,13 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
                                                          const std::vector<Triangle>& triangles,
                                                          const std::vector<char>& testable = {});
 
+//! Whether two different connected components of the mesh cut through each other (a
+//! self-intersecting surface such as two interpenetrating spheres, paper Fig. 11).
+bool components_intersect(const SurfaceMesh& mesh);
+
+//! Connected component of each triangle of a triangle soup (triangles joined through shared
+//! vertices); -1 for triangles with testable[t] == 0.
+std::vector<int> soup_components(int vertex_count, const std::vector<Triangle>& triangles,
+                                 const std::vector<char>& testable);
+
 }  // namespace lrvd

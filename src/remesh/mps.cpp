@@ -74,11 +74,12 @@ Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bar
 //! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each
 //! other when each one's triangle lies in the local region of the other's ball of radius
 //! ρ = max(r_i, r_j); local samples must be at least ρ apart. A dart p in triangle t is rejected
-//! when it lies in the disk of a sample (then they are local, or p lies past a notch from that
-//! sample's point of view — rejecting there is never needed for the rule but keeps coverage simple).
-//! Uniform radius: nothing else can conflict. Adaptive: p's radius r(p) is cut to just below the
-//! distance of every local sample closer than r(p) (never below that sample's radius, hence never
-//! below r_min). So no two local samples are closer than the larger of their radii.
+//! when it lies in the disk of a sample (the disks are what the gaps are made of). With a uniform
+//! radius nothing else can conflict. Adaptive: p's radius r(p) is cut to just below the distance
+//! of every local sample closer than that (which is at least that sample's radius, so never below
+//! r_min; a local sample closer than its own radius rejects the dart); and against every sample
+//! around, local or not (another sheet, past a notch), it keeps |r_p² − r_j²| <= |p − x_j|², so
+//! that no sample falls into another's power cell and the LRPD keeps one cell per sample.
 class Sampler {
  public:
   Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
@@ -99,38 +100,47 @@ class Sampler {
   bool try_insert(const Vec3& p, int t, const Vec3& bary) {
     if (disks_.in_some_disk(p, t)) return false;
     const double w = weight_at(t, bary);
-    double w_new = w;
-    region_ = disks_.grow(p, t, w);
-    if (!vertex_radius_.empty()) {
-      bool reject = false;
-      for (int s : region_)
-        disks_.for_each_center(s, [&](int j) {
-          if (reject || !inside_disk(disks_.center(j), p, w_new)) return;
-          // x_j is in p's region: local if t is in x_j's region at radius max(r(p), r_j).
-          const double rho2 = std::max(w_new, disks_.weight(j));
-          if (!disks_.reaches(disks_.center(j), disks_.triangle(j), rho2, t)) return;
-          if (inside_disk(p, disks_.center(j), disks_.weight(j))) {
-            reject = true;  // closer than r_j: no radius for p helps
-            return;
-          }
-          w_new = squared_distance(disks_.center(j), p) * (1 - 1e-14);  // |p - x_j|² > w_new exactly
-        });
-      if (reject) return false;
-      if (w_new < w) {
-        region_ = disks_.grow(p, t, w_new);
-        ++clamped_;
-      }
+    if (vertex_radius_.empty()) {
+      region_ = disks_.grow(p, t, w);
+      disks_.insert(p, t, bary, w, region_);
+      return true;
     }
-    disks_.insert(p, t, bary, w_new, region_);
+    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets.
+    disks_.grow(p, t, kScan * kScan * w);
+    met_ = disks_.last_met();
+    double lo = r_min2_, hi = w;  // the allowed range of p's weight
+    bool reject = false;
+    for (int s : met_)
+      disks_.for_each_center(s, [&](int j) {
+        if (reject) return;
+        const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
+        hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
+        lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
+        if (!disks_.faces_like(s, t) || !inside_disk(disks_.center(j), p, hi)) return;
+        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j).
+        if (!disks_.reaches(disks_.center(j), j_triangle(j), std::max(hi, wj), t)) return;
+        if (inside_disk(p, disks_.center(j), wj)) {
+          reject = true;  // closer than r_j: no radius for p helps
+          return;
+        }
+        hi = d2 * (1 - 1e-14);  // |p - x_j|² > hi exactly
+      });
+    if (reject || lo > hi) return false;
+    if (hi < w) ++clamped_;
+    region_ = disks_.grow(p, t, hi);
+    disks_.insert(p, t, bary, hi, region_);
     return true;
   }
 
  private:
+  static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
+  int j_triangle(int j) const { return disks_.triangle(j); }
+
   const SurfaceMesh& mesh_;
   double r_min2_;
   std::vector<double> vertex_radius_;
   DiskIndex disks_;
-  std::vector<int> region_;
+  std::vector<int> region_, met_;
   int clamped_ = 0;
 };
 

@@ -42,7 +42,12 @@ class DiskIndex {
   //! sqrt(w) of p (open), joined to t across mesh edges through such triangles, that face like t.
   //! Valid until the next call.
   const std::vector<int>& grow(const Vec3& p, int t, double w);
-  //! Whether `target` is in the local region of (p, w) grown from t (leaves grow()'s result alone).
+  //! Every triangle the last grow() met (the region before the facing test), until the next call.
+  const std::vector<int>& last_met() const { return queue_; }
+  //! Triangles s and t face the same way (normals at less than 90°).
+  bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > 0; }
+  //! Whether `target` is in the local region of (p, w) grown from t (leaves grow()'s result alone,
+  //! not last_met()).
   bool reaches(const Vec3& p, int t, double w, int target);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.

@@ -75,7 +75,7 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
 }  // namespace
 
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
-                              bool input_closed) {
+                              bool input_closed, bool input_components_cross) {
   std::map<std::pair<int, int>, int> edge_count;
   std::map<Triangle, int> vertex_sets;
   for (const Triangle& t : dual.triangles) {
@@ -105,7 +105,13 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
                   !predicates::collinear(dual.positions[f[0]], dual.positions[f[1]], dual.positions[f[2]]);
   }
   std::set<int> crossing;
-  for (const auto& [s, t] : find_self_intersections(dual.positions, dual.triangles, testable)) {
+  const auto pairs = find_self_intersections(dual.positions, dual.triangles, testable);
+  // Crossings between components whose input components cross too are the input's own.
+  const std::vector<int> component = input_components_cross && !pairs.empty()
+                                         ? soup_components(static_cast<int>(dual.positions.size()), dual.triangles, testable)
+                                         : std::vector<int>();
+  for (const auto& [s, t] : pairs) {
+    if (!component.empty() && component[s] != component[t]) continue;
     crossing.insert(dual.triangles[s].begin(), dual.triangles[s].end());
     crossing.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   }
@@ -137,6 +143,7 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, std::
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const bool components_cross = components_intersect(reference);
   RemeshResult result;
   result.cvt = optimize_cvt(mesh, initial, options.cvt);
   result.total_iterations = result.cvt.iterations;
@@ -150,7 +157,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                                  : std::vector<double>(mesh.triangle_count(), 1.0);
   // Each round raises the density where the worst kind of defect is (topology first, crossings
   // next); the state with the fewest defects is the result.
-  DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed());
+  DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
   RemeshResult best = result;
   DualDefects best_defects = defects;
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
@@ -160,7 +167,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
     result.total_iterations += result.cvt.iterations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-    defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed());
+    defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
     if (defects.fewer_than(best_defects)) {
       best_defects = defects;
       best = result;

@@ -25,8 +25,9 @@ struct RemeshResult {
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
 //! triangle, cells that are not disks (a ring around a thin part) or share more than one boundary
-//! arc with a neighbour, and triangles that intersect each
-//! other: the samples involved (empty when the dual has none of these defects).
+//! arc with a neighbour, and triangles that intersect each other (but for crossings between
+//! components when the input's components cross each other too: `input_components_cross`): the
+//! samples involved (empty when the dual has none of these defects).
 struct DualDefects {
   std::vector<int> topological;  //!< samples at bad edges, repeated or merged triangles, unused samples
   std::vector<int> crossing;     //!< samples of triangles that intersect others
@@ -37,7 +38,7 @@ struct DualDefects {
   }
 };
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
-                              bool input_closed);
+                              bool input_closed, bool input_components_cross);
 
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
