@@ -1,5 +1,5 @@
 // Centroidal Voronoi tessellation on a surface (paper §4.1): Lloyd relaxation or L-BFGS on the
-// CVT energy computed exactly on the LRVD (or the RVD, for comparison), samples kept on the surface.
+// CVT energy computed exactly on the LRVD (or the RVD, for comparison); the result lies on the surface.
 #pragma once
 
 #include <functional>
