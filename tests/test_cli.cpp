@@ -118,3 +118,14 @@ TEST_CASE("lrvd stress lists and writes the stress meshes", "[cli]") {
   REQUIRE(in.good());
   REQUIRE(run("--version").status == 0);
 }
+
+TEST_CASE("lrvd refuses a triangle soup naming --repair, and --repair welds it", "[cli]") {
+  const std::string soup = std::string(LRVD_SOURCE_DIR) + "/tests/data/soup.off";
+  const Run refused = run("compute " + soup + " -n 10");
+  REQUIRE(refused.status == 2);
+  REQUIRE(refused.err.find("--repair") != std::string::npos);
+  REQUIRE(lines(refused.err) == 1);
+  const std::string report = kOut + "soup.json";
+  REQUIRE(run("compute " + soup + " -n 10 --repair --report " + report).status == 0);
+  REQUIRE(read_json(report)["input"]["closed"] == true);
+}

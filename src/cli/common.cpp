@@ -57,6 +57,19 @@ std::vector<double> read_weights(const std::string& path) {
 Input load_input(const InputOptions& opt) {
   Input input;
   input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
+  if (opt.repair) {
+    const RepairReport& r = input.loaded.repair;
+    std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
+                                                         "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
+                                                         "copied {} non-manifold vertices, triangulated {} polygons",
+                                                         r.merged_vertices, r.removed_degenerate_faces,
+                                                         r.removed_duplicate_faces, r.removed_unreferenced_vertices,
+                                                         r.reoriented_faces, r.stitched_edges,
+                                                         r.duplicated_nonmanifold_vertices, r.triangulated_faces)
+                                                 .c_str()
+                                           : "nothing to change");
+    for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
+  }
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {
