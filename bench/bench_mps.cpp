@@ -2,7 +2,8 @@
 // r_min = 0.004 in the unit cube, init / dart throwing / gap filling / total seconds and sample
 // counts per model, then the independent checks (minimum distance, maximality on a fresh LRPD).
 //
-// Usage: bench_mps [--quick] [--no-verify] [--json FILE] [--gap-update local|lrpd] [MESH ...]
+// Usage: bench_mps [--quick] [--no-verify] [--remesh] [--json FILE] [--gap-update local|lrpd] [MESH ...]
+// --remesh also checks the LRRT of the samples (verify_remesh against the input).
 // Without meshes: CGAL's armadillo, ChineseDragon-10kv and bunny00 (LRVD_CGAL_DATA_DIR), then the
 // Table 3 models of /work/shared/data/meshes when present (feline, vaselion, dragon_100k,
 // gargoyle_100k). --quick runs uniform only with r = 0.01.
@@ -16,22 +17,30 @@
 #include "mesh/mesh_io.h"
 #include "remesh/mps.h"
 #include "verification/mps_check.h"
+#include "verification/remesh_check.h"
+#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace {
+
+std::string fmt_violations(const lrvd::RemeshVerification& v) {
+  return "INVALID(unused " + std::to_string(v.vertex_count.violations) + ", non-manifold " +
+         std::to_string(v.manifold.violations) + ", self-intersections " + std::to_string(v.self_intersecting_pairs) + ")";
+}
 
 struct Row {
   std::string model, mode;
   double r;
   lrvd::MpsResult result;
   bool verified = false, maximal = false, min_distance = false;
+  std::string remesh = "-";
   double verify_s = 0;
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool quick = false, verify = true;
+  bool quick = false, verify = true, remesh = false;
   std::string json_path;
   lrvd::MpsGapUpdate update = lrvd::MpsGapUpdate::Local;
   std::vector<std::string> meshes;
@@ -39,6 +48,7 @@ int main(int argc, char** argv) {
     const std::string arg = argv[a];
     if (arg == "--quick") quick = true;
     else if (arg == "--no-verify") verify = false;
+    else if (arg == "--remesh") remesh = true;
     else if (arg == "--json" && a + 1 < argc) json_path = argv[++a];
     else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
     else meshes.push_back(arg);
@@ -78,17 +88,26 @@ int main(int argc, char** argv) {
       const lrvd::MpsResult& r = row.result;
       std::string checks = "-";
       if (verify) {
-        const lrvd::MpsVerification v = lrvd::verify_mps(r.mesh, r.samples);
+        lrvd::LrvdOptions lrpd_options;
+        lrpd_options.weighted = true;
+        const lrvd::Diagram lrpd = lrvd::compute_lrvd(r.mesh, r.samples, lrpd_options);
+        const lrvd::MpsVerification v = lrvd::verify_mps(r.mesh, r.samples, lrpd);
         row.verified = true;
         row.maximal = v.maximal.passed && v.diagram_covers.passed;
         row.min_distance = v.min_distance.passed;
-        row.verify_s = v.time_s;
+        row.verify_s = v.time_s + lrpd.stats.time_s;
         if (!v.passed) {
           std::fputs(v.summary().c_str(), stderr);
           std::fprintf(stderr, "gaps_closed %d, first LRPD gap pieces %d, dropped %d, clamped %d\n", r.gaps_closed,
                        r.gap_pieces, r.dropped_gap_pieces, r.clamped_radii);
         }
         checks = std::string(row.maximal ? "maximal" : "NOT-MAXIMAL") + "," + (row.min_distance ? "min-dist" : "MIN-DIST-FAIL");
+        if (remesh) {
+          const lrvd::DualMesh dual = lrvd::compute_dual(lrpd, r.mesh, r.samples);
+          const lrvd::RemeshVerification rv = lrvd::verify_remesh(mesh, dual.positions, dual.triangles, r.samples.size());
+          row.remesh = rv.passed ? "valid" : fmt_violations(rv);
+          checks += ",remesh " + row.remesh;
+        }
       }
       std::printf("%-22s %-8s %6.3f %8d %7.2f %7.2f %7.2f %7.2f %9.2f %s (darts %lld, gap samples %d, LRPDs %d, triangles %d)\n",
                   model.c_str(), row.mode.c_str(), row.r, r.samples.size(), r.time_s.init, r.time_s.dart_throwing,
@@ -109,6 +128,7 @@ int main(int argc, char** argv) {
                                  {"gap_filling", r.time_s.gap_filling}, {"total", r.time_s.total}}},
                      {"verify_s", row.verify_s},
                      {"maximal", row.maximal},
+                     {"remesh", row.remesh},
                      {"min_distance_ok", row.min_distance}});
     }
   }

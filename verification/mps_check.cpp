@@ -54,8 +54,8 @@ std::uint64_t pair_key(int i, int j) {
 }
 
 // Local regions of balls, grown independently of the sampler: the triangles the ball B(x, r)
-// meets, edge-connected to x's triangle t through triangles it meets, that face like t (normals at
-// less than 90°).
+// meets that face like x's triangle t (normals at less than 90°), edge-connected to t through
+// such triangles.
 class LocalRegions {
  public:
   explicit LocalRegions(const SurfaceMesh& mesh) : mesh_(mesh), stamp_(mesh.triangle_count(), -1), normals_(mesh.triangle_count()) {
@@ -73,12 +73,13 @@ class LocalRegions {
         const int n = mesh_.neighbor(queue_[k], e);
         if (n < 0 || stamp_[n] == epoch_) continue;
         stamp_[n] = epoch_;
+        if (!(dot(normals_[n], normals_[t]) > 0)) continue;
         const Triangle& tri = mesh_.triangle(n);
         const ClosestPoint c =
             closest_point_on_triangle(x, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
         if (!(squared_distance(x, c.point) < w)) continue;
         queue_.push_back(n);
-        if (dot(normals_[n], normals_[t]) > 0 && f(n)) return true;
+        if (f(n)) return true;
       }
     return false;
   }

@@ -26,8 +26,8 @@ struct MpsVerification {
   double time_s = 0;
   //! Local samples are at least max(r_i, r_j) apart (exact). Samples i and j are local to each
   //! other when each one's triangle lies in the local region of the other's ball of radius
-  //! max(r_i, r_j): the triangles the ball meets, edge-connected to the centre's triangle through
-  //! triangles it meets, that face like the centre's triangle (normals at less than 90°).
+  //! max(r_i, r_j): the triangles the ball meets that face like the centre's triangle (normals at
+  //! less than 90°), edge-connected to it through such triangles.
   PropertyResult min_distance;
   //! Every polygon of cell i of the LRPD (weights r²) lies in the ball (x_i, r_i): all its vertices
   //! do, which suffices since the polygon is convex and the ball cut by its plane is a convex disk.

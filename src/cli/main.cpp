@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add(add_verify_command);
   add(add_remesh_command);
   add(add_quality_command);
+  add(add_mps_command);
   add(add_stress_command);
 
   try {

@@ -7,8 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <queue>
-#include <cstdio>
-#include <cstdlib>
 
 #include <fmt/format.h>
 
@@ -106,8 +104,7 @@ class Sampler {
       return true;
     }
     // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets.
-    disks_.grow(p, t, kScan * kScan * w);
-    met_ = disks_.last_met();
+    met_ = disks_.met(p, t, kScan * kScan * w);
     double lo = r_min2_, hi = w;  // the allowed range of p's weight
     bool reject = false;
     for (int s : met_)
@@ -117,8 +114,9 @@ class Sampler {
         hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
         lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
         if (!disks_.faces_like(s, t) || !inside_disk(disks_.center(j), p, hi)) return;
-        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j).
-        if (!disks_.reaches(disks_.center(j), j_triangle(j), std::max(hi, wj), t)) return;
+        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j) (on p's
+        // side, meeting the ball and facing alike is taken as enough: cutting more is safe).
+        if (!disks_.reaches(disks_.center(j), disks_.triangle(j), std::max(hi, wj), t)) return;
         if (inside_disk(p, disks_.center(j), wj)) {
           reject = true;  // closer than r_j: no radius for p helps
           return;
@@ -134,7 +132,6 @@ class Sampler {
 
  private:
   static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
-  int j_triangle(int j) const { return disks_.triangle(j); }
 
   const SurfaceMesh& mesh_;
   double r_min2_;
@@ -316,34 +313,47 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     ++result.lrpd_evaluations;
     gaps.extract(lrpd);
     if (round == 0) result.gap_pieces = gaps.alive();
-    if (gaps.empty()) {
+    // Closed when the LRPD shows no gap and, with local updates, the disks reaching every spot
+    // that only a remote ball covers cover it too.
+    if (gaps.uncovered_polygons() == 0 && (!local || gaps.empty())) {
       result.gaps_closed = true;
       break;
     }
+    if (gaps.empty()) break;  // gaps the LRPD shows but disks it does not list cover: no dart can help
+    const bool lrpd_clean = gaps.uncovered_polygons() == 0;
     progress(fmt::format("filling {} gap pieces", gaps.alive()));
-    // With local updates every point drawn outside its piece's owner disk is a valid dart, so the
-    // limit only guards against rounding trouble; the paper's loop stops after 300 rejections.
+    // With local updates a point drawn outside its piece's owner disk is a valid dart (uniform
+    // radius) or almost always (adaptive), so the limit only ends hopeless rounds; the paper's
+    // loop recomputes the LRPD after 300 rejections in a row.
     const std::int64_t limit = local ? std::max<std::int64_t>(100000, 1000 * std::int64_t(gaps.alive()))
                                      : options.max_consecutive_rejections;
+    const int before = sampler.disks().size();
     for (std::int64_t rejections = 0; !gaps.empty() && rejections < limit;) {
       Vec3 p;
-      int t = -1;
+      int t = -1, piece = -1;
       ++result.darts;
-      if (!gaps.draw(random, p, t)) {
+      if (!gaps.draw(random, p, t, piece)) {
         ++rejections;
         continue;
       }
       if (!sampler.try_insert(p, t, barycentric_in_triangle(m, t, p))) {
-        if (getenv("MPS_DEBUG") && rejections % 100000 == 0) fprintf(stderr, "reject at tri %d: in_disk %d, pieces %d\n", t, sampler.disks().in_some_disk(p, t), gaps.alive());
         ++rejections;
+        if (local) gaps.dart_refused(piece);
         continue;
       }
       rejections = 0;
       ++result.gap_samples;
       gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());
     }
-    if (local && gaps.empty()) {
+    // Local updates that emptied the gaps leave every spot covered by a disk reaching it, which
+    // stays so: the LRPD of the final samples shows no gap where it lists that disk. Pieces given
+    // up (darts refused for the adaptive radius) need another LRPD to see whether a ball covers them.
+    if (local && gaps.empty() && gaps.given_up() == 0) {
       result.gaps_closed = true;
+      break;
+    }
+    if (sampler.disks().size() == before) {  // no progress: this LRPD is that of the final samples
+      result.gaps_closed = lrpd_clean;
       break;
     }
   }

@@ -23,13 +23,13 @@ enum class MpsGapUpdate {
 struct MpsOptions {
   double radius = 0.01;                  //!< r (uniform) or r_min (adaptive), relative to the longest bounding-box side
   bool adaptive = false;                 //!< radius from curvature, never below r_min
-  double max_radius_ratio = 4.0;         //!< adaptive: r_max / r_min (flat parts get r_max)
+  double max_radius_ratio = 2.0;         //!< adaptive: r_max / r_min (flat parts get r_max)
   double curvature_fraction = 0.5;       //!< adaptive: on curved parts r ≈ this fraction of the radius of curvature
   double gradation = 0.3;                //!< adaptive: Lipschitz bound of r along mesh edges (|Δr| <= g·length)
   std::uint64_t seed = 1;                //!< the same seed gives the same samples on every machine
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
-  int max_gap_rounds = 200;              //!< LRPD evaluations allowed for gap detection before giving up
+  int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
   std::function<void(const std::string&)> on_progress;
@@ -67,9 +67,12 @@ struct MpsResult {
 //!        that more than options.max_expected_samples samples would be needed.
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options = {});
 
-//! The radius of the adaptive sampling at each vertex (absolute): r_max / sqrt(1 + (κ r_max / (f·... )))
-//! — r_max on flat parts, about `curvature_fraction` times the radius of curvature on curved parts,
-//! never below r_min, then limited to change by at most `gradation` per unit length along edges.
+//! The radius of the adaptive sampling at each vertex (absolute, paper §4.2's r(x) of a density):
+//! with κ the mean curvature (cotangent Laplacian, smoothed twice over the one-ring; 0 on the
+//! boundary), r_max = max_radius_ratio·r_min and f = curvature_fraction,
+//! r = max(r_min, r_max / sqrt(1 + (κ·r_max / f)²)) — r_max where the surface is flat, about f
+//! times the radius of curvature where it bends — then limited so that it changes by at most
+//! `gradation` per unit length along edges. The sampler interpolates it linearly in triangles.
 std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min, const MpsOptions& options);
 
 //! Expected number of samples for a radius (absolute) on this mesh: area / (√3/2 · r²), the

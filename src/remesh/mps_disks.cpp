@@ -66,12 +66,13 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
 }
 
 template <class F>
-bool DiskIndex::search(const Vec3& p, int t, double w, F&& f) {
+bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
     std::fill(stamp_.begin(), stamp_.end(), 0);
     stamp_value_ = 1;
   }
-  // Breadth-first over every triangle the ball meets; f sees those facing like t.
+  // Breadth-first over the triangles the ball meets (only through those facing like t when
+  // facing_only); f sees those facing like t.
   queue_.assign(1, t);
   stamp_[t] = stamp_value_;
   if (f(t)) return true;
@@ -82,9 +83,10 @@ bool DiskIndex::search(const Vec3& p, int t, double w, F&& f) {
       const int n = mesh_.neighbor(s, e);
       if (n < 0 || stamp_[n] == stamp_value_) continue;
       stamp_[n] = stamp_value_;
-      if (!(triangle_squared_distance(mesh_, n, p) < w)) continue;
+      const bool faces = dot(normals_[n], facing) > kFacingCosine;
+      if ((facing_only && !faces) || !(triangle_squared_distance(mesh_, n, p) < w)) continue;
       queue_.push_back(n);
-      if (dot(normals_[n], facing) > 0 && f(n)) return true;
+      if (faces && f(n)) return true;
     }
   }
   return false;
@@ -92,15 +94,20 @@ bool DiskIndex::search(const Vec3& p, int t, double w, F&& f) {
 
 const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
   region_.clear();
-  search(p, t, w, [&](int n) {
+  search(p, t, w, true, [&](int n) {
     region_.push_back(n);
     return false;
   });
   return region_;
 }
 
+const std::vector<int>& DiskIndex::met(const Vec3& p, int t, double w) {
+  search(p, t, w, false, [](int) { return false; });
+  return queue_;
+}
+
 bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
-  return search(p, t, w, [&](int n) { return n == target; });
+  return search(p, t, w, true, [&](int n) { return n == target; });
 }
 
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {

@@ -16,6 +16,7 @@ constexpr int kMaxBisections = 6;        // depth of the halving that tightens a
 constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fraction of the polygon
 constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
 constexpr double kVertexMargin = 1e-6;   // |d| <= this·w: decide a cell vertex's coverage exactly
+constexpr int kMaxRefusals = 64;         // darts a piece may see refused before it is given up
 
 struct P2 {
   double x, y;
@@ -119,20 +120,17 @@ void GapSet::clear() {
 
 void GapSet::extract(const Diagram& lrpd) {
   clear();
+  uncovered_polygons_ = 0;
+  remote_claims_ = 0;
+  given_up_ = 0;
   const SymbolicContext ctx = lrpd.context(mesh_);
   std::vector<Vec3> polygon;
   std::vector<int> fresh;
   for (const CellPolygon& cp : lrpd.polygons) {
     const int t = cp.triangle, i = cp.cell;
-    if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
-    // The LRPD's claim "covered by its own disk" counts only where that disk reaches t: the
-    // sampler's coverage (the union of the disks as their local regions bound them) only grows,
-    // whereas the cell that holds a spot may change as samples are added.
-    bool own = false;
-    disks_.for_each_disk(t, [&](int j) { own |= j == i; });
     polygon.clear();
-    bool covered = own;
+    bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
     for (int k = 0; k < cp.vertex_count; ++k) {
       const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
       polygon.push_back(position(q, ctx));
@@ -143,11 +141,24 @@ void GapSet::extract(const Diagram& lrpd) {
       else
         covered = d < 0;
     }
-    if (covered) continue;
+    bool own = false;  // the cell's disk reaches t (t is in its local region)
+    disks_.for_each_disk(t, [&](int j) { own |= j == i; });
+    if (covered && own) continue;
+    if (covered) {
+      // Covered through a ball whose disk does not reach t (another sheet, past a notch): a later
+      // insertion may hand the spot to another cell. With local updates the spot is treated as a
+      // gap of the disks that do reach t, which cover it for good once the darts are done.
+      ++remote_claims_;
+      if (!local_) continue;
+    } else {
+      ++uncovered_polygons_;
+    }
+    if (disks_.fully_covered(t)) continue;
     if (!local_) {
       add_outside(polygon, t, own ? i : -1);
       continue;
     }
+    if (covered) own = false;  // the cell's ball does cover the polygon, but not as a disk reaching t
     // Local updates: the gap must be exactly what no disk reaching t covers. Start from the cell
     // minus its own disk (when that disk reaches t), then split by every other disk reaching t.
     const size_t before = pieces_.size();
@@ -363,7 +374,16 @@ void GapSet::rebuild() {
   }
 }
 
-bool GapSet::draw(Random& random, Vec3& point, int& triangle) {
+void GapSet::dart_refused(int piece) {
+  if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return;
+  if (++pieces_[piece].refused >= kMaxRefusals) {
+    kill(piece);
+    ++given_up_;
+  }
+}
+
+bool GapSet::draw(Random& random, Vec3& point, int& triangle, int& piece) {
+  piece = -1;
   if (pieces_.size() > fenwick_.size() || dead_since_rebuild_ > 2 * alive_ + 1024) rebuild();
   if (alive_ == 0) return false;
   // Fenwick descent to the piece holding the cumulative area u.
@@ -378,15 +398,16 @@ bool GapSet::draw(Random& random, Vec3& point, int& triangle) {
   }
   if (pos >= static_cast<int>(pieces_.size()) || !pieces_[pos].alive) return false;
   const Piece& pc = pieces_[pos];
+  piece = pos;
   const Vec3* q = points_.data() + pc.first;
   // A fan triangle by area, then a uniform point in it.
-  double fan[32];
-  const int nf = std::min(pc.count - 2, 32);
+  const int nf = pc.count - 2;
+  fan_.resize(nf);
   double sum = 0;
-  for (int k = 0; k < nf; ++k) fan[k] = (sum += norm(cross(q[k + 1] - q[0], q[k + 2] - q[0])));
+  for (int k = 0; k < nf; ++k) fan_[k] = (sum += norm(cross(q[k + 1] - q[0], q[k + 2] - q[0])));
   const double v = random.uniform() * sum;
   int k = 0;
-  while (k + 1 < nf && fan[k] <= v) ++k;
+  while (k + 1 < nf && fan_[k] <= v) ++k;
   const double r = std::sqrt(random.uniform()), s = random.uniform();
   point = (1 - r) * q[0] + (r * (1 - s)) * q[k + 1] + (r * s) * q[k + 2];
   triangle = pc.triangle;

@@ -12,16 +12,19 @@
 
 namespace lrvd::mps_detail {
 
+//! Two triangles "face alike" when the cosine of the angle between their normals exceeds this.
+constexpr double kFacingCosine = 0.0;
+
 //! |p - c|² < w, decided exactly: doubles when the rounding error cannot change the answer,
 //! rational arithmetic otherwise.
 bool inside_disk(const Vec3& p, const Vec3& c, double w);
 
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
-//! ball B(x, r) around a point of triangle t: the triangles the ball meets that are edge-connected
-//! to t through triangles the ball meets (the paper's region growing) and face the same way as t
-//! (normals at less than 90°, so a region does not wrap around a sheet thinner than r onto its
-//! other side). The disk of sample i is B(x_i, r_i) on the triangles of its local region. Each
-//! triangle lists the disks that cover it fully and those that reach it only partly, and the
+//! ball B(x, r) around a point of triangle t: the triangles that the ball meets and that face the
+//! same way as t (normals at less than 90°), edge-connected to t through such triangles — the
+//! paper's region growing, kept from wrapping around a sheet thinner than r onto its other side
+//! or across a fold. The disk of sample i is B(x_i, r_i) on the triangles of its local region.
+//! Each triangle lists the disks that cover it fully and those that reach it only partly, and the
 //! sample centres it holds.
 class DiskIndex {
  public:
@@ -38,16 +41,15 @@ class DiskIndex {
   //! p, a point of triangle t, lies in the disk of a sample that reaches t.
   bool in_some_disk(const Vec3& p, int t) const;
 
-  //! The local region of a disk (p, w) grown from triangle t: the triangles within distance
-  //! sqrt(w) of p (open), joined to t across mesh edges through such triangles, that face like t.
-  //! Valid until the next call.
+  //! The local region of the ball (p, w) around a point of triangle t. Valid until the next call.
   const std::vector<int>& grow(const Vec3& p, int t, double w);
-  //! Every triangle the last grow() met (the region before the facing test), until the next call.
-  const std::vector<int>& last_met() const { return queue_; }
+  //! Every triangle the ball (p, w) meets, edge-connected to t through such triangles whichever
+  //! way they face. Valid until the next call.
+  const std::vector<int>& met(const Vec3& p, int t, double w);
   //! Triangles s and t face the same way (normals at less than 90°).
-  bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > 0; }
-  //! Whether `target` is in the local region of (p, w) grown from t (leaves grow()'s result alone,
-  //! not last_met()).
+  bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > kFacingCosine; }
+  //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
+  //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
@@ -72,7 +74,7 @@ class DiskIndex {
     int item, next;
   };
   template <class F>
-  bool search(const Vec3& p, int t, double w, F&& f);
+  bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
   const SurfaceMesh& mesh_;
   std::vector<Vec3> centers_, barycentric_;
   std::vector<double> weights_;
@@ -101,18 +103,28 @@ class GapSet {
   GapSet(const SurfaceMesh& mesh, const DiskIndex& disks, bool local_updates, double min_piece_area);
 
   //! Replaces the pieces by the gaps of an LRPD of the current samples: each cell polygon that
-  //! its disk does not cover, minus that disk (and, with local updates, minus every disk that
-  //! reaches its triangle).
+  //! its ball does not cover, minus that ball where the cell's disk reaches the triangle. With
+  //! local updates also the polygons only a *remote* ball covers (one whose disk does not reach
+  //! the triangle), and every piece minus every disk that reaches its triangle.
   void extract(const Diagram& lrpd);
+  //! Of the last extract(): polygons their ball does not cover (the LRPD's gaps), and polygons
+  //! covered by a remote ball.
+  int uncovered_polygons() const { return uncovered_polygons_; }
+  int remote_claims() const { return remote_claims_; }
   //! After the insertion of `sample` with local region `region`: with local updates, the pieces
   //! it reaches lose its disk; in the paper's mode, the pieces inside its disk are removed.
   void update_after_insert(int sample, const std::vector<int>& region);
 
   bool empty() const { return alive_ == 0; }
   int alive() const { return alive_; }
-  //! A point drawn uniformly over the union of the pieces' polygons Q, with its triangle. Returns
-  //! false when it falls in the owner's disk (so accepted points are uniform over the gaps).
-  bool draw(Random& random, Vec3& point, int& triangle);
+  //! A point drawn uniformly over the union of the pieces' polygons Q, with its triangle and
+  //! piece. Returns false when it falls in the owner's disk (so accepted points are uniform over
+  //! the gaps).
+  bool draw(Random& random, Vec3& point, int& triangle, int& piece);
+  //! The dart drawn in `piece` was refused by the sampler (adaptive radius constraints). A piece
+  //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
+  void dart_refused(int piece);
+  int given_up() const { return given_up_; }
 
   double gap_area() const;    //!< total uncovered area of the live pieces
   int created() const { return created_; }
@@ -126,6 +138,7 @@ class GapSet {
     double area = 0;           // area of Q: the draw weight
     double gap_area = 0;
     int next_in_triangle = -1;
+    int refused = 0;
     bool alive = false;
   };
 
@@ -147,10 +160,11 @@ class GapSet {
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
+  int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0;
   double drop_area_ = 0;
   // scratch
-  std::vector<Vec3> clip_a_, clip_b_, run_;
   std::vector<int> scratch_pieces_;
+  std::vector<double> fan_;
 };
 
 }  // namespace lrvd::mps_detail

@@ -1,0 +1,165 @@
+// `lrvd mps`: maximal Poisson-disk sampling (paper §4.2), its independent verification on a
+// fresh LRPD, and optionally the LRRT remesh of the samples, checked like any remesh.
+#include <cmath>
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "common/error.h"
+#include "metrics/quality.h"
+#include "predicates/predicates.h"
+#include "remesh/mps.h"
+#include "verification/mps_check.h"
+#include "verification/remesh_check.h"
+#include "voronoi/dual.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd::cli {
+
+namespace {
+
+struct MpsCommandOptions {
+  std::string mesh_path;
+  bool repair = false;
+  double radius = 0;
+  bool adaptive = false;
+  double max_radius_ratio = MpsOptions{}.max_radius_ratio;
+  std::uint64_t seed = 1;
+  std::string gap_update = "local";
+  std::string output, remesh, report;
+  bool exact = false;
+};
+
+int run_mps(const MpsCommandOptions& opt) {
+  if (!(opt.radius > 0) || !std::isfinite(opt.radius))
+    throw InputError(fmt::format("--radius must be a positive number (relative to the longest bounding-box side), got {}",
+                                 opt.radius));
+  const LoadedMesh loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
+  const SurfaceMesh& input = loaded.mesh;
+
+  MpsOptions options;
+  options.radius = opt.radius;
+  options.adaptive = opt.adaptive;
+  options.max_radius_ratio = opt.max_radius_ratio;
+  options.seed = opt.seed;
+  options.gap_update = opt.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
+  options.on_progress = [](const std::string& message) { progress(message); };
+  reset_predicate_stats();
+  const MpsResult result = maximal_poisson_disk_sampling(input, options);
+  const Samples& samples = result.samples;
+  write_xyz(opt.output, samples.positions, samples.weights);
+
+  // The checks start from the samples alone: a new LRPD, new local regions.
+  progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
+  LrvdOptions lrpd_options;
+  lrpd_options.weighted = true;
+  const Diagram lrpd = compute_lrvd(result.mesh, samples, lrpd_options);
+  MpsVerifyOptions verify_options;
+  verify_options.exact_maximality = opt.exact;
+  const MpsVerification check = verify_mps(result.mesh, samples, lrpd, verify_options);
+  const bool maximal = check.maximal.passed && check.diagram_covers.passed;
+  const bool min_distance_ok = check.min_distance.passed;
+
+  nlohmann::json report;
+  report["input"] = {{"path", opt.mesh_path},
+                     {"vertices", input.vertex_count()},
+                     {"triangles", input.triangle_count()},
+                     {"area", input.area()},
+                     {"components", input.component_count()},
+                     {"closed", input.is_closed()},
+                     {"euler_characteristic", input.euler_characteristic()},
+                     {"longest_bbox_side", result.scale}};
+  if (loaded.repair.changed()) report["input"]["repair"] = loaded.repair.notes;
+  report["refined"] = {{"triangles", result.mesh.triangle_count()}, {"max_edge_length", result.mesh.max_edge_length()}};
+  report["radius"] = {{"relative", opt.radius},
+                      {"absolute", result.radius},
+                      {"max_absolute", result.max_radius},
+                      {"adaptive", opt.adaptive}};
+  report["seed"] = opt.seed;
+  report["gap_update"] = opt.gap_update;
+  report["samples"] = samples.size();
+  report["dart_samples"] = result.dart_samples;
+  report["gap_samples"] = result.gap_samples;
+  report["darts"] = result.darts;
+  report["lrpd_evaluations"] = result.lrpd_evaluations;
+  report["gap_pieces"] = result.gap_pieces;
+  report["dropped_gap_pieces"] = result.dropped_gap_pieces;
+  report["clamped_radii"] = result.clamped_radii;
+  report["gaps_closed"] = result.gaps_closed;
+  report["maximal"] = maximal;
+  report["min_distance_ok"] = min_distance_ok;
+  report["mps_verification"] = check.to_json();
+  report["time_s"] = {{"init", result.time_s.init},
+                      {"dart_throwing", result.time_s.dart_throwing},
+                      {"gap_filling", result.time_s.gap_filling},
+                      {"total", result.time_s.total},
+                      {"verification_lrpd", lrpd.stats.time_s},
+                      {"verification", check.time_s}};
+  report["output"] = opt.output;
+
+  bool remesh_ok = true;
+  if (!opt.remesh.empty()) {
+    progress("remeshing: the LRRT of the samples");
+    const DualMesh dual = compute_dual(lrpd, result.mesh, samples);
+    write_mesh(opt.remesh, dual.positions, dual.triangles);
+    const RemeshVerification remesh_check = verify_remesh(input, dual.positions, dual.triangles, samples.size());
+    const QualityMetrics quality = quality_metrics(input, dual.positions, dual.triangles);
+    nlohmann::json q = quality.to_json();
+    q["closed_manifold"] = remesh_check.manifold.passed && remesh_check.closed.passed;
+    q["genus_preserved"] = remesh_check.topology.passed;
+    q["self_intersections"] = remesh_check.self_intersecting_pairs;
+    report["quality"] = q;
+    report["verification"] = remesh_check.to_json();
+    report["remesh"] = {{"path", opt.remesh}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
+    remesh_ok = remesh_check.passed;
+    std::printf("remesh (LRRT): %zu vertices, %zu triangles -> %s; verification: %s\n", dual.positions.size(),
+                dual.triangles.size(), opt.remesh.c_str(), remesh_ok ? "passed" : "FAILED");
+    if (!remesh_ok) std::fputs(remesh_check.summary().c_str(), stdout);
+    std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% angles < 30 deg, Hausdorff %.3f%%\n", quality.q_min,
+                quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_angles_below_30, quality.hausdorff_pct);
+  }
+  report["predicates"] = predicates_json();
+  if (!opt.report.empty()) write_json(opt.report, report);
+
+  std::printf("mps (%s, r = %g): %d samples (%d by dart throwing, %d in gaps), %.3f s "
+              "(init %.3f, darts %.3f, gaps %.3f) -> %s\n",
+              opt.adaptive ? "adaptive" : "uniform", opt.radius, samples.size(), result.dart_samples, result.gap_samples,
+              result.time_s.total, result.time_s.init, result.time_s.dart_throwing, result.time_s.gap_filling,
+              opt.output.c_str());
+  std::printf("maximal: %s, minimum distance: %s (smallest ratio %.4f)\n", maximal ? "yes" : "NO",
+              min_distance_ok ? "yes" : "NO", check.min_distance_ratio);
+  if (!check.passed) std::fputs(check.summary().c_str(), stdout);
+  return maximal && min_distance_ok && remesh_ok ? kOk : kCheckFailed;
+}
+
+}  // namespace
+
+Action add_mps_command(CLI::App& app) {
+  auto opt = std::make_shared<MpsCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("mps", "Maximal Poisson-disk sampling with LRPD gap detection, checked; optional LRRT remesh");
+  cmd->add_option("mesh", opt->mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
+  cmd->add_option("--radius", opt->radius,
+                  "Disk radius r (r_min with --adaptive), relative to the longest bounding-box side "
+                  "(the model normalised into the unit cube)")
+      ->required();
+  cmd->add_flag("--adaptive", opt->adaptive, "Radius from curvature, never below --radius");
+  cmd->add_option("--max-radius-ratio", opt->max_radius_ratio, "Adaptive: largest radius / --radius")
+      ->check(CLI::Range(1.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the darts")->capture_default_str();
+  cmd->add_option("--gap-update", opt->gap_update,
+                  "local: one LRPD, gaps clipped as disks are added (default); lrpd: a new LRPD after every round "
+                  "of darts (the paper's loop)")
+      ->check(CLI::IsMember({"local", "lrpd"}))
+      ->capture_default_str();
+  cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
+  cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();
+  cmd->add_option("--remesh", opt->remesh, "Also write the LRRT of the samples (.off, .obj, .ply) and check it");
+  cmd->add_option("--report", opt->report, "Write a JSON report");
+  cmd->add_flag("--exact", opt->exact, "Decide every vertex of the maximality check with rational arithmetic");
+  return [opt]() { return run_mps(*opt); };
+}
+
+}  // namespace lrvd::cli

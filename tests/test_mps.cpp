@@ -1,0 +1,336 @@
+// Maximal Poisson-disk sampling (paper §4.2): maximality and minimum distance checked
+// independently (fresh LRPD, fresh local regions), the LRRT remesh valid, uniform and adaptive
+// radii, the self-intersecting spheres of Fig. 11, unbiased darts, the verifier catching broken
+// samplings, and `lrvd mps` exit codes and report.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error.h"
+#include "mesh/mesh_io.h"
+#include "mesh/stress.h"
+#include "remesh/mps.h"
+#include "remesh/mps_gaps.h"
+#include "test_meshes.h"
+#include "verification/diagram_check.h"
+#include "verification/mps_check.h"
+#include "verification/remesh_check.h"
+#include "voronoi/dual.h"
+#include "voronoi/lrvd.h"
+
+using namespace lrvd;
+
+namespace {
+
+SurfaceMesh cgal_mesh(const std::string& name) { return read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + name).mesh; }
+
+Diagram lrpd_of(const MpsResult& r) {
+  LrvdOptions options;
+  options.weighted = true;
+  return compute_lrvd(r.mesh, r.samples, options);
+}
+
+// The three promises of a maximal Poisson-disk sampling and of its remesh, checked from scratch.
+void check_sampling(const SurfaceMesh& input, const MpsResult& r, bool check_remesh, bool exact = false) {
+  INFO("samples " << r.samples.size() << ", dart samples " << r.dart_samples << ", LRPDs " << r.lrpd_evaluations);
+  CHECK(r.gaps_closed);
+  for (int i = 0; i < r.samples.size(); ++i) REQUIRE(r.radii[i] >= r.radius * (1 - 1e-12));
+  const Diagram lrpd = lrpd_of(r);
+  MpsVerifyOptions options;
+  options.exact_maximality = exact;
+  const MpsVerification v = verify_mps(r.mesh, r.samples, lrpd, options);
+  INFO(v.summary());
+  CHECK(v.min_distance.passed);
+  CHECK(v.maximal.passed);
+  CHECK(v.diagram_covers.passed);
+  CHECK(v.min_distance_ratio >= 1.0);
+  if (!check_remesh) return;
+  const DualMesh dual = compute_dual(lrpd, r.mesh, r.samples);
+  const RemeshVerification rv = verify_remesh(input, dual.positions, dual.triangles, r.samples.size());
+  INFO(rv.summary());
+  CHECK(rv.passed);
+}
+
+}  // namespace
+
+TEST_CASE("MPS of an icosphere is maximal, keeps the minimum distance and remeshes validly", "[mps]") {
+  const SurfaceMesh sphere = test::icosphere(3);
+  MpsOptions options;
+  options.radius = 0.04;  // r = 0.08 on the unit sphere: about 1.4k samples
+  const MpsResult r = maximal_poisson_disk_sampling(sphere, options);
+  CHECK(r.scale == Approx(2.0).epsilon(1e-3));
+  CHECK(r.radius == Approx(0.04 * r.scale));
+  CHECK(r.mesh.max_edge_length() <= r.radius);
+  CHECK(r.samples.size() > 1000);
+  CHECK(r.samples.size() == r.dart_samples + r.gap_samples);
+  CHECK(r.gap_samples > 0);  // the LRPD found gaps that the darts filled
+  check_sampling(sphere, r, true, true);
+  // The LRPD the checks rely on is itself a valid diagram.
+  const DiagramVerification dv = verify_diagram(r.mesh, r.samples, lrpd_of(r));
+  INFO(dv.summary());
+  CHECK(dv.passed);
+}
+
+TEST_CASE("MPS with the paper's gap loop (a new LRPD every round) is maximal too", "[mps]") {
+  const SurfaceMesh sphere = test::icosphere(3);
+  MpsOptions options;
+  options.radius = 0.05;
+  options.gap_update = MpsGapUpdate::Lrpd;
+  const MpsResult r = maximal_poisson_disk_sampling(sphere, options);
+  CHECK(r.lrpd_evaluations >= 2);
+  check_sampling(sphere, r, false);
+}
+
+TEST_CASE("MPS of CGAL's elk, uniform and adaptive, is maximal and remeshes validly", "[mps]") {
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  SECTION("uniform r = 0.02: a few thousand samples on thin antlers and legs") {
+    MpsOptions options;
+    options.radius = 0.02;
+    const MpsResult r = maximal_poisson_disk_sampling(elk, options);
+    CHECK(r.samples.size() > 3000);
+    check_sampling(elk, r, true);
+  }
+  SECTION("adaptive r_min = 0.015") {
+    MpsOptions options;
+    options.radius = 0.015;
+    options.adaptive = true;
+    const MpsResult r = maximal_poisson_disk_sampling(elk, options);
+    CHECK(r.max_radius > 1.5 * r.radius);
+    double smallest = 1e300, largest = 0;
+    for (double x : r.radii) smallest = std::min(smallest, x), largest = std::max(largest, x);
+    CHECK(largest > 1.5 * smallest);  // the radius does adapt
+    check_sampling(elk, r, true);
+  }
+}
+
+TEST_CASE("MPS of two interpenetrating spheres keeps each sphere's samples apart and remeshes validly (Fig. 11)",
+          "[mps][stress]") {
+  const SurfaceMesh spheres = make_stress_mesh("interpenetrating_spheres");
+  for (bool adaptive : {false, true}) {
+    INFO((adaptive ? "adaptive" : "uniform"));
+    MpsOptions options;
+    options.radius = 0.03;
+    options.adaptive = adaptive;
+    const MpsResult r = maximal_poisson_disk_sampling(spheres, options);
+    check_sampling(spheres, r, true);
+    // Near the intersection circle samples of the two spheres are closer than r: they do not
+    // conflict, since their regions lie on different components.
+    const MpsVerification v = verify_mps(r.mesh, r.samples);
+    CHECK(v.close_pairs_not_local > 0);
+  }
+}
+
+TEST_CASE("The adaptive radius field stays within [r_min, r_max] and changes gradually", "[mps]") {
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  MpsOptions options;
+  const double r_min = 1.0;
+  const std::vector<double> r = adaptive_radius_field(elk, r_min, options);
+  REQUIRE(static_cast<int>(r.size()) == elk.vertex_count());
+  double smallest = 1e300, largest = 0;
+  for (int v = 0; v < elk.vertex_count(); ++v) {
+    smallest = std::min(smallest, r[v]);
+    largest = std::max(largest, r[v]);
+    for (int u : elk.vertex_neighbors(v))
+      REQUIRE(std::abs(r[u] - r[v]) <= options.gradation * distance(elk.position(u), elk.position(v)) * (1 + 1e-9) + 1e-12);
+  }
+  CHECK(smallest >= r_min);
+  CHECK(largest <= options.max_radius_ratio * r_min * (1 + 1e-12));
+  CHECK(largest > smallest);
+}
+
+TEST_CASE("MPS is reproducible from its seed", "[mps]") {
+  const SurfaceMesh sphere = test::icosphere(2);
+  MpsOptions options;
+  options.radius = 0.1;
+  const MpsResult a = maximal_poisson_disk_sampling(sphere, options);
+  const MpsResult b = maximal_poisson_disk_sampling(sphere, options);
+  REQUIRE(a.samples.size() == b.samples.size());
+  for (int i = 0; i < a.samples.size(); ++i) REQUIRE(a.samples.positions[i] == b.samples.positions[i]);
+  options.seed = 2;
+  const MpsResult c = maximal_poisson_disk_sampling(sphere, options);
+  CHECK(!(c.samples.positions[0] == a.samples.positions[0]));
+}
+
+TEST_CASE("MPS darts are unbiased: uniform by area over a very uneven triangulation", "[mps][statistics]") {
+  // The unit square with columns at x = (i/n)²: triangles 60 times narrower on the left than on
+  // the right. The first darts of a run are hardly ever rejected, so they are (nearly)
+  // independent uniform points: a per-triangle bias would crowd the left.
+  const int n = 24;
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) p.push_back({double(i * i) / (n * n), double(j) / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  const SurfaceMesh square(p, t);
+  const int cells = 5, first = 16, runs = 200;
+  std::vector<double> count(cells * cells, 0);
+  MpsOptions options;
+  options.radius = 0.05;
+  for (int run = 0; run < runs; ++run) {
+    options.seed = 1000 + run;
+    const MpsResult r = maximal_poisson_disk_sampling(square, options);
+    REQUIRE(r.samples.size() >= first);
+    for (int i = 0; i < first; ++i) {
+      const Vec3& x = r.samples.positions[i];
+      const int cx = std::min(cells - 1, int(x.x * cells)), cy = std::min(cells - 1, int(x.y * cells));
+      count[cy * cells + cx] += 1;
+    }
+  }
+  // Chi-square over 25 equal-area cells (24 degrees of freedom; 0.1% critical value 51.2). The
+  // first samples of a run repel each other a little, which only lowers the statistic.
+  const double expected = double(first) * runs / (cells * cells);
+  double chi2 = 0;
+  for (double c : count) chi2 += (c - expected) * (c - expected) / expected;
+  INFO("chi-square " << chi2);
+  CHECK(chi2 < 51.2);
+  // And left half against right half, where the triangle sizes differ most.
+  double left = 0;
+  for (int cy = 0; cy < cells; ++cy)
+    for (int cx = 0; cx < cells; ++cx) left += (cx < 2 ? count[cy * cells + cx] : 0);
+  const double total = double(first) * runs, p_left = 0.4;
+  const double z = (left - total * p_left) / std::sqrt(total * p_left * (1 - p_left));
+  INFO("z " << z);
+  CHECK(std::abs(z) < 4);
+}
+
+TEST_CASE("Darts into the gaps are uniform over the uncovered area", "[mps][statistics]") {
+  // A few disks on a square; the gaps from their LRPD; accepted draws must fall into the left and
+  // right halves of the square in proportion to the uncovered areas there (measured by a fine
+  // grid of test points).
+  using namespace mps_detail;
+  const SurfaceMesh square = test::grid(8, 8);
+  DiskIndex disks(square);
+  const double w = 0.22 * 0.22;
+  const Vec3 centers[] = {{0.2, 0.25, 0}, {0.55, 0.3, 0}, {0.3, 0.7, 0}, {0.8, 0.75, 0}, {0.85, 0.2, 0}};
+  for (const Vec3& c : centers) {
+    int tri = -1;
+    for (int f = 0; f < square.triangle_count() && tri < 0; ++f) {
+      const Vec3 b = barycentric_in_triangle(square, f, c);
+      const Triangle& v = square.triangle(f);
+      const Vec3 back = b.x * square.position(v[0]) + b.y * square.position(v[1]) + b.z * square.position(v[2]);
+      if (distance(back, c) < 1e-12) tri = f;
+    }
+    REQUIRE(tri >= 0);
+    disks.insert(c, tri, barycentric_in_triangle(square, tri, c), w, disks.grow(c, tri, w));
+  }
+  LrvdOptions options;
+  options.weighted = true;
+  GapSet gaps(square, disks, true, 1e-15);
+  gaps.extract(compute_lrvd(square, disks.samples(), options));
+  REQUIRE(!gaps.empty());
+
+  // Uncovered area left / right by a 1000 x 1000 grid of points.
+  double uncovered_left = 0, uncovered_right = 0;
+  for (int i = 0; i < 1000; ++i)
+    for (int j = 0; j < 1000; ++j) {
+      const Vec3 q{(i + 0.5) / 1000, (j + 0.5) / 1000, 0};
+      bool covered = false;
+      for (const Vec3& c : centers) covered |= squared_distance(q, c) < w;
+      if (!covered) (q.x < 0.5 ? uncovered_left : uncovered_right) += 1e-6;
+    }
+  CHECK(gaps.gap_area() == Approx(uncovered_left + uncovered_right).epsilon(0.01));
+
+  Random random(7);
+  double left = 0, accepted = 0;
+  for (int k = 0; k < 200000; ++k) {
+    Vec3 q;
+    int tri, piece;
+    if (!gaps.draw(random, q, tri, piece)) continue;
+    REQUIRE(!disks.in_some_disk(q, tri));  // every accepted draw is a valid dart
+    accepted += 1;
+    left += q.x < 0.5;
+  }
+  const double p_left = uncovered_left / (uncovered_left + uncovered_right);
+  const double z = (left - accepted * p_left) / std::sqrt(accepted * p_left * (1 - p_left));
+  INFO("accepted " << accepted << ", left " << left << ", expected fraction " << p_left << ", z " << z);
+  CHECK(accepted > 20000);
+  CHECK(std::abs(z) < 4);
+}
+
+TEST_CASE("The MPS verification catches a close pair and an uncovered spot", "[mps][verification]") {
+  const SurfaceMesh sphere = test::icosphere(2);
+  MpsOptions options;
+  options.radius = 0.1;
+  const MpsResult r = maximal_poisson_disk_sampling(sphere, options);
+  REQUIRE(verify_mps(r.mesh, r.samples).passed);
+  SECTION("a sample moved next to another") {
+    Samples s = r.samples;
+    // Sample 1 goes halfway towards sample 0's nearest neighbour... simplest: onto sample 0's
+    // triangle, close to it.
+    const int t = s.triangles[0];
+    s.triangles[1] = t;
+    s.barycentric[1] = Vec3{0.34, 0.33, 0.33};
+    const Triangle& v = r.mesh.triangle(t);
+    s.positions[1] = 0.34 * r.mesh.position(v[0]) + 0.33 * r.mesh.position(v[1]) + 0.33 * r.mesh.position(v[2]);
+    const MpsVerification v2 = verify_mps(r.mesh, s);
+    CHECK(!v2.min_distance.passed);
+    CHECK(!v2.passed);
+  }
+  SECTION("a sample removed") {
+    Samples s = r.samples;
+    const int k = s.size() / 2;
+    s.positions.erase(s.positions.begin() + k);
+    s.weights.erase(s.weights.begin() + k);
+    s.triangles.erase(s.triangles.begin() + k);
+    s.barycentric.erase(s.barycentric.begin() + k);
+    const MpsVerification v2 = verify_mps(r.mesh, s);
+    CHECK(v2.min_distance.passed);
+    CHECK(!v2.maximal.passed);
+  }
+}
+
+TEST_CASE("MPS refuses a non-positive or absurdly small radius", "[mps][input]") {
+  const SurfaceMesh sphere = test::icosphere(1);
+  MpsOptions options;
+  options.radius = 0;
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.radius = -0.1;
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.radius = std::nan("");
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.radius = 1e-6;  // about 10^13 samples
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+}
+
+TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
+  const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_";
+  const std::string mesh = dir + "sphere.off";
+  write_mesh(mesh, test::icosphere(2));
+  auto run = [&](const std::string& args) {
+    const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + args + " > /dev/null 2>&1").c_str());
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  };
+  const std::string report = dir + "report.json";
+  std::remove(report.c_str());
+  REQUIRE(run(mesh + " --radius 0.1 --seed 3 -o " + dir + "samples.xyz --remesh " + dir + "remesh.off --report " +
+              report) == 0);
+  std::ifstream in(report);
+  REQUIRE(in.good());
+  const nlohmann::json j = nlohmann::json::parse(in);
+  CHECK(j["samples"].get<int>() > 100);
+  CHECK(j["maximal"].get<bool>());
+  CHECK(j["min_distance_ok"].get<bool>());
+  for (const char* key : {"init", "dart_throwing", "gap_filling", "total"}) CHECK(j["time_s"].contains(key));
+  CHECK(j.contains("quality"));
+  CHECK(j["verification"]["passed"].get<bool>());
+  CHECK(read_xyz(dir + "samples.xyz").points.size() == j["samples"].get<size_t>());
+  CHECK(read_xyz(dir + "samples.xyz").weights.size() == j["samples"].get<size_t>());
+
+  CHECK(run(mesh + " --radius 0.1 --adaptive -o " + dir + "samples2.xyz") == 0);
+  CHECK(run(mesh + " --radius 0 -o " + dir + "bad.xyz") == 2);
+  CHECK(run(mesh + " --radius=-0.5 -o " + dir + "bad.xyz") == 2);
+  CHECK(run(mesh + " --radius 1e-7 -o " + dir + "bad.xyz") == 2);  // would need ~10^14 samples
+  CHECK(run(dir + "missing.off --radius 0.1 -o " + dir + "bad.xyz") == 2);
+}
