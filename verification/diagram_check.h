@@ -22,6 +22,9 @@ struct PropertyResult {
   std::int64_t violations = 0;
   std::vector<std::string> first_offenders;  //!< up to 10, each naming triangle / cell / vertex
   void fail(const std::string& offender);    //!< records one violation
+  nlohmann::json to_json() const;            //!< {passed, promised, checked, violations, first_offenders}
+  //! "name: N violation(s), first: ...\n" when failed ("(not promised)" after the name if so), else "".
+  std::string summary_line(const std::string& name) const;
 };
 
 struct DiagramVerification {

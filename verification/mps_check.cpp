@@ -21,11 +21,6 @@ namespace lrvd {
 
 namespace {
 
-nlohmann::json property_json(const PropertyResult& p) {
-  return {{"passed", p.passed}, {"checked", p.checked}, {"violations", p.violations},
-          {"first_offenders", p.first_offenders}};
-}
-
 // Exact sign of |a - b|² - w.
 CGAL::Sign squared_distance_minus(const Vec3& a, const Vec3& b, double w) {
   const double d = squared_distance(a, b);
@@ -226,22 +221,14 @@ nlohmann::json MpsVerification::to_json() const {
           {"one_sided_close_pairs", one_sided_close_pairs},
           {"exact_vertex_tests", exact_vertex_tests},
           {"properties",
-           {{"min_distance", property_json(min_distance)},
-            {"maximal", property_json(maximal)},
-            {"diagram_covers", property_json(diagram_covers)}}}};
+           {{"min_distance", min_distance.to_json()},
+            {"maximal", maximal.to_json()},
+            {"diagram_covers", diagram_covers.to_json()}}}};
 }
 
 std::string MpsVerification::summary() const {
-  std::string out;
-  auto add = [&](const char* name, const PropertyResult& p) {
-    if (p.passed) return;
-    out += fmt::format("{}: {} violation(s), first: {}\n", name, p.violations,
-                       p.first_offenders.empty() ? "-" : p.first_offenders.front());
-  };
-  add("min_distance", min_distance);
-  add("maximal", maximal);
-  add("diagram_covers", diagram_covers);
-  return out;
+  return min_distance.summary_line("min_distance") + maximal.summary_line("maximal") +
+         diagram_covers.summary_line("diagram_covers");
 }
 
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,

@@ -305,12 +305,6 @@ RemeshVerification verify_remesh(const SurfaceMesh& input, const std::vector<Vec
   return r;
 }
 
-namespace {
-nlohmann::json property_json(const PropertyResult& p) {
-  return {{"passed", p.passed}, {"promised", p.promised}, {"checked", p.checked},
-          {"violations", p.violations}, {"first_offenders", p.first_offenders}};
-}
-}  // namespace
 
 nlohmann::json RemeshVerification::to_json() const {
   return {{"passed", passed},
@@ -323,30 +317,19 @@ nlohmann::json RemeshVerification::to_json() const {
           {"self_intersecting_pairs", self_intersecting_pairs},
           {"inherited_intersecting_pairs", inherited_intersecting_pairs},
           {"properties",
-           {{"vertex_count", property_json(vertex_count)},
-            {"manifold", property_json(manifold)},
-            {"closed", property_json(closed)},
-            {"oriented", property_json(oriented)},
-            {"topology", property_json(topology)},
-            {"non_degenerate", property_json(non_degenerate)},
-            {"no_self_intersection", property_json(no_self_intersection)}}}};
+           {{"vertex_count", vertex_count.to_json()},
+            {"manifold", manifold.to_json()},
+            {"closed", closed.to_json()},
+            {"oriented", oriented.to_json()},
+            {"topology", topology.to_json()},
+            {"non_degenerate", non_degenerate.to_json()},
+            {"no_self_intersection", no_self_intersection.to_json()}}}};
 }
 
 std::string RemeshVerification::summary() const {
-  std::string out;
-  auto add = [&](const char* name, const PropertyResult& p) {
-    if (p.passed) return;
-    out += fmt::format("{}{}: {} violation(s), first: {}\n", name, p.promised ? "" : " (not promised)", p.violations,
-                       p.first_offenders.empty() ? "-" : p.first_offenders.front());
-  };
-  add("vertex_count", vertex_count);
-  add("manifold", manifold);
-  add("closed", closed);
-  add("oriented", oriented);
-  add("topology", topology);
-  add("non_degenerate", non_degenerate);
-  add("no_self_intersection", no_self_intersection);
-  return out;
+  return vertex_count.summary_line("vertex_count") + manifold.summary_line("manifold") +
+         closed.summary_line("closed") + oriented.summary_line("oriented") + topology.summary_line("topology") +
+         non_degenerate.summary_line("non_degenerate") + no_self_intersection.summary_line("no_self_intersection");
 }
 
 

@@ -11,40 +11,34 @@ void PropertyResult::fail(const std::string& offender) {
   if (first_offenders.size() < 10) first_offenders.push_back(offender);
 }
 
-namespace {
-nlohmann::json property_json(const PropertyResult& p) {
-  return {{"passed", p.passed}, {"promised", p.promised}, {"checked", p.checked},
-          {"violations", p.violations}, {"first_offenders", p.first_offenders}};
+nlohmann::json PropertyResult::to_json() const {
+  return {{"passed", passed}, {"promised", promised}, {"checked", checked}, {"violations", violations},
+          {"first_offenders", first_offenders}};
 }
-}  // namespace
+
+std::string PropertyResult::summary_line(const std::string& name) const {
+  if (passed) return "";
+  return fmt::format("{}{}: {} violation(s), first: {}\n", name, promised ? "" : " (not promised)", violations,
+                     first_offenders.empty() ? "-" : first_offenders.front());
+}
 
 nlohmann::json DiagramVerification::to_json() const {
   return {{"passed", passed},
           {"time_s", time_s},
           {"cells_with_multiple_components", cells_with_multiple_components},
           {"properties",
-           {{"sample_in_cell", property_json(sample_in_cell)},
-            {"connected", property_json(connected)},
-            {"equidistant", property_json(equidistant)},
-            {"disjoint", property_json(disjoint)},
-            {"coverage", property_json(coverage)},
-            {"conforming", property_json(conforming)}}}};
+           {{"sample_in_cell", sample_in_cell.to_json()},
+            {"connected", connected.to_json()},
+            {"equidistant", equidistant.to_json()},
+            {"disjoint", disjoint.to_json()},
+            {"coverage", coverage.to_json()},
+            {"conforming", conforming.to_json()}}}};
 }
 
 std::string DiagramVerification::summary() const {
-  std::string out;
-  auto add = [&](const char* name, const PropertyResult& p) {
-    if (p.passed) return;
-    out += fmt::format("{}{}: {} violation(s){}, first: {}\n", name, p.promised ? "" : " (not promised)",
-                       p.violations, "", p.first_offenders.empty() ? "-" : p.first_offenders.front());
-  };
-  add("sample_in_cell", sample_in_cell);
-  add("connected", connected);
-  add("equidistant", equidistant);
-  add("disjoint", disjoint);
-  add("coverage", coverage);
-  add("conforming", conforming);
-  return out;
+  return sample_in_cell.summary_line("sample_in_cell") + connected.summary_line("connected") +
+         equidistant.summary_line("equidistant") + disjoint.summary_line("disjoint") +
+         coverage.summary_line("coverage") + conforming.summary_line("conforming");
 }
 
 }  // namespace lrvd
