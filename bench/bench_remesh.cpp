@@ -1,6 +1,6 @@
 // Remeshing table (paper Tables 1-2, issue targets): CVT on the LRVD and on the RVD for CGAL's
 // models at low vertex counts; validity, quality, distance and time. Writes markdown and JSON.
-// Usage: bench_remesh [--quick] [--models elk,knot,...] [--counts 300,516,...] [--out docs/results_remesh.md] [--json F]
+// Usage: bench_remesh [--quick] [--lrvd-only] [--models elk,knot,...] [--counts 300,516,...] [--out F.md] [--json F]
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "knot", "ellipsoid", "armadillo"};
   std::vector<int> counts = {300, 516, 1000, 2000, 4000};
   std::string out_path, json_path;
+  std::vector<DiagramKind> kinds = {DiagramKind::Lrvd, DiagramKind::Rvd};
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--quick")) {
       models = {"elk", "knot"};
@@ -43,12 +44,15 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[a], "--counts") && a + 1 < argc) {
       counts.clear();
       for (const std::string& c : split(argv[++a])) counts.push_back(std::stoi(c));
+    } else if (!std::strcmp(argv[a], "--lrvd-only")) {
+      kinds = {DiagramKind::Lrvd};
     } else if (!std::strcmp(argv[a], "--out") && a + 1 < argc) {
       out_path = argv[++a];
     } else if (!std::strcmp(argv[a], "--json") && a + 1 < argc) {
       json_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: %s [--quick] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--quick] [--lrvd-only] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n",
+                   argv[0]);
       return 2;
     }
   }
@@ -62,7 +66,7 @@ int main(int argc, char** argv) {
     for (int n : counts) {
       const double length = suggested_refinement_length(input, n);
       const SurfaceMesh mesh = length > 0 && input.max_edge_length() > length ? refine_long_edges(input, length) : input;
-      for (DiagramKind kind : {DiagramKind::Lrvd, DiagramKind::Rvd}) {
+      for (DiagramKind kind : kinds) {
         RemeshOptions options;
         options.cvt.diagram = kind;
         const RemeshResult r = remesh_cvt(input, mesh, sample_uniform(mesh, n, 1), options);

@@ -106,11 +106,7 @@ int run_mps(const MpsCommandOptions& opt) {
     write_mesh(opt.remesh, dual.positions, dual.triangles);
     const RemeshVerification remesh_check = verify_remesh(input, dual.positions, dual.triangles, samples.size());
     const QualityMetrics quality = quality_metrics(input, dual.positions, dual.triangles);
-    nlohmann::json q = quality.to_json();
-    q["closed_manifold"] = remesh_check.manifold.passed && remesh_check.closed.passed;
-    q["genus_preserved"] = remesh_check.topology.passed;
-    q["self_intersections"] = remesh_check.self_intersecting_pairs;
-    report["quality"] = q;
+    report["quality"] = remesh_quality_json(quality, remesh_check);
     report["verification"] = remesh_check.to_json();
     report["remesh"] = {{"path", opt.remesh}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
     remesh_ok = remesh_check.passed;
