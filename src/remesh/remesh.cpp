@@ -90,7 +90,14 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   for (const auto& [tri, count] : vertex_sets)
     if (count > 1) defect.insert(tri.begin(), tri.end());
   for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
-  add_cell_topology_defects(diagram, mesh, defect);
+  std::set<int> hints;
+  add_cell_topology_defects(diagram, mesh, hints);
+  // The dual's Euler characteristic against the closed mesh's: a closed manifold dual can still have
+  // lost a handle (a cell wrapping a tube), which only the cell-topology hints locate.
+  const int edges = static_cast<int>(edge_count.size());
+  const bool euler_ok = !input_closed || static_cast<int>(dual.positions.size()) - edges +
+                                              static_cast<int>(dual.triangles.size()) ==
+                                          mesh.euler_characteristic();
   // A sample in no triangle: its cell meets fewer than two others at a triple point (an island).
   std::vector<char> used(dual.positions.size(), 0);
   for (const Triangle& t : dual.triangles)
@@ -115,7 +122,12 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     crossing.insert(dual.triangles[s].begin(), dual.triangles[s].end());
     crossing.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   }
-  return {{defect.begin(), defect.end()}, {crossing.begin(), crossing.end()}};
+  DualDefects out;
+  out.topological.assign(defect.begin(), defect.end());
+  out.crossing.assign(crossing.begin(), crossing.end());
+  out.cell_topology.assign(hints.begin(), hints.end());
+  out.euler_ok = euler_ok;
+  return out;
 }
 
 namespace {
@@ -161,8 +173,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   RemeshResult best = result;
   DualDefects best_defects = defects;
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
-    raise_density(result.cvt.diagram, defects.topological.empty() ? defects.crossing : defects.topological,
-                  again.triangle_density);
+    raise_density(result.cvt.diagram, defects.where_to_act(), again.triangle_density);
     ++result.repair_rounds;
     result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
     result.total_iterations += result.cvt.iterations;

@@ -3,6 +3,8 @@
 // there through a locally raised density.
 #pragma once
 
+#include <tuple>
+
 #include "remesh/cvt.h"
 #include "voronoi/dual.h"
 
@@ -24,17 +26,29 @@ struct RemeshResult {
 
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
-//! triangle, cells that are not disks (a ring around a thin part) or share more than one boundary
-//! arc with a neighbour, and triangles that intersect each other (but for crossings between
+//! triangle, and triangles that intersect each other (but for crossings between
 //! components when the input's components cross each other too: `input_components_cross`): the
-//! samples involved (empty when the dual has none of these defects).
+//! samples involved; also the cells that are not disks (a ring around a thin part) or share more
+//! than one boundary arc with a neighbour, which locate a lost handle when the dual's Euler
+//! characteristic is wrong.
 struct DualDefects {
-  std::vector<int> topological;  //!< samples at bad edges, repeated or merged triangles, unused samples
-  std::vector<int> crossing;     //!< samples of triangles that intersect others
-  bool empty() const { return topological.empty() && crossing.empty(); }
+  std::vector<int> topological;    //!< samples at bad edges, repeated or merged triangles, unused samples
+  std::vector<int> crossing;       //!< samples of triangles that intersect others
+  std::vector<int> cell_topology;  //!< cells that are rings, or share two arcs with a neighbour
+  bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
+  //! Nothing to repair: no defect of the dual itself, no crossing, and the right Euler
+  //! characteristic (cell-topology findings alone are harmless then).
+  bool empty() const { return topological.empty() && crossing.empty() && euler_ok; }
+  //! The samples to act on: the dual's own defects first, then crossings, then — when the
+  //! Euler characteristic is wrong — the cells that are rings or share two arcs.
+  const std::vector<int>& where_to_act() const {
+    if (!topological.empty()) return topological;
+    if (!crossing.empty()) return crossing;
+    return cell_topology;
+  }
   bool fewer_than(const DualDefects& o) const {
-    return topological.size() != o.topological.size() ? topological.size() < o.topological.size()
-                                                       : crossing.size() < o.crossing.size();
+    return std::make_tuple(topological.size(), !euler_ok, crossing.size(), cell_topology.size()) <
+           std::make_tuple(o.topological.size(), !o.euler_ok, o.crossing.size(), o.cell_topology.size());
   }
 };
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
