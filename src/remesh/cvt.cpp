@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
+#include "mesh/curvature.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -53,35 +54,19 @@ CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKin
 }
 
 std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count) {
-  const int nv = mesh.vertex_count(), nt = mesh.triangle_count();
-  // Mean curvature magnitude per vertex: |cotangent Laplacian of x| / (2 · mixed area).
-  std::vector<Vec3> laplacian(nv, Vec3{});
-  std::vector<double> vertex_area(nv, 0);
-  for (int t = 0; t < nt; ++t) {
-    const Triangle& tri = mesh.triangle(t);
-    const double a = mesh.triangle_area(t);
-    for (int c = 0; c < 3; ++c) {
-      const int i = tri[c], j = tri[(c + 1) % 3], k = tri[(c + 2) % 3];
-      const Vec3 u = mesh.position(j) - mesh.position(i), v = mesh.position(k) - mesh.position(i);
-      const double cot = dot(u, v) / std::max(norm(cross(u, v)), 1e-300);  // angle at i, opposite edge jk
-      laplacian[j] += 0.5 * cot * (mesh.position(k) - mesh.position(j));
-      laplacian[k] += 0.5 * cot * (mesh.position(j) - mesh.position(k));
-      vertex_area[i] += a / 3.0;
-    }
-  }
+  const int nt = mesh.triangle_count();
+  const std::vector<double> kappa_at = mean_curvature(mesh);
   const double h = std::sqrt(2.0 * mesh.area() / (std::sqrt(3.0) * std::max(sample_count, 1)));
   std::vector<double> rho(nt);
-  double mass = 0;
   for (int t = 0; t < nt; ++t) {
     double kappa = 0;
-    for (int v : mesh.triangle(t)) kappa += norm(laplacian[v]) / (2.0 * std::max(vertex_area[v], 1e-300));
+    for (int v : mesh.triangle(t)) kappa += kappa_at[v];
     const double c = kappa / 3.0 * h;
     rho[t] = std::min(std::pow(1.0 + c * c, 2.0), 100.0);
-    mass += rho[t] * mesh.triangle_area(t);
   }
   // One smoothing pass over edge neighbours, then mean 1 by area.
   std::vector<double> smooth(nt);
-  mass = 0;
+  double mass = 0;
   for (int t = 0; t < nt; ++t) {
     double sum = rho[t], count = 1;
     for (int e = 0; e < 3; ++e)

@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
+#include "mesh/curvature.h"
 #include "remesh/mps_gaps.h"
 #include "voronoi/lrvd.h"
 
@@ -140,32 +141,6 @@ class Sampler {
   std::vector<int> region_, met_;
   int clamped_ = 0;
 };
-
-// Mean curvature magnitude at each vertex, |Δx| / 2 from the cotangent Laplacian over the
-// barycentric vertex area; 0 on the boundary, where it would measure the boundary's bend.
-std::vector<double> mean_curvature(const SurfaceMesh& mesh) {
-  const int nv = mesh.vertex_count();
-  std::vector<Vec3> laplacian(nv, Vec3{});
-  std::vector<double> area(nv, 0);
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    const Triangle& tri = mesh.triangle(t);
-    const double a = mesh.triangle_area(t);
-    for (int c = 0; c < 3; ++c) {
-      const int i = tri[c], j = tri[(c + 1) % 3], k = tri[(c + 2) % 3];
-      const Vec3 u = mesh.position(j) - mesh.position(i), v = mesh.position(k) - mesh.position(i);
-      const double cot = dot(u, v) / std::max(norm(cross(u, v)), 1e-300);
-      laplacian[j] += 0.5 * cot * (mesh.position(k) - mesh.position(j));
-      laplacian[k] += 0.5 * cot * (mesh.position(j) - mesh.position(k));
-      area[i] += a / 3;
-    }
-  }
-  std::vector<char> boundary(nv, 0);
-  for (const auto& loop : mesh.boundary_loops())
-    for (int v : loop) boundary[v] = 1;
-  std::vector<double> kappa(nv);
-  for (int v = 0; v < nv; ++v) kappa[v] = boundary[v] ? 0.0 : norm(laplacian[v]) / (2 * std::max(area[v], 1e-300));
-  return kappa;
-}
 
 }  // namespace
 
