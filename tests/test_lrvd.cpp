@@ -90,6 +90,27 @@ TEST_CASE("The RVD has disconnected cells on nearby sheets where the LRVD has no
   }
 }
 
+TEST_CASE("Without the connectivity restoration the fixpoint alone can leave a cell in pieces", "[lrvd]") {
+  // DESIGN.md, "Where the paper is thin": find a case where the restoration had work to do, and
+  // check that it was needed (pieces without it) and sufficient (verified with it).
+  const SurfaceMesh mesh = cgal_mesh("elk.off");
+  int cases = 0;
+  for (int seed = 1; seed <= 10; ++seed) {
+    const Samples samples = sample_uniform(mesh, 30, seed);
+    const Diagram restored = compute_lrvd(mesh, samples);
+    if (restored.stats.connectivity_rounds == 0) continue;
+    ++cases;
+    LrvdOptions plain;
+    plain.restore_connectivity = false;
+    const Diagram fixpoint = compute_lrvd(mesh, samples, plain);
+    INFO("seed " << seed);
+    REQUIRE(disconnected_cells(fixpoint, mesh) > 0);
+    REQUIRE_FALSE(verify_diagram(mesh, samples, fixpoint).connected.passed);
+    REQUIRE(verify_diagram(mesh, samples, restored).passed);
+  }
+  REQUIRE(cases > 0);
+}
+
 TEST_CASE("RVD and LRVD are identical polygon for polygon on a densely sampled sphere", "[rvd][lrvd]") {
   const SurfaceMesh mesh = test::icosphere(5);  // 20480 triangles
   const Samples samples = sample_uniform(mesh, 2000, 11);

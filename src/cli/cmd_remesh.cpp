@@ -65,6 +65,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["iterations"] = remeshed.total_iterations;
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = result.diagram_evaluations;
+  report["line_search_stopped"] = result.line_search_stopped;
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;

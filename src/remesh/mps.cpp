@@ -153,14 +153,12 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
   const double r_max = r_min * std::max(1.0, options.max_radius_ratio);
   std::vector<double> kappa = mean_curvature(mesh);
   // Two passes of neighbour averaging: the cotangent estimate is noisy on scanned meshes.
-  std::vector<std::vector<int>> neighbors(nv);
-  for (int v = 0; v < nv; ++v) neighbors[v] = mesh.vertex_neighbors(v);
   for (int pass = 0; pass < 2; ++pass) {
     std::vector<double> next(nv);
     for (int v = 0; v < nv; ++v) {
       double sum = kappa[v];
-      for (int u : neighbors[v]) sum += kappa[u];
-      next[v] = sum / (1.0 + neighbors[v].size());
+      for (const int* u = mesh.vertex_neighbors_begin(v); u != mesh.vertex_neighbors_end(v); ++u) sum += kappa[*u];
+      next[v] = sum / (1.0 + (mesh.vertex_neighbors_end(v) - mesh.vertex_neighbors_begin(v)));
     }
     kappa.swap(next);
   }
@@ -179,11 +177,11 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
     const auto [rv, v] = queue.top();
     queue.pop();
     if (rv > r[v]) continue;
-    for (int u : neighbors[v]) {
-      const double cand = rv + g * distance(mesh.position(u), mesh.position(v));
-      if (cand < r[u]) {
-        r[u] = cand;
-        queue.emplace(cand, u);
+    for (const int* u = mesh.vertex_neighbors_begin(v); u != mesh.vertex_neighbors_end(v); ++u) {
+      const double cand = rv + g * distance(mesh.position(*u), mesh.position(v));
+      if (cand < r[*u]) {
+        r[*u] = cand;
+        queue.emplace(cand, *u);
       }
     }
   }
