@@ -16,6 +16,41 @@ void clip_triangle(const SurfaceMesh& mesh, int t, int k, const int* others, int
                    const SymbolicContext& ctx, std::vector<SymbolicVertex>& polygon,
                    std::vector<SymbolicVertex>& scratch);
 
+//! The edges of `triangle` (bit e: edge (corner e, corner e+1)) that vertex q lies on: two for a
+//! mesh vertex at one of its corners, one for a type B vertex on one of its edges, none otherwise.
+inline unsigned edge_mask(const SymbolicVertex& q, const std::array<int, 3>& triangle) {
+  unsigned mask = 0;
+  if (q.type == SymbolicVertex::Type::A) {
+    for (int c = 0; c < 3; ++c)
+      if (triangle[c] == q.v[0]) mask = (1u << c) | (1u << ((c + 2) % 3));
+  } else if (q.type == SymbolicVertex::Type::B) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangle[e], b = triangle[(e + 1) % 3];
+      if (q.v[0] == (a < b ? a : b) && q.v[1] == (a < b ? b : a)) mask |= 1u << e;
+    }
+  }
+  return mask;
+}
+
+//! Edges of `triangle` that a polygon reaches (`reach`: some vertex on the edge) and that it has a
+//! side along (`along`: two consecutive vertices on the edge, a segment of positive length).
+struct PolygonEdges {
+  unsigned reach = 0, along = 0;
+};
+inline PolygonEdges polygon_edges(const SymbolicVertex* v, int count, const std::array<int, 3>& triangle) {
+  PolygonEdges out;
+  if (count == 0) return out;
+  const unsigned first = edge_mask(v[0], triangle);
+  unsigned previous = first;
+  for (int k = 1; k <= count; ++k) {
+    const unsigned current = k == count ? first : edge_mask(v[k], triangle);
+    out.reach |= current;
+    out.along |= previous & current;
+    previous = current;
+  }
+  return out;
+}
+
 //! Clips an existing polygon of cell k in triangle t by bisector(k, l), in place.
 void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
                       std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch);

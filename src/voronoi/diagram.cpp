@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "mesh/surface_mesh.h"
+#include "voronoi/clip.h"
 
 namespace lrvd {
 
@@ -86,15 +87,10 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) 
   for (int p = 0; p < np; ++p) {
     const CellPolygon& poly = diagram.polygons[p];
     const Triangle& tri = mesh.triangle(poly.triangle);
-    const SymbolicVertex* verts = diagram.polygon_vertices(poly);
+    const unsigned along = polygon_edges(diagram.polygon_vertices(poly), poly.vertex_count, tri).along;
     for (int e = 0; e < 3; ++e) {
       const int across = mesh.neighbor(poly.triangle, e);
-      if (across < 0) continue;
-      const int a = tri[e], b = tri[(e + 1) % 3];
-      bool segment = false;  // two consecutive polygon vertices on edge (a, b)
-      for (int k = 0; k < poly.vertex_count && !segment; ++k)
-        segment = verts[k].on_mesh_edge(a, b) && verts[(k + 1) % poly.vertex_count].on_mesh_edge(a, b);
-      if (!segment) continue;
+      if (across < 0 || !(along & (1u << e))) continue;
       for (int q = diagram.triangle_offsets[across]; q < diagram.triangle_offsets[across + 1]; ++q)
         if (diagram.polygons[q].cell == poly.cell) {
           const int ra = find_root(parent, p), rb = find_root(parent, q);

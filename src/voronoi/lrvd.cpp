@@ -39,14 +39,44 @@ struct TrianglePolygons {
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; never re-added
   std::vector<int> cell;       // cell of each polygon
   std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
+  std::vector<unsigned> reach; // polygon p: the edges of the triangle it reaches (edge_mask bits)
   std::vector<SymbolicVertex> verts;
+
+  //! Empties every list but keeps its storage for the next diagram.
+  void reset() {
+    labels.clear();
+    forbidden.clear();
+    cell.clear();
+    offset.assign(1, 0);
+    reach.clear();
+    verts.clear();
+  }
+};
+
+// Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
+// diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
+struct LrvdWorkspace {
+  std::vector<TrianglePolygons> state;
+  std::vector<char> queued;
+  std::deque<int> queue;
+  std::vector<int> vertex_label, home, conflicts;
+  std::vector<SymbolicVertex> polygon, scratch;
+
+  void reset(int triangle_count) {
+    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
+    for (int t = 0; t < triangle_count; ++t) state[t].reset();
+    queued.assign(triangle_count, 0);
+    queue.clear();
+  }
 };
 
 class LrvdBuilder {
  public:
-  LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options)
-      : mesh_(mesh), samples_(samples), options_(options), state_(mesh.triangle_count()),
-        queued_(mesh.triangle_count(), 0) {
+  LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
+      : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
+        queued_(work.queued), vertex_label_(work.vertex_label), home_(work.home), conflicts_(work.conflicts),
+        polygon_(work.polygon), scratch_(work.scratch) {
+    work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
   }
@@ -110,11 +140,13 @@ class LrvdBuilder {
     TrianglePolygons& st = state_[t];
     st.cell.clear();
     st.offset.assign(1, 0);
+    st.reach.clear();
     st.verts.clear();
     for (int k : st.labels) {
       clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon_, scratch_);
       if (polygon_.empty()) continue;
       st.cell.push_back(k);
+      st.reach.push_back(polygon_edges(polygon_.data(), static_cast<int>(polygon_.size()), mesh_.triangle(t)).reach);
       st.verts.insert(st.verts.end(), polygon_.begin(), polygon_.end());
       st.offset.push_back(static_cast<int>(st.verts.size()));
     }
@@ -129,18 +161,13 @@ class LrvdBuilder {
       queue_.pop_front();
       queued_[t] = 0;
       clip(t);
-      const Triangle& tri = mesh_.triangle(t);
       const TrianglePolygons& st = state_[t];
       conflicts_.clear();
       for (size_t p = 0; p < st.cell.size(); ++p) {
         const int k = st.cell[p];
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || contains(state_[across].labels, k)) continue;
-          bool touches = false;
-          for (int a = st.offset[p]; a < st.offset[p + 1] && !touches; ++a)
-            touches = st.verts[a].on_mesh_edge(tri[e], tri[(e + 1) % 3]);
-          if (!touches) continue;
+          if (across < 0 || !(st.reach[p] & (1u << e)) || contains(state_[across].labels, k)) continue;
           if (contains(state_[across].forbidden, k)) {
             conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
             continue;
@@ -213,7 +240,15 @@ class LrvdBuilder {
     d.kind = options_.weighted ? DiagramKind::Lrpd : DiagramKind::Lrvd;
     d.sample_count = samples_.size();
     d.sites = sites_;
+    d.triangle_offsets.reserve(mesh_.triangle_count() + 1);
     d.triangle_offsets.assign(1, 0);
+    size_t polygons = 0, vertices = 0;
+    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      polygons += state_[t].cell.size();
+      vertices += state_[t].verts.size();
+    }
+    d.polygons.reserve(polygons);
+    d.vertices.reserve(vertices);
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       const TrianglePolygons& st = state_[t];
       for (size_t p = 0; p < st.cell.size(); ++p) {
@@ -230,12 +265,11 @@ class LrvdBuilder {
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  std::vector<int> vertex_label_, home_;
-  std::vector<TrianglePolygons> state_;
-  std::deque<int> queue_;
-  std::vector<char> queued_;
-  std::vector<int> conflicts_;
-  std::vector<SymbolicVertex> polygon_, scratch_;
+  std::vector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
+  std::deque<int>& queue_;
+  std::vector<char>& queued_;
+  std::vector<int>&vertex_label_, &home_, &conflicts_;
+  std::vector<SymbolicVertex>&polygon_, &scratch_;
   DiagramStats stats_;
 };
 
@@ -252,7 +286,8 @@ void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool w
 Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options) {
   check_diagram_input(mesh, samples, options.weighted);
   const auto start = std::chrono::steady_clock::now();
-  Diagram diagram = LrvdBuilder(mesh, samples, options).run();
+  thread_local LrvdWorkspace work;
+  Diagram diagram = LrvdBuilder(mesh, samples, options, work).run();
   diagram.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;
 }
