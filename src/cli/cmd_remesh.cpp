@@ -22,6 +22,7 @@ struct RemeshCommandOptions {
   InputOptions input;
   std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform";
   int iterations = 60;
+  bool no_fit = false;
   std::string output, report;
 };
 
@@ -39,6 +40,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.optimizer = opt.optimizer == "lloyd" ? CvtOptimizer::Lloyd : CvtOptimizer::Lbfgs;
   cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
   cvt.iterations = opt.iterations;
+  remesh.fit = !opt.no_fit;
   cvt.on_iteration = [](int iteration, double energy) {
     if (iteration % 10 == 0) progress(fmt::format("iteration {}: energy {:.6g}", iteration, energy));
   };
@@ -66,6 +68,10 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = result.diagram_evaluations;
   report["line_search_stopped"] = result.line_search_stopped;
+  report["fit"] = {{"enabled", remesh.fit},
+                   {"moved", remeshed.fit.moved},
+                   {"reverted", remeshed.fit.reverted},
+                   {"max_displacement_pct", 100.0 * remeshed.fit.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
@@ -119,6 +125,9 @@ Action add_remesh_command(CLI::App& app) {
   cmd->add_option("--density", opt->density, "uniform or curvature")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();
+  cmd->add_flag("--no-fit", opt->no_fit,
+                "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "
+                "never lowering the CVT's worst triangle)");
   cmd->add_option("-o,--output", opt->output, "Output mesh (.off, .obj, .ply)")->required();
   cmd->add_option("--report", opt->report, "Write a JSON report");
   return [opt]() { return run_remesh(*opt); };

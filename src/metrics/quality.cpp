@@ -102,6 +102,18 @@ nlohmann::json QualityMetrics::to_json() const {
           {"vertices", vertices}};
 }
 
+double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c) {
+  // Q(t) = 6/√3 · |t| / (p(t) h(t)): 1 for the equilateral triangle, 0 for a degenerate one.
+  const double la = distance(b, c), lb = distance(c, a), lc = distance(a, b);
+  const double area = 0.5 * norm(cross(b - a, c - a));
+  const double half_perimeter = 0.5 * (la + lb + lc), longest = std::max({la, lb, lc});
+  return half_perimeter * longest > 0 ? 6.0 / std::sqrt(3.0) * area / (half_perimeter * longest) : 0.0;
+}
+
+double triangle_min_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return std::min({corner_angle(a, b, c), corner_angle(b, c, a), corner_angle(c, a, b)});
+}
+
 QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
   check_indices(positions, triangles);
   QualityMetrics m;
@@ -109,8 +121,6 @@ QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vect
   m.vertices = static_cast<int>(positions.size());
   if (triangles.empty()) return m;
 
-  // Q(t) = 6/√3 · |t| / (p(t) h(t)): 1 for the equilateral triangle, 0 for a degenerate one.
-  const double q_scale = 6.0 / std::sqrt(3.0);
   double q_sum = 0;
   long long triangles_below = 0, angles_below = 0;
   m.q_min = std::numeric_limits<double>::infinity();
@@ -118,10 +128,7 @@ QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vect
   m.theta_max = -std::numeric_limits<double>::infinity();
   for (const Triangle& f : triangles) {
     const Vec3 &a = positions[f[0]], &b = positions[f[1]], &c = positions[f[2]];
-    const double la = distance(b, c), lb = distance(c, a), lc = distance(a, b);
-    const double area = 0.5 * norm(cross(b - a, c - a));
-    const double half_perimeter = 0.5 * (la + lb + lc), longest = std::max({la, lb, lc});
-    const double q = half_perimeter * longest > 0 ? q_scale * area / (half_perimeter * longest) : 0.0;
+    const double q = triangle_quality(a, b, c);
     m.q_min = std::min(m.q_min, q);
     q_sum += q;
 

@@ -24,6 +24,11 @@ struct DistanceOptions {
   unsigned long long seed = 20140701;  //!< the same points every run
 };
 
+//! Q(t) = 6/√3 · |t| / (p(t) h(t)) of one triangle: 1 when equilateral, 0 when degenerate.
+double triangle_quality(const Vec3& a, const Vec3& b, const Vec3& c);
+//! The smallest corner angle of one triangle, in degrees (0 when an edge has zero length).
+double triangle_min_angle(const Vec3& a, const Vec3& b, const Vec3& c);
+
 //! Triangle-shape metrics alone (degenerate triangles count with Q = 0 and angles 0/180).
 //! \throw InputError when a triangle names a missing vertex or a used vertex is not finite.
 QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);

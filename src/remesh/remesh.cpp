@@ -187,6 +187,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   best.repair_rounds = result.repair_rounds;
   best.total_iterations = result.total_iterations;
   result = std::move(best);
+  if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

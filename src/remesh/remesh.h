@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "remesh/cvt.h"
+#include "remesh/fit.h"
 #include "voronoi/dual.h"
 
 namespace lrvd {
@@ -14,6 +15,8 @@ struct RemeshOptions {
   CvtOptions cvt;
   int repair_rounds = 12;          //!< rounds of "move a sample to a defect, optimise again"
   int repair_iterations = 30;      //!< CVT iterations after each density raise
+  bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
+  FitOptions fit_options;
 };
 
 struct RemeshResult {
@@ -21,6 +24,7 @@ struct RemeshResult {
   DualMesh dual;            //!< the output mesh: one vertex per sample
   int total_iterations = 0; //!< over the first optimisation and every repair round
   int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
+  FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
   double time_s = 0;
 };
 
@@ -60,7 +64,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! that cut through each other), the
 //! density is doubled over the defect cells and their neighbours and the CVT runs again, which
 //! moves samples from elsewhere into the thin part; the result is the state with the fewest
-//! defects (the caller verifies it).
+//! defects (the caller verifies it). Last, unless switched off, the vertices are fitted to the
+//! surface under the CVT's quality floor (fit_to_surface).
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
 

@@ -1,0 +1,42 @@
+// Fitting the remesh to the input after the CVT: each vertex moves from its sample (on the
+// surface, at the centroid of its cell) towards the point closest in the least-squares sense to
+// the planes of the input under its cell, as far as its triangles keep their shape.
+//
+// Why: the dual's triangles are chords of the surface. Where the surface bends (the tips of
+// antlers and hooves, a polyhedral input's corners) every chord cuts the bend on one side, and
+// the two-sided distance is set there. A vertex on the planes of its cell's triangles sits at the
+// apex of the bend instead, which roughly halves that distance. The quality floor keeps the CVT's
+// triangle shape: no triangle goes below the CVT's own worst Q or its own smallest angle (30° at
+// most), and none turns over.
+#pragma once
+
+#include <vector>
+
+#include "mesh/surface_mesh.h"
+#include "voronoi/diagram.h"
+#include "voronoi/dual.h"
+
+namespace lrvd {
+
+struct FitOptions {
+  //! Directions in which the cell's planes vary less than this fraction of the strongest one
+  //! leave the vertex where it is (a flat cell keeps its vertex: only the normal direction is
+  //! constrained there).
+  double rank_threshold = 0.1;
+  double max_angle_floor = 30.0;  //!< the angle floor is min(this, the smallest angle before)
+  int passes = 3;                 //!< sweeps over the vertices (later ones finish partial moves)
+};
+
+struct FitResult {
+  int moved = 0;                //!< vertices that left their sample
+  double max_displacement = 0;  //!< the longest move, in the mesh's units
+  int reverted = 0;             //!< vertices put back because their triangles crossed others
+};
+
+//! Moves the vertices of `dual` (the dual of `diagram` on `mesh`) towards their cells' quadric
+//! minimisers under the quality floor, then puts back the vertices of any triangle that crosses
+//! another one and did not before. Triangles and their orientation are unchanged.
+FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual,
+                         const FitOptions& options = {});
+
+}  // namespace lrvd
