@@ -24,10 +24,13 @@ inline unsigned edge_mask(const SymbolicVertex& q, const std::array<int, 3>& tri
     for (int c = 0; c < 3; ++c)
       if (triangle[c] == q.v[0]) mask = (1u << c) | (1u << ((c + 2) % 3));
   } else if (q.type == SymbolicVertex::Type::B) {
-    for (int e = 0; e < 3; ++e) {
-      const int a = triangle[e], b = triangle[(e + 1) % 3];
-      if (q.v[0] == (a < b ? a : b) && q.v[1] == (a < b ? b : a)) mask |= 1u << e;
+    // Edge e joins corners e and e + 1: find the corners of the vertex's edge.
+    int c0 = -1, c1 = -1;
+    for (int c = 0; c < 3; ++c) {
+      if (triangle[c] == q.v[0]) c0 = c;
+      if (triangle[c] == q.v[1]) c1 = c;
     }
+    if (c0 >= 0 && c1 >= 0) mask = 1u << ((c0 + 1) % 3 == c1 ? c0 : c1);
   }
   return mask;
 }

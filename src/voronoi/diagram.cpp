@@ -91,6 +91,7 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) 
     for (int e = 0; e < 3; ++e) {
       const int across = mesh.neighbor(poly.triangle, e);
       if (across < 0 || !(along & (1u << e))) continue;
+      if (across < poly.triangle) continue;  // each shared edge is joined once, from its lower triangle
       for (int q = diagram.triangle_offsets[across]; q < diagram.triangle_offsets[across + 1]; ++q)
         if (diagram.polygons[q].cell == poly.cell) {
           const int ra = find_root(parent, p), rb = find_root(parent, q);

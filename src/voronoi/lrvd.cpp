@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <deque>
-#include <queue>
+#include <limits>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -32,6 +32,16 @@ bool erase_sorted(std::vector<int>& sorted, int x) {
   sorted.erase(it);
   return true;
 }
+
+// A sample's region reaching a vertex during the region growing of §3.2, ordered by (power
+// distance, sample, vertex).
+struct VertexEntry {
+  double d;
+  int sample, vertex;
+  bool operator>(const VertexEntry& o) const {
+    return d > o.d || (d == o.d && (sample > o.sample || (sample == o.sample && vertex > o.vertex)));
+  }
+};
 
 // Polygons of one triangle during propagation.
 struct TrianglePolygons {
@@ -59,7 +69,9 @@ struct LrvdWorkspace {
   std::vector<TrianglePolygons> state;
   std::vector<char> queued;
   std::deque<int> queue;
-  std::vector<int> vertex_label, home, conflicts;
+  std::vector<int> vertex_label, home, conflicts, best_sample;
+  std::vector<double> best;
+  std::vector<VertexEntry> heap;
   std::vector<SymbolicVertex> polygon, scratch;
 
   void reset(int triangle_count) {
@@ -75,7 +87,8 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), vertex_label_(work.vertex_label), home_(work.home), conflicts_(work.conflicts),
-        polygon_(work.polygon), scratch_(work.scratch) {
+        polygon_(work.polygon), scratch_(work.scratch),
+        best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
@@ -104,17 +117,29 @@ class LrvdBuilder {
   void assign_vertices() {
     const int nv = mesh_.vertex_count();
     vertex_label_.assign(nv, -1);
-    using Entry = std::tuple<double, int, int>;  // (power distance, sample, vertex)
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    // A vertex goes to the least (power distance, sample) that reaches it; an entry that cannot
+    // be that least one is never queued.
+    using Entry = VertexEntry;
+    best_.assign(nv, std::numeric_limits<double>::infinity());
+    best_sample_.assign(nv, -1);
+    heap_.clear();
+    auto offer = [&](double d, int i, int v) {
+      if (d > best_[v] || (d == best_[v] && best_sample_[v] >= 0 && i >= best_sample_[v])) return;
+      best_[v] = d;
+      best_sample_[v] = i;
+      heap_.push_back({d, i, v});
+      std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+    };
     for (int i = 0; i < samples_.size(); ++i)
-      for (int v : mesh_.triangle(samples_.triangles[i])) queue.emplace(power_distance(mesh_.position(v), i), i, v);
-    while (!queue.empty()) {
-      const auto [d, i, v] = queue.top();
-      queue.pop();
-      if (vertex_label_[v] >= 0) continue;
-      vertex_label_[v] = i;
-      for (const int* u = mesh_.vertex_neighbors_begin(v); u != mesh_.vertex_neighbors_end(v); ++u)
-        if (vertex_label_[*u] < 0) queue.emplace(power_distance(mesh_.position(*u), i), i, *u);
+      for (int v : mesh_.triangle(samples_.triangles[i])) offer(power_distance(mesh_.position(v), i), i, v);
+    while (!heap_.empty()) {
+      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+      const Entry top = heap_.back();
+      heap_.pop_back();
+      if (vertex_label_[top.vertex] >= 0) continue;
+      vertex_label_[top.vertex] = top.sample;
+      for (const int* u = mesh_.vertex_neighbors_begin(top.vertex); u != mesh_.vertex_neighbors_end(top.vertex); ++u)
+        if (vertex_label_[*u] < 0) offer(power_distance(mesh_.position(*u), top.sample), top.sample, *u);
     }
   }
 
@@ -162,12 +187,17 @@ class LrvdBuilder {
       queued_[t] = 0;
       clip(t);
       const TrianglePolygons& st = state_[t];
+      const Triangle& tri = mesh_.triangle(t);
       conflicts_.clear();
       for (size_t p = 0; p < st.cell.size(); ++p) {
         const int k = st.cell[p];
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.reach[p] & (1u << e)) || contains(state_[across].labels, k)) continue;
+          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          // The triangle across holds the labels of the edge's end points from the start, and
+          // keeps them until a label is first taken away.
+          if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
+          if (contains(state_[across].labels, k)) continue;
           if (contains(state_[across].forbidden, k)) {
             conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
             continue;
@@ -178,6 +208,7 @@ class LrvdBuilder {
       }
       for (int k : conflicts_)
         if (t != home_[k] && state_[t].labels.size() > 1 && erase_sorted(state_[t].labels, k)) {
+          labels_removed_ = true;
           insert_sorted(state_[t].forbidden, k);
           ++stats_.forbidden_labels;
           activate(t);
@@ -205,6 +236,7 @@ class LrvdBuilder {
       if (comps.polygon_component[p] == keep) continue;
       TrianglePolygons& st = state_[poly.triangle];
       if (!erase_sorted(st.labels, k)) continue;
+      labels_removed_ = true;
       insert_sorted(st.forbidden, k);
       ++stats_.forbidden_labels;
       activate(poly.triangle);
@@ -270,6 +302,10 @@ class LrvdBuilder {
   std::vector<char>& queued_;
   std::vector<int>&vertex_label_, &home_, &conflicts_;
   std::vector<SymbolicVertex>&polygon_, &scratch_;
+  std::vector<double>& best_;  // region growing: the least entry queued per vertex
+  std::vector<int>& best_sample_;
+  std::vector<VertexEntry>& heap_;
+  bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };
 
