@@ -132,9 +132,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 
 namespace {
 
-// Doubles the density on the triangles of the defect cells and of their neighbours, so that the
+// Multiplies the density on the triangles of the defect cells and of their neighbours, so that the
 // CVT draws more samples into the thin part they wrap.
-void raise_density(const Diagram& diagram, const std::vector<int>& defect, std::vector<double>& density) {
+void raise_density(const Diagram& diagram, const std::vector<int>& defect, double factor, std::vector<double>& density) {
   std::vector<char> involved(diagram.sample_count, 0);
   for (int i : defect) involved[i] = 1;
   for (const SymbolicVertex& q : diagram.vertices)
@@ -146,7 +146,7 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, std::
   for (const CellPolygon& poly : diagram.polygons)
     if (involved[poly.cell] && !raised[poly.triangle]) {
       raised[poly.triangle] = 1;
-      density[poly.triangle] *= 2;
+      density[poly.triangle] *= factor;
     }
 }
 
@@ -173,7 +173,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   RemeshResult best = result;
   DualDefects best_defects = defects;
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
-    raise_density(result.cvt.diagram, defects.where_to_act(), again.triangle_density);
+    raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
     ++result.repair_rounds;
     result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
     result.total_iterations += result.cvt.iterations;

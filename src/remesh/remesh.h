@@ -15,6 +15,7 @@ struct RemeshOptions {
   CvtOptions cvt;
   int repair_rounds = 12;          //!< rounds of "move a sample to a defect, optimise again"
   int repair_iterations = 30;      //!< CVT iterations after each density raise
+  double repair_factor = 2;        //!< each round multiplies the density around defects by this
   bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
   FitOptions fit_options;
 };
@@ -61,10 +62,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
 //! After the first CVT, while the dual has defects (a thin part wrapped by too few cells, sheets
-//! that cut through each other), the
-//! density is doubled over the defect cells and their neighbours and the CVT runs again, which
-//! moves samples from elsewhere into the thin part; the result is the state with the fewest
-//! defects (the caller verifies it). Last, unless switched off, the vertices are fitted to the
+//! that cut through each other), the density is multiplied by `repair_factor` over the defect
+//! cells and their neighbours and the CVT runs again, which moves samples from elsewhere into the
+//! thin part; the result is the state with the fewest defects (the caller verifies it). Last, unless switched off, the vertices are fitted to the
 //! surface under the CVT's quality floor (fit_to_surface).
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
