@@ -1,5 +1,6 @@
-// Filtered exact side1/side2/side3 (paper §3.6): interval filter, CGAL::Mpzf exact fallback and
-// symbolic perturbation of the weights on exact zeros. Derivations are in docs/predicates.md.
+// Filtered exact side1/side2/side3 (paper §3.6): a forward-error filter in doubles, an interval
+// filter, CGAL::Mpzf exact fallback and symbolic perturbation of the weights on exact zeros.
+// Derivations are in docs/predicates.md.
 #include "predicates/predicates.h"
 
 #include <CGAL/FPU.h>
@@ -80,11 +81,11 @@ PredicateCounters to_counters(const std::uint64_t (&v)[kFields]) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Number types. The filter decides only a certainly nonzero sign: an interval that contains 0
-// (including a result that is exactly [0,0]) goes to the exact path, which also owns the
-// perturbation. Inputs are checked against a range in which no intermediate value of the
-// predicate can overflow, so the intervals never hold inf or NaN; underflow is harmless with
-// directed rounding (it only widens the interval).
+// Number types. The filters (Fpf below, then IA) decide only a certainly nonzero sign: an
+// interval that contains 0 (including a result that is exactly [0,0]) goes to the exact path,
+// which also owns the perturbation. Inputs are checked against a range in which no intermediate
+// value (or magnitude) of the predicate can overflow, so the filters never hold inf or NaN;
+// underflow only widens an interval, and Fpf's bound covers it (T below).
 
 using IA = CGAL::Interval_nt<false>;
 using EX = CGAL::Mpzf;
@@ -105,6 +106,61 @@ inline bool in_range(const Vec3& v, double bound = kMaxCoord) {
   return std::fabs(v.x) <= bound && std::fabs(v.y) <= bound && std::fabs(v.z) <= bound;
 }
 inline bool in_range(const Site& s) { return in_range(s.p) && std::fabs(s.w) <= kMaxWeight; }
+
+// ---------------------------------------------------------------------------------------------
+// The double filter, run before the intervals: the same templates evaluated in plain doubles (no
+// rounding-mode switch) with a forward error bound (docs/predicates.md has the derivation). Fpf
+// carries the rounded value v, a magnitude m (the expression on |inputs| with - turned into +,
+// plus T per product) and the number d of roundings on the deepest path. Any rounding mode,
+// u = 2^-52, gamma_k = k u / (1 - k u), T = 2^-1021, no overflow (in_range):
+//   fl(a +- b) = (a +- b)(1 + e)       |e| <= u  (exact when the result is subnormal)
+//   fl(a * b)  = a b (1 + e) + h       |h| <= 2^-1074 <= u T  (h != 0 only on underflow)
+// By induction, with E the exact value and M the unrounded m, |v - E| <= gamma_d M, |E| <= M:
+//   +- : gamma_da Ma + gamma_db Mb + u (1 + gamma_max)(Ma + Mb) <= gamma_(max+1) (Ma + Mb);
+//        of two inputs (d = 0): |v - E| <= u |E|, so M = |E| <= |v| / (1 - u) will do;
+//   *  : |va vb - Ea Eb| <= gamma_(da+db) Ma Mb, |va vb| <= (1 + gamma_(da+db)) Ma Mb, so
+//        |v - E| <= gamma_(da+db+1) Ma Mb + u T <= gamma_d (Ma Mb + T).
+// T absorbs underflow anywhere in the tree, however large the cofactors. The stored m is M
+// rounded r <= 2d times (once per sum; * then + T per product, the *'s underflow again <= u T),
+// each time at most a factor (1 - u) low: M <= m (1 - u)^-2d. With m >= 2^-900 the product c_d m
+// is normal, and c_d = d u (1 + 2^-30) >= gamma_d (1 - u)^(-2d-1) for d <= 2^19, so
+// B = fl(c_d m) >= gamma_d M >= |v - E|. |v| > B then proves sign(v) = sign(E); an exact zero
+// (|v| <= B) always falls through. d is at most 22 here (side3's D).
+
+struct Fpf {
+  double v = 0;  // value, rounded at every operation
+  double m = 0;  // upper bound of the magnitude (see above)
+  int d = 0;     // roundings along the deepest path: max + 1 for +-, sum + 1 for *
+  Fpf() = default;
+  explicit Fpf(double x) : v(x), m(std::fabs(x)) {}
+  Fpf(double value, double magnitude, int depth) : v(value), m(magnitude), d(depth) {}
+};
+
+constexpr double kFpfUnderflow = 0x1p-1021;  // T
+constexpr double kFpfMinMagnitude = 0x1p-900;
+constexpr double kFpfMaxMagnitude = 0x1p1000;  // rejects inf and NaN too
+constexpr int kFpfMaxDepth = 64;
+
+// A sum of two inputs (d = 0: the coordinate differences) is rounded once, relative to itself,
+// so far from the origin m is |p - q|, not |p| + |q|. In the flattened filters the test folds.
+inline Fpf add(const Fpf& a, const Fpf& b, double v) {
+  if (a.d == 0 && b.d == 0) return {v, std::fabs(v), 1};
+  return {v, a.m + b.m, std::max(a.d, b.d) + 1};
+}
+inline Fpf operator+(const Fpf& a, const Fpf& b) { return add(a, b, a.v + b.v); }
+inline Fpf operator-(const Fpf& a, const Fpf& b) { return add(a, b, a.v - b.v); }
+inline Fpf operator*(const Fpf& a, const Fpf& b) {
+  return {a.v * b.v, a.m * b.m + kFpfUnderflow, a.d + b.d + 1};
+}
+inline Fpf operator-(const Fpf& a) { return {-a.v, a.m, a.d}; }
+
+inline Sign certain_sign(const Fpf& x) {
+  if (!(x.m >= kFpfMinMagnitude && x.m <= kFpfMaxMagnitude) || x.d > kFpfMaxDepth) return Sign::Zero;
+  const double bound = double(x.d) * (0x1p-52 + 0x1p-82) * x.m;  // c_d m; c_d is exact
+  if (x.v > bound) return Sign::Positive;
+  if (x.v < -bound) return Sign::Negative;
+  return Sign::Zero;  // undecided
+}
 
 template <class NT>
 struct V3 {
@@ -198,6 +254,23 @@ Side3Terms<NT> side3_terms(const Site& i, const Site& j, const Site& k, const Si
   return t;
 }
 
+// The double filter of each predicate: its answer when the filter proves the signs, else Zero.
+// Flattened so that the depths d fold into constants and no Fpf goes through memory.
+[[gnu::flatten]] Sign side1_fpf(const Site& i, const Site& l, const Vec3& q) {
+  return -certain_sign(side1_f<Fpf>(i, l, q));
+}
+[[gnu::flatten]] Sign side2_fpf(const Site& i, const Site& j, const Site& l, const Vec3& q1,
+                                const Vec3& q2) {
+  Fpf num, den;
+  side2_num_den<Fpf>(i, j, l, q1, q2, num, den);
+  return -(certain_sign(num) * certain_sign(den));
+}
+[[gnu::flatten]] Sign side3_fpf(const Site& i, const Site& j, const Site& k, const Site& l,
+                                const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  const Side3Terms<Fpf> t = side3_terms<Fpf>(i, j, k, l, p1, p2, p3);
+  return -(certain_sign(t.D) * certain_sign(t.Cl));
+}
+
 }  // namespace
 
 // -------------------------------------------------------------------------------------------------
@@ -239,6 +312,7 @@ Sign side1(const Site& i, const Site& l, const Vec3& q) {
   ThreadCounters& c = local_counters();
   bump(c, kSide1, kCalls);
   if (in_range(i) && in_range(l) && in_range(q)) {
+    if (Sign s = side1_fpf(i, l, q); s != Sign::Zero) return s;
     Sign s;
     {
       CGAL::Protect_FPU_rounding<true> rounding;
@@ -260,6 +334,7 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
   ThreadCounters& c = local_counters();
   bump(c, kSide2, kCalls);
   if (in_range(i) && in_range(j) && in_range(l) && in_range(q1) && in_range(q2)) {
+    if (Sign s = side2_fpf(i, j, l, q1, q2); s != Sign::Zero) return s;
     Sign s;
     {
       CGAL::Protect_FPU_rounding<true> rounding;
@@ -294,6 +369,7 @@ Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,
   bump(c, kSide3, kCalls);
   if (in_range(i) && in_range(j) && in_range(k) && in_range(l) && in_range(p1) && in_range(p2) &&
       in_range(p3)) {
+    if (Sign s = side3_fpf(i, j, k, l, p1, p2, p3); s != Sign::Zero) return s;
     Sign s;
     {
       CGAL::Protect_FPU_rounding<true> rounding;

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <optional>
 #include <random>
 #include <thread>
 #include <vector>
@@ -459,6 +461,178 @@ TEST_CASE("Samples placed on mesh vertices and edge points", "[predicates]") {
       CHECK(pr::side2(s[0], s[1], s[3], q1, q2) == expect2(s[0], s[1], s[3], q1, q2));
     if (det_M(s[0], s[1], s[2], t[0], t[1], t[2]) != 0)
       CHECK(pr::side3(s[0], s[1], s[2], s[3], t[0], t[1], t[2]) == expect3(s[0], s[1], s[2], s[3], t[0], t[1], t[2]));
+  }
+}
+
+// ---- Near-degenerate inputs for the double filter (the stage before the intervals): exact ties
+// in large coordinates with small differences, moved off the tie by 0 to 2^32 ulps of one input so
+// that the value crosses the filter's error bound; and mixed scales whose products underflow.
+
+namespace {
+// Signed steps in ulps: dense near 0, where |value| crosses the filter's bound, then sparse.
+constexpr double kUlpSteps[] = {1,  2,  3,  4,  5,   6,   7,      8,      10,     12,    14,   16,
+                                 20, 24, 32, 48, 64, 128, 512, 0x1p12, 0x1p16, 0x1p24, 0x1p32};
+constexpr int kTieExponents[] = {-400, -60, 0, 20, 50};  // coordinates up to 2^(50 + e)
+
+// x moved by k ulps of x (rounded: the references see the moved double, whatever it is).
+double moved(double x, double k) {
+  const double ulp = std::nextafter(std::fabs(x), INFINITY) - std::fabs(x);
+  return x + k * ulp;
+}
+
+// Exact ties around a center q: integers below 2^51 times 2^e, so every sum below is exact.
+struct TieGen {
+  std::mt19937_64 rng{31337};
+  int e = 0;       // exponent of the unit
+  int spread = 0;  // log2 of the differences between the points, in units (<= 48)
+  double unit(int bits) {
+    const std::int64_t r = std::int64_t(1) << bits;
+    return std::ldexp(double(std::uniform_int_distribution<std::int64_t>(-r, r)(rng)), e);
+  }
+  Vec3 center() { return {unit(49), unit(49), unit(49)}; }
+  Vec3 offset() { return {unit(spread), unit(spread), unit(spread)}; }
+  // Equal weights of the order of the squared differences keep every tie.
+  double weight(bool power) { return power ? std::ldexp(unit(std::min(2 * spread, 50)), e) : 0.0; }
+  // d mapped by a random signed permutation of its axes: |rotated(d)| = |d|.
+  Vec3 rotated(const Vec3& d) {
+    std::array<int, 3> axes{0, 1, 2};
+    std::shuffle(axes.begin(), axes.end(), rng);
+    Vec3 r;
+    for (int c = 0; c < 3; ++c) r[c] = rng() % 2 ? d[axes[c]] : -d[axes[c]];
+    return r;
+  }
+  void next(int n) {
+    e = kTieExponents[n % 5];
+    spread = std::array<int, 4>{0, 10, 30, 48}[(n / 5) % 4];
+  }
+  // Moves one of the doubles by k ulps (a zero weight becomes a subnormal one).
+  void move_one(const std::vector<double*>& slots, double k) {
+    double& x = *slots[rng() % slots.size()];
+    x = moved(x, k);
+  }
+};
+
+// Every exact tie of `make` (a configuration and the doubles it may move), and every move of one
+// double by +-kUlpSteps, must agree with the references.
+template <class Make, class Check>
+void sweep_ulps(TieGen& g, int configurations, Make make, Check check) {
+  for (int n = 0; n < configurations; ++n) {
+    g.next(n);
+    const auto base = make(n % 2 == 1);
+    if (!base) continue;
+    check(*base);
+    for (double k : kUlpSteps)
+      for (double sign : {-1.0, 1.0}) {
+        auto x = *base;
+        g.move_one(x.slots(), sign * k);
+        check(x);
+      }
+  }
+}
+}  // namespace
+
+TEST_CASE("side1 is exact a few ulps off a bisector, with large coordinates and small differences", "[predicates]") {
+  struct Config {
+    Site i, l;
+    Vec3 q;
+    std::vector<double*> slots() { return {&q.x, &q.y, &q.z, &i.p.x, &l.p.y, &i.w, &l.w}; }
+  };
+  TieGen g;
+  int checked = 0;
+  sweep_ulps(g, 1000, [&](bool power) {
+    Config c;
+    c.q = g.center();
+    const Vec3 d = g.offset();
+    const double w = g.weight(power);
+    c.i = Site{c.q + d, w, 3};
+    c.l = Site{c.q + g.rotated(d), w, 1};
+    REQUIRE(det_side1(c.i, c.l, c.q) == Sign::Zero);
+    return std::optional<Config>(c);
+  }, [&](const Config& c) {
+    REQUIRE(pr::side1(c.i, c.l, c.q) == expect1(c.i, c.l, c.q));
+    ++checked;
+  });
+  CHECK(checked > 40000);
+}
+
+TEST_CASE("side2 is exact a few ulps off a tie, with large coordinates and small differences", "[predicates]") {
+  struct Config {
+    Site i, j, l;
+    Vec3 q1, q2;
+    std::vector<double*> slots() {
+      return {&q1.x, &q1.y, &q2.z, &i.p.x, &j.p.y, &l.p.z, &i.w, &j.w, &l.w};
+    }
+  };
+  TieGen g;
+  int checked = 0;
+  sweep_ulps(g, 1000, [&](bool power) -> std::optional<Config> {
+    // q is equidistant from i, j, l and lies on the line (q1, q2): the type (b) vertex is q.
+    const Vec3 q = g.center(), d = g.offset(), a = g.offset();
+    const double w = g.weight(power);
+    Config c{Site{q + d, w, 2}, Site{q + g.rotated(d), w, 5}, Site{q + g.rotated(d), w, 0}, q + a,
+             q - 2.0 * a};
+    if (f_abs(c.i, c.j, c.q1) == f_abs(c.i, c.j, c.q2)) return std::nullopt;  // no vertex
+    REQUIRE(det_side2(c.i, c.j, c.l, c.q1, c.q2) == Sign::Zero);
+    return c;
+  }, [&](const Config& c) {
+    if (f_abs(c.i, c.j, c.q1) == f_abs(c.i, c.j, c.q2)) return;
+    REQUIRE(pr::side2(c.i, c.j, c.l, c.q1, c.q2) == expect2(c.i, c.j, c.l, c.q1, c.q2));
+    ++checked;
+  });
+  CHECK(checked > 30000);
+}
+
+TEST_CASE("side3 is exact a few ulps off a tie, with large coordinates and small differences", "[predicates]") {
+  struct Config {
+    Site i, j, k, l;
+    Vec3 p1, p2, p3;
+    std::vector<double*> slots() {
+      return {&p1.x, &p2.y, &p3.z, &i.p.x, &j.p.y, &k.p.z, &l.p.x, &i.w, &l.w};
+    }
+  };
+  TieGen g;
+  int checked = 0;
+  sweep_ulps(g, 1000, [&](bool power) -> std::optional<Config> {
+    // q is equidistant from the four sites and is the centroid of the triangle.
+    const Vec3 q = g.center(), d = g.offset(), a = g.offset(), b = g.offset();
+    const double w = g.weight(power);
+    Config c{Site{q + d, w, 6}, Site{q + g.rotated(d), w, 2}, Site{q + g.rotated(d), w, 9},
+             Site{q + g.rotated(d), w, 4}, q + a, q + b, q - a - b};
+    if (det_M(c.i, c.j, c.k, c.p1, c.p2, c.p3) == 0) return std::nullopt;  // no vertex
+    REQUIRE(det_side3(c.i, c.j, c.k, c.l, c.p1, c.p2, c.p3) == Sign::Zero);
+    return c;
+  }, [&](const Config& c) {
+    if (det_M(c.i, c.j, c.k, c.p1, c.p2, c.p3) == 0) return;
+    REQUIRE(pr::side3(c.i, c.j, c.k, c.l, c.p1, c.p2, c.p3) ==
+            expect3(c.i, c.j, c.k, c.l, c.p1, c.p2, c.p3));
+    ++checked;
+  });
+  CHECK(checked > 30000);
+}
+
+TEST_CASE("Products that underflow next to large cofactors do not fool the double filter", "[predicates]") {
+  // Per coordinate: 0, or a small integer times 2^-540, 2^-537 (a product of two underflows), 1
+  // or 2^90. Sites and end points near the origin with tiny differences, next to large ones, make
+  // subnormal products that side2 and side3 multiply by large cofactors.
+  std::mt19937_64 rng(1848);
+  constexpr int kExp[] = {-540, -537, 0, 90};
+  auto value = [&](bool weight) {
+    const double k = double(int(rng() % 7) - 3);
+    if (rng() % 3 == 0) return 0.0;
+    const int e = kExp[rng() % 4];
+    return std::ldexp(k, weight ? 2 * e : e);
+  };
+  auto point = [&] { return Vec3{value(false), value(false), value(false)}; };
+  auto site = [&](int id, bool power) { return Site{point(), power ? value(true) : 0.0, id}; };
+  for (int n = 0; n < 20000; ++n) {
+    const bool power = n % 4 == 3;
+    const Site i = site(4, power), j = site(1, power), k = site(7, power), l = site(2, power);
+    const Vec3 p1 = point(), p2 = point(), p3 = point();
+    REQUIRE(pr::side1(i, l, p1) == expect1(i, l, p1));
+    if (f_abs(i, j, p1) != f_abs(i, j, p2))
+      REQUIRE(pr::side2(i, j, l, p1, p2) == expect2(i, j, l, p1, p2));
+    if (det_M(i, j, k, p1, p2, p3) != 0)
+      REQUIRE(pr::side3(i, j, k, l, p1, p2, p3) == expect3(i, j, k, l, p1, p2, p3));
   }
 }
 
