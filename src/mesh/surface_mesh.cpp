@@ -15,11 +15,6 @@ namespace lrvd {
 
 namespace {
 
-uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
-}
-
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
   return x;
@@ -77,32 +72,7 @@ void SurfaceMesh::build_topology() {
                                      sorted[k].first[1], sorted[k].first[2]));
   }
 
-  // Edges: at most two triangles each, in opposite directions.
-  neighbors_.assign(nt, {-1, -1, -1});
-  std::unordered_map<uint64_t, std::array<int, 2>> edge_slot;  // (t*3+e) of the first two users
-  edge_slot.reserve(static_cast<size_t>(nt) * 2);
-  for (int t = 0; t < nt; ++t) {
-    for (int e = 0; e < 3; ++e) {
-      const int a = triangles_[t][e], b = triangles_[t][(e + 1) % 3];
-      auto [it, fresh] = edge_slot.try_emplace(edge_key(a, b), std::array<int, 2>{t * 3 + e, -1});
-      if (fresh) continue;
-      auto& slot = it->second;
-      if (slot[1] >= 0)
-        throw InputError(fmt::format("mesh is not manifold: edge ({}, {}) has 3 or more triangles ({}, {}, {})",
-                                     std::min(a, b), std::max(a, b), slot[0] / 3, slot[1] / 3, t));
-      const int t0 = slot[0] / 3, e0 = slot[0] % 3;
-      if (triangles_[t0][e0] == a)
-        throw InputError(fmt::format(
-            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction",
-            t0, t, a, b));
-      slot[1] = t * 3 + e;
-      neighbors_[t][e] = t0;
-      neighbors_[t0][e0] = t;
-    }
-  }
-  edge_count_ = static_cast<int>(edge_slot.size());
-
-  // Vertex-to-triangle lists (CSR).
+  // Vertex-to-triangle lists (CSR), each in increasing triangle order.
   vt_offsets_.assign(nv + 1, 0);
   for (const Triangle& tri : triangles_)
     for (int v : tri) ++vt_offsets_[v + 1];
@@ -112,6 +82,42 @@ void SurfaceMesh::build_topology() {
     std::vector<int> fill(vt_offsets_.begin(), vt_offsets_.end() - 1);
     for (int t = 0; t < nt; ++t)
       for (int v : triangles_[t]) vt_triangles_[fill[v]++] = t;
+  }
+
+  // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
+  // those around a that hold b, in increasing order; each (t, e) is checked when t is reached,
+  // so the first offending triangle is named, as a single pass over the triangles would.
+  neighbors_.assign(nt, {-1, -1, -1});
+  edge_count_ = 0;
+  auto edge_index = [&](int t, int a, int b) {  // the edge of t from a to b, or -1
+    for (int e = 0; e < 3; ++e)
+      if (triangles_[t][e] == a && triangles_[t][(e + 1) % 3] == b) return e;
+    return -1;
+  };
+  for (int t = 0; t < nt; ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles_[t][e], b = triangles_[t][(e + 1) % 3];
+      int users[3] = {-1, -1, -1}, count = 0;
+      for (const int* u = vertex_triangles_begin(a); u != vertex_triangles_end(a) && count < 3; ++u) {
+        const Triangle& tri = triangles_[*u];
+        if (tri[0] == b || tri[1] == b || tri[2] == b) users[count++] = *u;
+      }
+      if (users[0] == t) {
+        ++edge_count_;
+        continue;
+      }
+      if (count >= 3 && users[2] == t)
+        throw InputError(fmt::format("mesh is not manifold: edge ({}, {}) has 3 or more triangles ({}, {}, {})",
+                                     std::min(a, b), std::max(a, b), users[0], users[1], t));
+      if (users[1] != t) continue;  // a fourth user or later: the third one has thrown already
+      const int t0 = users[0];
+      if (edge_index(t0, a, b) >= 0)
+        throw InputError(fmt::format(
+            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction",
+            t0, t, a, b));
+      neighbors_[t][e] = t0;
+      neighbors_[t0][edge_index(t0, b, a)] = t;
+    }
   }
 
   // Manifold vertices: the triangles around v form a single fan (edge-connected through v).
