@@ -55,23 +55,6 @@ SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> tria
 void SurfaceMesh::build_topology() {
   const int nt = triangle_count(), nv = vertex_count();
 
-  // Duplicate triangles: same vertex set, in any order.
-  {
-    std::vector<std::pair<std::array<int, 3>, int>> sorted(nt);
-    for (int t = 0; t < nt; ++t) {
-      std::array<int, 3> s = triangles_[t];
-      std::sort(s.begin(), s.end());
-      sorted[t] = {s, t};
-    }
-    std::sort(sorted.begin(), sorted.end());
-    for (int k = 1; k < nt; ++k)
-      if (sorted[k].first == sorted[k - 1].first)
-        throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})",
-                                     std::min(sorted[k - 1].second, sorted[k].second),
-                                     std::max(sorted[k - 1].second, sorted[k].second), sorted[k].first[0],
-                                     sorted[k].first[1], sorted[k].first[2]));
-  }
-
   // Vertex-to-triangle lists (CSR), each in increasing triangle order.
   vt_offsets_.assign(nv + 1, 0);
   for (const Triangle& tri : triangles_)
@@ -82,6 +65,21 @@ void SurfaceMesh::build_topology() {
     std::vector<int> fill(vt_offsets_.begin(), vt_offsets_.end() - 1);
     for (int t = 0; t < nt; ++t)
       for (int v : triangles_[t]) vt_triangles_[fill[v]++] = t;
+  }
+
+  // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
+  // around the smallest vertex, before this one.
+  auto sorted_corners = [&](int t) {
+    std::array<int, 3> corners = triangles_[t];
+    std::sort(corners.begin(), corners.end());
+    return corners;
+  };
+  for (int t = 0; t < nt; ++t) {
+    const std::array<int, 3> corners = sorted_corners(t);
+    for (const int* u = vertex_triangles_begin(corners[0]); *u < t; ++u)
+      if (sorted_corners(*u) == corners)
+        throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})", *u, t, corners[0],
+                                     corners[1], corners[2]));
   }
 
   // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
