@@ -129,3 +129,20 @@ TEST_CASE("lrvd refuses a triangle soup naming --repair, and --repair welds it",
   REQUIRE(run("compute " + soup + " -n 10 --repair --report " + report).status == 0);
   REQUIRE(read_json(report)["input"]["closed"] == true);
 }
+
+TEST_CASE("lrvd gives the same output with one thread and with several", "[cli][remesh]") {
+  // The diagram clips triangles in parallel and integrates cells in parallel, but every decision
+  // and every sum is made in a fixed order.
+  const std::string one = kOut + "threads1.off", two = kOut + "threads2.off";
+  REQUIRE(run("--threads 1 remesh " + kData + "/elk.off -n 200 -o " + one).status == 0);
+  REQUIRE(run("remesh " + kData + "/elk.off -n 200 -o " + two + " --threads 2").status == 0);
+  std::ifstream a(one), b(two);
+  std::stringstream ta, tb;
+  ta << a.rdbuf();
+  tb << b.rdbuf();
+  REQUIRE(!ta.str().empty());
+  REQUIRE(ta.str() == tb.str());
+  const Run bad = run("remesh " + kData + "/elk.off -n 200 -o " + one + " --threads 0");
+  REQUIRE(bad.status == 2);
+  REQUIRE(lines(bad.err) == 1);
+}

@@ -2,8 +2,10 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <memory>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "cli/commands.h"
 #include "common/error.h"
@@ -13,6 +15,11 @@ int main(int argc, char** argv) {
   CLI::App app{"lrvd: exact localized restricted Voronoi diagrams (LRVD) of points on triangle meshes"};
   app.set_version_flag("--version", std::string("lrvd ") + LRVD_VERSION);
   app.require_subcommand(1);
+  int threads = 0;
+  app.add_option("--threads", threads,
+                 "Worker threads (default: every core); results do not depend on it")
+      ->check(CLI::Range(1, 4096));
+  app.fallthrough();  // --threads may also follow the subcommand
   std::map<CLI::App*, Action> actions;
   auto add = [&](Action (*adder)(CLI::App&)) {
     const size_t before = app.get_subcommands({}).size();
@@ -34,6 +41,9 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "lrvd: error: %s (see --help)\n", e.what());
     return kBadInput;
   }
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   try {
     for (auto& [command, action] : actions)
       if (command->parsed()) return action();

@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <LBFGS.h>
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
@@ -25,12 +27,14 @@ void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Sa
   samples.positions.resize(points.size());
   samples.triangles.resize(points.size());
   samples.barycentric.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const ClosestPoint c = index.query(points[i]);
-    samples.positions[i] = onto_surface ? c.point : points[i];
-    samples.triangles[i] = c.triangle;
-    samples.barycentric[i] = c.barycentric;
-  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const ClosestPoint c = index.query(points[i]);
+      samples.positions[i] = onto_surface ? c.point : points[i];
+      samples.triangles[i] = c.triangle;
+      samples.barycentric[i] = c.barycentric;
+    }
+  });
 }
 
 std::vector<Vec3> to_points(const Eigen::VectorXd& x) {

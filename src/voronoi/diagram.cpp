@@ -4,6 +4,8 @@
 #include <numeric>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "common/error.h"
 #include "mesh/surface_mesh.h"
@@ -43,28 +45,44 @@ std::vector<Site> make_sites(const Samples& samples, bool weighted) {
 CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
                               const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
+  const SymbolicContext ctx = diagram.context(mesh);
+  // Each polygon's integrals in parallel, then summed per cell in polygon order: the same result
+  // with any number of threads.
+  struct PolygonIntegrals {
+    double area = 0, energy = 0;
+    Vec3 moment;  // ∫ρ(x - x_i)
+  };
+  const int np = static_cast<int>(diagram.polygons.size());
+  std::vector<PolygonIntegrals> part(np);
+  tbb::parallel_for(tbb::blocked_range<int>(0, np, 512), [&](const tbb::blocked_range<int>& range) {
+    std::vector<Vec3> points;
+    for (int p = range.begin(); p != range.end(); ++p) {
+      const CellPolygon& poly = diagram.polygons[p];
+      const Vec3& x = samples.positions[poly.cell];
+      const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
+      points.clear();
+      const SymbolicVertex* verts = diagram.polygon_vertices(poly);
+      for (int a = 0; a < poly.vertex_count; ++a) points.push_back(position(verts[a], ctx) - x);
+      // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
+      PolygonIntegrals& out = part[p];
+      for (int a = 1; a + 1 < poly.vertex_count; ++a) {
+        const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
+        const double area = rho * 0.5 * norm(cross(v - u, w - u));
+        out.area += area;
+        out.moment += area * (u + v + w) / 3.0;
+        out.energy += area / 6.0 * (dot(u, u) + dot(v, v) + dot(w, w) + dot(u, v) + dot(v, w) + dot(u, w));
+      }
+    }
+  });
   CellIntegrals out;
   out.area.assign(n, 0);
   out.centroid.assign(n, Vec3{});
   out.energy.assign(n, 0);
-  const SymbolicContext ctx = diagram.context(mesh);
-  std::vector<Vec3> points;
-  for (const CellPolygon& poly : diagram.polygons) {
-    const int i = poly.cell;
-    const Vec3& x = samples.positions[i];
-    const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
-    points.clear();
-    const SymbolicVertex* verts = diagram.polygon_vertices(poly);
-    for (int a = 0; a < poly.vertex_count; ++a) points.push_back(position(verts[a], ctx) - x);
-    // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
-    for (int a = 1; a + 1 < poly.vertex_count; ++a) {
-      const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
-      const double area = rho * 0.5 * norm(cross(v - u, w - u));
-      out.area[i] += area;
-      out.centroid[i] += area * (u + v + w) / 3.0;
-      out.energy[i] += area / 6.0 *
-                       (dot(u, u) + dot(v, v) + dot(w, w) + dot(u, v) + dot(v, w) + dot(u, w));
-    }
+  for (int p = 0; p < np; ++p) {
+    const int i = diagram.polygons[p].cell;
+    out.area[i] += part[p].area;
+    out.centroid[i] += part[p].moment;
+    out.energy[i] += part[p].energy;
   }
   for (int i = 0; i < n; ++i) {
     out.centroid[i] = out.area[i] > 0 ? samples.positions[i] + out.centroid[i] / out.area[i] : samples.positions[i];

@@ -10,6 +10,8 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "common/error.h"
 #include "mesh/surface_mesh.h"
@@ -18,6 +20,9 @@
 namespace lrvd {
 
 namespace {
+
+// Fewer out-of-date triangles than this are left to the sequential pass.
+constexpr int kParallelClips = 256;
 
 bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
 bool insert_sorted(std::vector<int>& sorted, int x) {
@@ -67,17 +72,18 @@ struct TrianglePolygons {
 // diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
 struct LrvdWorkspace {
   std::vector<TrianglePolygons> state;
-  std::vector<char> queued;
+  std::vector<char> queued, clipped;
+  std::vector<int> pending;
   std::deque<int> queue;
   std::vector<int> vertex_label, home, conflicts, best_sample;
   std::vector<double> best;
   std::vector<VertexEntry> heap;
-  std::vector<SymbolicVertex> polygon, scratch;
 
   void reset(int triangle_count) {
     if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
     for (int t = 0; t < triangle_count; ++t) state[t].reset();
     queued.assign(triangle_count, 0);
+    clipped.assign(triangle_count, 0);
     queue.clear();
   }
 };
@@ -86,9 +92,8 @@ class LrvdBuilder {
  public:
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
-        queued_(work.queued), vertex_label_(work.vertex_label), home_(work.home), conflicts_(work.conflicts),
-        polygon_(work.polygon), scratch_(work.scratch),
-        best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
+        queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
+        home_(work.home), conflicts_(work.conflicts), best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
@@ -146,11 +151,11 @@ class LrvdBuilder {
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
     for (int t = 0; t < mesh_.triangle_count(); ++t)
-      for (int v : mesh_.triangle(t)) insert_sorted(state_[t].labels, vertex_label_[v]);
+      for (int v : mesh_.triangle(t)) add_label(t, vertex_label_[v]);
     home_.resize(samples_.size());
     for (int i = 0; i < samples_.size(); ++i) {
       home_[i] = samples_.triangles[i];
-      insert_sorted(state_[home_[i]].labels, i);
+      add_label(home_[i], i);
     }
     for (int t = 0; t < mesh_.triangle_count(); ++t) activate(t);
   }
@@ -161,31 +166,64 @@ class LrvdBuilder {
     queue_.push_back(t);
   }
 
-  void clip(int t) {
+  // Clips triangle t by its candidates into its polygons. Reads only t's labels and writes only
+  // t's polygons (the buffers belong to the thread), so triangles can be clipped in parallel.
+  void clip(int t) const {
+    thread_local std::vector<SymbolicVertex> polygon, scratch;
     TrianglePolygons& st = state_[t];
     st.cell.clear();
     st.offset.assign(1, 0);
     st.reach.clear();
     st.verts.clear();
     for (int k : st.labels) {
-      clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon_, scratch_);
-      if (polygon_.empty()) continue;
+      clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon, scratch);
+      if (polygon.empty()) continue;
       st.cell.push_back(k);
-      st.reach.push_back(polygon_edges(polygon_.data(), static_cast<int>(polygon_.size()), mesh_.triangle(t)).reach);
-      st.verts.insert(st.verts.end(), polygon_.begin(), polygon_.end());
+      st.reach.push_back(polygon_edges(polygon.data(), static_cast<int>(polygon.size()), mesh_.triangle(t)).reach);
+      st.verts.insert(st.verts.end(), polygon.begin(), polygon.end());
       st.offset.push_back(static_cast<int>(st.verts.size()));
     }
-    ++stats_.clipped_triangles;
+    clipped_[t] = 1;
+  }
+
+  // Labels change only through these two, which mark the triangle's polygons out of date.
+  bool add_label(int t, int k) {
+    if (!insert_sorted(state_[t].labels, k)) return false;
+    clipped_[t] = 0;
+    return true;
+  }
+  bool remove_label(int t, int k) {
+    if (!erase_sorted(state_[t].labels, k)) return false;
+    clipped_[t] = 0;
+    return true;
+  }
+
+  // Clips, in parallel, every queued triangle whose polygons are out of date. The sequential pass
+  // below clips a triangle only if its labels changed since: the result is the one of a purely
+  // sequential pass, whatever the number of threads.
+  void clip_queued_in_parallel() {
+    pending_.clear();
+    for (int t : queue_)
+      if (!clipped_[t]) pending_.push_back(t);
+    if (static_cast<int>(pending_.size()) < kParallelClips) return;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t w = range.begin(); w != range.end(); ++w) clip(pending_[w]);
+    });
+    stats_.clipped_triangles += static_cast<int>(pending_.size());
   }
 
   // §3.4: every cell whose polygon in t reaches a mesh edge (a corner or an edge point) must be a
   // candidate of the triangle across that edge, so both sides split the edge alike.
   void propagate() {
+    clip_queued_in_parallel();
     while (!queue_.empty()) {
       const int t = queue_.front();
       queue_.pop_front();
       queued_[t] = 0;
-      clip(t);
+      if (!clipped_[t]) {
+        clip(t);
+        ++stats_.clipped_triangles;
+      }
       const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
       conflicts_.clear();
@@ -202,12 +240,12 @@ class LrvdBuilder {
             conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
             continue;
           }
-          insert_sorted(state_[across].labels, k);
+          add_label(across, k);
           activate(across);
         }
       }
       for (int k : conflicts_)
-        if (t != home_[k] && state_[t].labels.size() > 1 && erase_sorted(state_[t].labels, k)) {
+        if (t != home_[k] && state_[t].labels.size() > 1 && remove_label(t, k)) {
           labels_removed_ = true;
           insert_sorted(state_[t].forbidden, k);
           ++stats_.forbidden_labels;
@@ -235,7 +273,7 @@ class LrvdBuilder {
       const int keep = home_component[k] >= 0 ? home_component[k] : 0;
       if (comps.polygon_component[p] == keep) continue;
       TrianglePolygons& st = state_[poly.triangle];
-      if (!erase_sorted(st.labels, k)) continue;
+      if (!remove_label(poly.triangle, k)) continue;
       labels_removed_ = true;
       insert_sorted(st.forbidden, k);
       ++stats_.forbidden_labels;
@@ -258,7 +296,7 @@ class LrvdBuilder {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
           for (int k : state_[across].labels)
-            if (!contains(st.forbidden, k)) insert_sorted(st.labels, k);
+            if (!contains(st.forbidden, k)) add_label(t, k);
         }
         if (st.labels.empty()) still.push_back(t);
       }
@@ -300,8 +338,9 @@ class LrvdBuilder {
   std::vector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
   std::deque<int>& queue_;
   std::vector<char>& queued_;
+  std::vector<char>& clipped_;  // t's polygons are those of its current labels
+  std::vector<int>& pending_;
   std::vector<int>&vertex_label_, &home_, &conflicts_;
-  std::vector<SymbolicVertex>&polygon_, &scratch_;
   std::vector<double>& best_;  // region growing: the least entry queued per vertex
   std::vector<int>& best_sample_;
   std::vector<VertexEntry>& heap_;
