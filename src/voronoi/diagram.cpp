@@ -102,10 +102,18 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) 
   const int np = static_cast<int>(diagram.polygons.size());
   std::vector<int> parent(np);
   std::iota(parent.begin(), parent.end(), 0);
+  // The edges each polygon runs along (in parallel), then the joins (in order).
+  std::vector<unsigned char> along_edges(np);
+  tbb::parallel_for(tbb::blocked_range<int>(0, np, 1024), [&](const tbb::blocked_range<int>& range) {
+    for (int p = range.begin(); p != range.end(); ++p) {
+      const CellPolygon& poly = diagram.polygons[p];
+      along_edges[p] = static_cast<unsigned char>(
+          polygon_edges(diagram.polygon_vertices(poly), poly.vertex_count, mesh.triangle(poly.triangle)).along);
+    }
+  });
   for (int p = 0; p < np; ++p) {
     const CellPolygon& poly = diagram.polygons[p];
-    const Triangle& tri = mesh.triangle(poly.triangle);
-    const unsigned along = polygon_edges(diagram.polygon_vertices(poly), poly.vertex_count, tri).along;
+    const unsigned along = along_edges[p];
     for (int e = 0; e < 3; ++e) {
       const int across = mesh.neighbor(poly.triangle, e);
       if (across < 0 || !(along & (1u << e))) continue;
