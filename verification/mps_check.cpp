@@ -1,5 +1,6 @@
 // verify_mps: the minimum-distance and maximality properties of a Poisson-disk sampling, from the
-// samples and a freshly computed LRPD alone (nothing of the sampler's state is reused).
+// samples, their disks grown here and a freshly computed LRPD alone (nothing of the sampler's
+// state is reused).
 #include "verification/mps_check.h"
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "common/error.h"
 #include "mesh/closest_point.h"
 #include "predicates/exact.h"
+#include "voronoi/clip.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -89,27 +91,43 @@ class LocalRegions {
   int epoch_ = 0;
 };
 
+// The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
+struct SampleDisks {
+  std::vector<int> offset{0}, triangles;
+  SampleDisks(const Samples& s, LocalRegions& regions) {
+    offset.reserve(s.size() + 1);
+    for (int i = 0; i < s.size(); ++i) {
+      const size_t first = triangles.size();
+      regions.search(s.positions[i], s.triangles[i], s.weights[i], [&](int n) {
+        triangles.push_back(n);
+        return false;
+      });
+      std::sort(triangles.begin() + first, triangles.end());
+      offset.push_back(static_cast<int>(triangles.size()));
+    }
+  }
+  const int* begin(int i) const { return triangles.data() + offset[i]; }
+  const int* end(int i) const { return triangles.data() + offset[i + 1]; }
+  //! The disk of sample i reaches triangle t.
+  bool reaches(int i, int t) const { return std::binary_search(begin(i), end(i), t); }
+};
+
 // Two samples are local to each other when each one's triangle lies in the local region of the
 // other's ball of radius ρ = max(r_i, r_j); local samples closer than ρ violate the property.
 // Returns those pairs.
-std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, const Samples& s, MpsVerification& out) {
+std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, const Samples& s, const SampleDisks& disks,
+                                                     LocalRegions& regions, MpsVerification& out) {
   const TriangleSamples by_triangle(mesh, s);
-  LocalRegions regions(mesh);
-  std::vector<int> region;
   std::unordered_set<std::uint64_t> close;
   double min_ratio2 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < s.size(); ++i) {
     const Vec3& x = s.positions[i];
     const double w = s.weights[i];
     const int ti = s.triangles[i];
-    region.clear();
-    regions.search(x, ti, w, [&](int n) {
-      region.push_back(n);
-      return false;
-    });
     // Every violating pair is seen from the sample with the larger radius: the other's centre
     // lies in its ball and, the pair being local, in its region.
-    for (int t : region)
+    for (const int* it = disks.begin(i); it != disks.end(i); ++it) {
+      const int t = *it;
       for (int k = by_triangle.offset[t]; k < by_triangle.offset[t + 1]; ++k) {
         const int j = by_triangle.items[k];
         if (j == i) continue;
@@ -131,6 +149,7 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
         out.min_distance.fail(fmt::format("sample {} lies in the disk of sample {} (distance {:.6g}, radius {:.6g})", j, i,
                                           std::sqrt(d2), std::sqrt(w)));
       }
+    }
   }
   out.min_distance_ratio = std::isfinite(min_ratio2) ? std::sqrt(min_ratio2) : 0;
   return close;
@@ -173,37 +192,97 @@ std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::u
   return pairs;
 }
 
-void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const MpsVerifyOptions& options,
-                      MpsVerification& out) {
+// Whether corner q (at p) of a polygon lies outside the ball of `site`: doubles unless the power
+// distance pd is within 1e-6·r² of zero (or `exact`), then rationals.
+bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, const SymbolicContext& ctx, bool exact,
+                  std::int64_t& exact_tests, double& pd) {
+  pd = squared_distance(p, site.p) - site.w;
+  if (!exact && std::abs(pd) > 1e-6 * site.w) return pd > 0;
+  ++exact_tests;
+  return CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) == CGAL::POSITIVE;
+}
+
+// Maximality: every point p of the surface is covered — it lies in the ball of the sample whose
+// LRPD cell holds it (the paper's test: cell minus disk), or in the disk of a sample whose local
+// region reaches p's triangle t (the conflict rule: no dart may go there). Triangle by triangle:
+// - when every LRPD polygon of t lies in its cell's ball, t is covered;
+// - otherwise t is decided on the power diagram of A(t) = the cells with a polygon in t plus the
+//   samples whose disk reaches t, clipped exactly: a point lies in one of these balls iff it lies
+//   in the ball of the one whose power cell holds it, so they cover t iff every such polygon lies
+//   in its own ball. Since the cell holding p in the LRPD is the least of t's candidates in power
+//   distance, the least of A(t) at p is the less of it and of the disks reaching t: A(t)'s balls
+//   hold p iff p is covered in the sense above.
+// The second case is where a point of a cell outside its ball lies in the disk of a sample that
+// is no LRPD candidate of t (its cell was kept connected, or its power cell has a piece there the
+// LRPD does not have).
+void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
+                      const MpsVerifyOptions& options, MpsVerification& out) {
+  const int nt = mesh.triangle_count();
   const SymbolicContext ctx = d.context(mesh);
-  std::vector<double> area_sum(mesh.triangle_count(), 0);
+  std::vector<double> area_sum(nt, 0);
+  std::vector<int> undecided;  // triangles with a polygon outside its cell's ball, ascending
+  std::vector<Vec3> p;
   for (const CellPolygon& cp : d.polygons) {
     const int i = cp.cell;
     const Site site{s.positions[i], s.weights[i], i};
     const SymbolicVertex* q = d.polygon_vertices(cp);
-    std::vector<Vec3> p(cp.vertex_count);
+    p.resize(cp.vertex_count);
     for (int k = 0; k < cp.vertex_count; ++k) p[k] = position(q[k], ctx);
     Vec3 twice{};
     for (int k = 1; k + 1 < cp.vertex_count; ++k) twice += cross(p[k] - p[0], p[k + 1] - p[0]);
     area_sum[cp.triangle] += 0.5 * norm(twice);
-    ++out.maximal.checked;
-    for (int k = 0; k < cp.vertex_count; ++k) {
-      const double pd = squared_distance(p[k], site.p) - site.w;
-      bool outside;
-      if (options.exact_maximality || std::abs(pd) <= 1e-6 * site.w) {
-        ++out.exact_vertex_tests;
-        outside = CGAL::sign(exact_power_distance(exact_position(q[k], ctx), site)) == CGAL::POSITIVE;
-      } else {
-        outside = pd > 0;
-      }
-      if (outside) {
-        out.maximal.fail(fmt::format("triangle {}: cell {} reaches {:.4g}·r_i from x_i (uncovered)", cp.triangle, i,
-                                     std::sqrt(std::max(0.0, 1 + pd / site.w))));
+    bool inside = true;
+    double pd = 0;
+    for (int k = 0; k < cp.vertex_count && inside; ++k)
+      inside = !outside_ball(q[k], p[k], site, ctx, options.exact_maximality, out.exact_vertex_tests, pd);
+    if (!inside) {
+      ++out.polygons_outside_own_ball;
+      if (undecided.empty() || undecided.back() != cp.triangle) undecided.push_back(cp.triangle);
+    } else if (!disks.reaches(i, cp.triangle)) {
+      ++out.polygons_of_remote_balls;
+    }
+  }
+  out.maximal.checked = nt;
+
+  // A(t) of the undecided triangles: their LRPD cells, then the samples whose disks reach them.
+  std::vector<int> slot(nt, -1);
+  std::vector<std::vector<int>> around(undecided.size());
+  for (size_t u = 0; u < undecided.size(); ++u) {
+    const int t = undecided[u];
+    slot[t] = static_cast<int>(u);
+    for (int k = d.triangle_offsets[t]; k < d.triangle_offsets[t + 1]; ++k) around[u].push_back(d.polygons[k].cell);
+  }
+  for (int i = 0; i < s.size(); ++i)
+    for (const int* t = disks.begin(i); t != disks.end(i); ++t)
+      if (slot[*t] >= 0) around[slot[*t]].push_back(i);
+
+  const std::vector<Site> sites = make_sites(s, true);
+  const SymbolicContext around_ctx{mesh.positions().data(), sites.data()};
+  std::vector<SymbolicVertex> polygon, scratch;
+  for (size_t u = 0; u < undecided.size(); ++u) {
+    const int t = undecided[u];
+    std::vector<int>& a = around[u];
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+    bool covered = true;
+    for (size_t c = 0; c < a.size() && covered; ++c) {
+      const int k = a[c];
+      clip_triangle(mesh, t, k, a.data(), static_cast<int>(a.size()), around_ctx, polygon, scratch);
+      for (const SymbolicVertex& q : polygon) {
+        double pd = 0;
+        if (!outside_ball(q, position(q, around_ctx), sites[k], around_ctx, options.exact_maximality,
+                          out.exact_vertex_tests, pd))
+          continue;
+        out.maximal.fail(fmt::format("triangle {}: a point {:.4g}·r_k from sample k = {}, the nearest in power of "
+                                     "the {} around, is in no disk reaching it nor in its cell's ball (uncovered)",
+                                     t, std::sqrt(std::max(0.0, 1 + pd / sites[k].w)), k, a.size()));
+        covered = false;
         break;
       }
     }
+    if (covered) ++out.triangles_covered_by_other_disks;
   }
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
+  for (int t = 0; t < nt; ++t) {
     ++out.diagram_covers.checked;
     const double a = mesh.triangle_area(t);
     if (!(std::abs(area_sum[t] - a) <= 1e-9 * a))
@@ -220,6 +299,9 @@ nlohmann::json MpsVerification::to_json() const {
           {"close_pairs_not_local", close_pairs_not_local},
           {"one_sided_close_pairs", one_sided_close_pairs},
           {"exact_vertex_tests", exact_vertex_tests},
+          {"polygons_outside_own_ball", polygons_outside_own_ball},
+          {"triangles_covered_by_other_disks", triangles_covered_by_other_disks},
+          {"polygons_of_remote_balls", polygons_of_remote_balls},
           {"properties",
            {{"min_distance", min_distance.to_json()},
             {"maximal", maximal.to_json()},
@@ -243,8 +325,10 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
     if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
       throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
   MpsVerification out;
-  out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, out));
-  check_maximality(mesh, samples, lrpd, options, out);
+  LocalRegions regions(mesh);
+  const SampleDisks disks(samples, regions);
+  out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, disks, regions, out));
+  check_maximality(mesh, samples, lrpd, disks, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
   out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -1,6 +1,6 @@
 // Verification of a maximal Poisson-disk sampling (paper §4.2): the minimum-distance property (no
-// sample inside another sample's disk) and maximality (the disks cover the surface, checked cell
-// by cell on an LRPD computed afresh), independently of the sampler's data structures.
+// sample inside another sample's disk) and maximality (the disks cover the surface, checked on an
+// LRPD computed afresh and on the samples' own disks), independently of the sampler's data structures.
 #pragma once
 
 #include <cstdint>
@@ -29,8 +29,12 @@ struct MpsVerification {
   //! max(r_i, r_j): the triangles the ball meets that face like the centre's triangle (normals at
   //! less than 90°), edge-connected to it through such triangles.
   PropertyResult min_distance;
-  //! Every polygon of cell i of the LRPD (weights r²) lies in the ball (x_i, r_i): all its vertices
-  //! do, which suffices since the polygon is convex and the ball cut by its plane is a convex disk.
+  //! Every point of the surface is covered (checked = triangles): it lies in the ball of the sample
+  //! whose LRPD cell (weights r²) holds it, or in the disk of a sample whose local region reaches
+  //! its triangle (that sample may be no LRPD candidate there). A triangle whose LRPD polygons all
+  //! lie in their cells' balls (all corners: the polygon is convex, the ball cut by its plane a
+  //! convex disk) is covered; any other is decided exactly on the power diagram of its LRPD cells
+  //! and the samples whose disks reach it.
   PropertyResult maximal;
   //! The LRPD's polygons fill every triangle (area sums, relative 1e-9): the cells do cover the surface.
   PropertyResult diagram_covers;
@@ -38,6 +42,11 @@ struct MpsVerification {
   std::int64_t close_pairs_not_local = 0;  //!< pairs closer than max(r_i, r_j) that are not local (other sheet, past a notch); allowed
   std::int64_t one_sided_close_pairs = 0;  //!< of those, pairs where one sees the other in its region but not back (a notch)
   std::int64_t exact_vertex_tests = 0;       //!< maximality decisions that needed rational arithmetic
+  std::int64_t polygons_outside_own_ball = 0;  //!< LRPD polygons not inside their cell's ball
+  //! Triangles holding such polygons that are covered all the same: by disks of samples that reach
+  //! the triangle but are no LRPD candidate there.
+  std::int64_t triangles_covered_by_other_disks = 0;
+  std::int64_t polygons_of_remote_balls = 0;  //!< LRPD polygons in their cell's ball where that cell's disk does not reach
   nlohmann::json to_json() const;
   std::string summary() const;
 };

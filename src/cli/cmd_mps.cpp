@@ -126,6 +126,11 @@ int run_mps(const MpsCommandOptions& opt) {
               opt.output.c_str());
   std::printf("maximal: %s, minimum distance: %s (smallest ratio %.4f)\n", maximal ? "yes" : "NO",
               min_distance_ok ? "yes" : "NO", check.min_distance_ratio);
+  if (check.polygons_outside_own_ball > 0)
+    std::printf("  %lld LRPD polygons reach outside their cell's ball; in %lld of their triangles disks of samples "
+                "that are no LRPD candidate there cover them\n",
+                static_cast<long long>(check.polygons_outside_own_ball),
+                static_cast<long long>(check.triangles_covered_by_other_disks));
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
   return maximal && min_distance_ok && remesh_ok ? kOk : kCheckFailed;
 }

@@ -286,14 +286,13 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     ++result.lrpd_evaluations;
     gaps.extract(lrpd);
     if (round == 0) result.gap_pieces = gaps.alive();
-    // Closed when the LRPD shows no gap and, with local updates, the disks reaching every spot
-    // that only a remote ball covers cover it too.
-    if (gaps.uncovered_polygons() == 0 && (!local || gaps.empty())) {
+    // No piece left: every spot of the surface is in the ball of its LRPD cell or in a disk
+    // reaching its triangle — also where the LRPD's cells alone do not show it (a polygon outside
+    // its ball, inside the disk of a sample that is no candidate of the triangle).
+    if (gaps.empty()) {
       result.gaps_closed = true;
       break;
     }
-    if (gaps.empty()) break;  // gaps the LRPD shows but disks it does not list cover: no dart can help
-    const bool lrpd_clean = gaps.uncovered_polygons() == 0;
     progress(fmt::format("filling {} gap pieces", gaps.alive()));
     // With local updates a point drawn outside its piece's owner disk is a valid dart (uniform
     // radius) or almost always (adaptive), so the limit only ends hopeless rounds; the paper's
@@ -319,14 +318,16 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());
     }
     // Local updates that emptied the gaps leave every spot covered by a disk reaching it, which
-    // stays so: the LRPD of the final samples shows no gap where it lists that disk. Pieces given
-    // up (darts refused for the adaptive radius) need another LRPD to see whether a ball covers them.
+    // stays so. Pieces given up (darts refused for the adaptive radius) need another LRPD to see
+    // whether a disk has covered them since.
     if (local && gaps.empty() && gaps.given_up() == 0) {
       result.gaps_closed = true;
       break;
     }
-    if (sampler.disks().size() == before) {  // no progress: this LRPD is that of the final samples
-      result.gaps_closed = lrpd_clean;
+    // No progress: this LRPD is that of the final samples. Closed when the pieces no dart fits
+    // are only where the balls of their LRPD cells cover (remote claims).
+    if (sampler.disks().size() == before) {
+      result.gaps_closed = gaps.required_pieces() == 0;
       break;
     }
   }

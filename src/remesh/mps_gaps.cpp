@@ -123,9 +123,9 @@ void GapSet::extract(const Diagram& lrpd) {
   uncovered_polygons_ = 0;
   remote_claims_ = 0;
   given_up_ = 0;
+  required_pieces_ = 0;
   const SymbolicContext ctx = lrpd.context(mesh_);
   std::vector<Vec3> polygon;
-  std::vector<int> fresh;
   for (const CellPolygon& cp : lrpd.polygons) {
     const int t = cp.triangle, i = cp.cell;
     const Site& site = lrpd.sites[i];
@@ -143,34 +143,55 @@ void GapSet::extract(const Diagram& lrpd) {
     }
     bool own = false;  // the cell's disk reaches t (t is in its local region)
     disks_.for_each_disk(t, [&](int j) { own |= j == i; });
-    if (covered && own) continue;
+    if (covered && own) continue;  // inside the cell's own disk
     if (covered) {
       // Covered through a ball whose disk does not reach t (another sheet, past a notch): a later
       // insertion may hand the spot to another cell. With local updates the spot is treated as a
-      // gap of the disks that do reach t, which cover it for good once the darts are done.
+      // gap of the disks that do reach t, which cover it for good once the darts are done; it is
+      // not *required*: where no dart fits (adaptive radius), the cell's ball covers it.
       ++remote_claims_;
       if (!local_) continue;
     } else {
       ++uncovered_polygons_;
     }
     if (disks_.fully_covered(t)) continue;
-    if (!local_) {
-      add_outside(polygon, t, own ? i : -1);
-      continue;
+    // The gap of an uncovered polygon is the part outside the cell's ball that no disk reaching t
+    // covers: a spot there may lie in the disk of a sample that is no LRPD candidate of t (its
+    // cell was kept connected, or its power cell has a piece here the LRPD does not have), where
+    // no dart can go. So, in both modes: the polygon minus the cell's ball, split by every disk
+    // reaching t. Those pieces are *required*: the sampling is maximal once none is left.
+    if (covered) {
+      add_split(polygon, t, -1);
+    } else if (own || !local_) {
+      required_pieces_ += add_split(polygon, t, i);
+    } else {
+      // Local updates, a polygon of a remote ball that does not cover it: as for a remote claim
+      // the darts go to the whole polygon minus the disks reaching t, so that this side gets its
+      // own samples where it can; what must close is the part outside the ball.
+      const int created = created_, dropped = dropped_;
+      const size_t first = pieces_.size();
+      required_pieces_ += add_split(polygon, t, i);
+      for (size_t p = first; p < pieces_.size(); ++p) kill(static_cast<int>(p));
+      created_ = created;
+      dropped_ = dropped;
+      add_split(polygon, t, -1);
     }
-    if (covered) own = false;  // the cell's ball does cover the polygon, but not as a disk reaching t
-    // Local updates: the gap must be exactly what no disk reaching t covers. Start from the cell
-    // minus its own disk (when that disk reaches t), then split by every other disk reaching t.
-    const size_t before = pieces_.size();
-    add_outside(polygon, t, own ? i : -1);
-    disks_.for_each_disk(t, [&](int j) {
-      fresh.clear();
-      for (size_t p = before; p < pieces_.size(); ++p)
-        if (pieces_[p].alive) fresh.push_back(static_cast<int>(p));
-      for (int p : fresh) split(p, j);
-    });
   }
   rebuild();
+}
+
+int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner) {
+  const size_t first = pieces_.size();
+  add_outside(polygon, t, owner);
+  disks_.for_each_disk(t, [&](int j) {
+    fresh_.clear();
+    for (size_t p = first; p < pieces_.size(); ++p)
+      if (pieces_[p].alive) fresh_.push_back(static_cast<int>(p));
+    for (int p : fresh_) split(p, j);
+  });
+  int alive = 0;
+  for (size_t p = first; p < pieces_.size(); ++p) alive += pieces_[p].alive;
+  return alive;
 }
 
 void GapSet::update_after_insert(int sample, const std::vector<int>& region) {

@@ -94,18 +94,21 @@ double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
 Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
 
 //! The uncovered parts of the surface as pieces: a convex polygon Q in the plane of a triangle
-//! and the disk of an `owner` sample (or none); the piece's gap is Q minus that disk. With local
-//! updates the pieces' gaps are exactly the points no disk reaching their triangle covers; in the
-//! paper's mode they are the LRPD gaps of the last evaluation, minus pieces a later disk covers.
+//! and the disk of an `owner` sample (or none); the piece's gap is Q minus that disk. At
+//! extraction the pieces' gaps are exactly the points of the LRPD's gaps (with local updates: and
+//! of the polygons of remote balls) that no disk reaching their triangle covers; with local updates
+//! they stay so after every insertion, in the paper's mode a piece is removed once a new disk
+//! covers it whole. A spot is covered when it lies in the ball of its LRPD cell or in a disk that
+//! reaches its triangle (verify_mps checks the same).
 class GapSet {
  public:
   //! Pieces whose uncovered area is below `min_piece_area` are dropped (counted in dropped()).
   GapSet(const SurfaceMesh& mesh, const DiskIndex& disks, bool local_updates, double min_piece_area);
 
   //! Replaces the pieces by the gaps of an LRPD of the current samples: each cell polygon that
-  //! its ball does not cover, minus that ball where the cell's disk reaches the triangle. With
-  //! local updates also the polygons only a *remote* ball covers (one whose disk does not reach
-  //! the triangle), and every piece minus every disk that reaches its triangle.
+  //! its ball does not cover, minus that ball and every disk that reaches its triangle (also those
+  //! of samples the LRPD lists as no candidate there). With local updates also the polygons only a
+  //! *remote* ball covers (one whose disk does not reach the triangle), minus those disks.
   void extract(const Diagram& lrpd);
   //! Of the last extract(): polygons their ball does not cover (the LRPD's gaps), and polygons
   //! covered by a remote ball.
@@ -125,6 +128,10 @@ class GapSet {
   //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
+  //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
+  //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
+  //! cell or in a disk reaching it, which is what verify_mps calls maximal.
+  int required_pieces() const { return required_pieces_; }
 
   double gap_area() const;    //!< total uncovered area of the live pieces
   int created() const { return created_; }
@@ -145,6 +152,8 @@ class GapSet {
   void clear();
   //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
   void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
+  //! add_outside, then splits the new pieces by every disk reaching t; returns how many live.
+  int add_split(const std::vector<Vec3>& polygon, int t, int owner);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
@@ -160,10 +169,10 @@ class GapSet {
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
-  int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0;
+  int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   double drop_area_ = 0;
   // scratch
-  std::vector<int> scratch_pieces_;
+  std::vector<int> scratch_pieces_, fresh_;
   std::vector<double> fan_;
 };
 
