@@ -1,14 +1,17 @@
 // Remeshing table (paper Tables 1-2, issue targets): CVT on the LRVD and on the RVD for CGAL's
 // models at low vertex counts; validity, quality, distance and time. Writes markdown and JSON.
-// Usage: bench_remesh [--quick] [--lrvd-only] [--models elk,knot,...] [--counts 300,516,...] [--out F.md] [--json F]
+// Usage: bench_remesh [--quick] [--lrvd-only] [--threads N] [--models elk,knot,...] [--counts 300,516,...]
+//                     [--out F.md] [--json F]
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.h"
@@ -34,6 +37,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "knot", "ellipsoid", "armadillo"};
   std::vector<int> counts = {300, 516, 1000, 2000, 4000};
   std::string out_path, json_path;
+  int threads = 0;  // 0: every core
   std::vector<DiagramKind> kinds = {DiagramKind::Lrvd, DiagramKind::Rvd};
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--quick")) {
@@ -44,6 +48,8 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[a], "--counts") && a + 1 < argc) {
       counts.clear();
       for (const std::string& c : split(argv[++a])) counts.push_back(std::stoi(c));
+    } else if (!std::strcmp(argv[a], "--threads") && a + 1 < argc) {
+      threads = std::stoi(argv[++a]);
     } else if (!std::strcmp(argv[a], "--lrvd-only")) {
       kinds = {DiagramKind::Lrvd};
     } else if (!std::strcmp(argv[a], "--out") && a + 1 < argc) {
@@ -51,11 +57,14 @@ int main(int argc, char** argv) {
     } else if (!std::strcmp(argv[a], "--json") && a + 1 < argc) {
       json_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: %s [--quick] [--lrvd-only] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n",
+      std::fprintf(stderr, "usage: %s [--quick] [--lrvd-only] [--threads N] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n",
                    argv[0]);
       return 2;
     }
   }
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   std::string md =
       "| model | N | diagram | V out | valid | manifold | genus kept | self-int. pairs | Qmin | Qavg | θmin/θmax | "
       "% tri <30° | Hausdorff % | RMS % | repair rounds | time s |\n"

@@ -13,7 +13,7 @@ namespace lrvd {
 
 struct RemeshOptions {
   CvtOptions cvt;
-  int repair_rounds = 12;          //!< rounds of "move a sample to a defect, optimise again"
+  int repair_rounds = 24;          //!< rounds of "move a sample to a defect, optimise again"
   int repair_iterations = 30;      //!< CVT iterations after each density raise
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
   bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
