@@ -2,17 +2,19 @@
 // r_min = 0.004 in the unit cube, init / dart throwing / gap filling / total seconds and sample
 // counts per model, then the independent checks (minimum distance, maximality on a fresh LRPD).
 //
-// Usage: bench_mps [--quick] [--no-verify] [--remesh] [--json FILE] [--gap-update local|lrpd] [MESH ...]
+// Usage: bench_mps [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] [--gap-update local|lrpd] [MESH ...]
 // --remesh also checks the LRRT of the samples (verify_remesh against the input).
 // Without meshes: CGAL's armadillo, ChineseDragon-10kv and bunny00 (LRVD_CGAL_DATA_DIR), then the
 // Table 3 models of /work/shared/data/meshes when present (feline, vaselion, dragon_100k,
 // gargoyle_100k). --quick runs uniform only with r = 0.01.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include "mesh/mesh_io.h"
 #include "remesh/mps.h"
@@ -44,15 +46,20 @@ int main(int argc, char** argv) {
   std::string json_path;
   lrvd::MpsGapUpdate update = lrvd::MpsGapUpdate::Local;
   std::vector<std::string> meshes;
+  int threads = 0;  // 0: every core
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
     if (arg == "--quick") quick = true;
     else if (arg == "--no-verify") verify = false;
     else if (arg == "--remesh") remesh = true;
     else if (arg == "--json" && a + 1 < argc) json_path = argv[++a];
+    else if (arg == "--threads" && a + 1 < argc) threads = std::stoi(argv[++a]);
     else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
     else meshes.push_back(arg);
   }
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
   if (meshes.empty()) {
     for (const char* name : {"armadillo.off", "ChineseDragon-10kv.off", "bunny00.off"})
       meshes.push_back(std::string(LRVD_CGAL_DATA_DIR) + "/" + name);
