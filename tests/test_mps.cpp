@@ -338,15 +338,16 @@ TEST_CASE("A spot the LRPD gives to a cell whose ball misses it is covered by a 
 
 TEST_CASE("MPS of CGAL's ChineseDragon is maximal where the LRPD's cells miss spots that other disks cover",
           "[mps]") {
-  // With this seed the LRPD of the final samples (local updates) has cells of about a quarter of
-  // their power cell (connectivity restoration cut them off around their own triangle): their
-  // neighbours' cells take the spots, outside their own balls, although the cut cell's disk covers
-  // them. The sampler must see those spots as covered (no dart fits there) and the verifier must
-  // agree. The paper's loop met such spots on its way and used to stop there with gaps left.
+  // With this seed the LRPD of the final samples (local updates) has cells cut off around their
+  // own triangle by the connectivity restoration: their neighbours' cells take spots outside their
+  // own balls, although the cut cell's disk covers them. The sampler must see those spots as
+  // covered (no dart fits there) and the verifier must agree. The paper's loop met such spots on
+  // its way and used to stop there with gaps left. (Seed 10 showed it until the LRPD learnt to
+  // pin cells back into triangles they had been forbidden in; seed 17 still does.)
   const SurfaceMesh dragon = cgal_mesh("ChineseDragon-10kv.off");
   MpsOptions options;
   options.radius = 0.01;
-  options.seed = 10;
+  options.seed = 17;
   for (MpsGapUpdate update : {MpsGapUpdate::Local, MpsGapUpdate::Lrpd}) {
     options.gap_update = update;
     INFO((update == MpsGapUpdate::Local ? "local gap updates" : "the paper's gap loop"));

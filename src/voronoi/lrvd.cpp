@@ -51,7 +51,8 @@ struct VertexEntry {
 // Polygons of one triangle during propagation.
 struct TrianglePolygons {
   std::vector<int> labels;     // candidate cells L(t), sorted
-  std::vector<int> forbidden;  // cells removed for connectivity, sorted; never re-added
+  std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
+  std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
   std::vector<int> cell;       // cell of each polygon
   std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
   std::vector<unsigned> reach; // polygon p: the edges of the triangle it reaches (edge_mask bits)
@@ -61,6 +62,7 @@ struct TrianglePolygons {
   void reset() {
     labels.clear();
     forbidden.clear();
+    pinned.clear();
     cell.clear();
     offset.assign(1, 0);
     reach.clear();
@@ -75,7 +77,7 @@ struct LrvdWorkspace {
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
-  std::vector<int> vertex_label, home, conflicts, best_sample;
+  std::vector<int> vertex_label, home, conflicts, best_sample, stuck;
   std::vector<double> best;
   std::vector<VertexEntry> heap;
 
@@ -83,6 +85,7 @@ struct LrvdWorkspace {
     if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
     for (int t = 0; t < triangle_count; ++t) state[t].reset();
     queued.assign(triangle_count, 0);
+    stuck.clear();
     clipped.assign(triangle_count, 0);
     queue.clear();
   }
@@ -93,7 +96,7 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
@@ -104,7 +107,9 @@ class LrvdBuilder {
     assign_triangles();
     Diagram diagram;
     for (int round = 0;; ++round) {
-      propagate();
+      do {
+        propagate();
+      } while (settle_stuck_conflicts());
       diagram = flatten();
       if (!options_.restore_connectivity || round >= options_.max_connectivity_rounds) break;
       if (!forbid_stray_pieces(diagram)) break;
@@ -186,7 +191,8 @@ class LrvdBuilder {
     clipped_[t] = 1;
   }
 
-  // Labels change only through these two, which mark the triangle's polygons out of date.
+  // Labels change only through these two, which mark the triangle's polygons out of date (and
+  // note that labels can disappear, which ends the shortcut in propagate()).
   bool add_label(int t, int k) {
     if (!insert_sorted(state_[t].labels, k)) return false;
     clipped_[t] = 0;
@@ -195,6 +201,7 @@ class LrvdBuilder {
   bool remove_label(int t, int k) {
     if (!erase_sorted(state_[t].labels, k)) return false;
     clipped_[t] = 0;
+    labels_removed_ = true;
     return true;
   }
 
@@ -244,14 +251,64 @@ class LrvdBuilder {
           activate(across);
         }
       }
-      for (int k : conflicts_)
-        if (t != home_[k] && state_[t].labels.size() > 1 && remove_label(t, k)) {
-          labels_removed_ = true;
+      for (int k : conflicts_) {
+        if (!removable(t, k)) {
+          stuck_.push_back(t);
+          continue;
+        }
+        if (remove_label(t, k)) {
           insert_sorted(state_[t].forbidden, k);
           ++stats_.forbidden_labels;
           activate(t);
         }
+      }
     }
+  }
+
+  // Whether cell k may be taken out of triangle t: not from its sample's triangle, not from a
+  // triangle it was pinned to, and not from a triangle's last label.
+  bool removable(int t, int k) const {
+    return t != home_[k] && !contains(state_[t].pinned, k) && state_[t].labels.size() > 1;
+  }
+
+  // After propagate(): a conflict left in a triangle t that cannot drop its cell k (k's own
+  // triangle, a triangle k is pinned to, or t's only cell) means k reaches the edge of a triangle
+  // it was forbidden in -- two cells with stray pieces in each other's triangles, both forbidden,
+  // grow there. k is let back into that triangle and pinned to it: the triangle across now
+  // holds k's piece that continues t's over the shared edge, and no later rule takes it out
+  // again. A (triangle, cell) pair only ever goes free -> forbidden -> pinned, so this happens at
+  // most once per pair and the rounds terminate. Returns whether a cell was let back in.
+  bool settle_stuck_conflicts() {
+    std::sort(stuck_.begin(), stuck_.end());
+    stuck_.erase(std::unique(stuck_.begin(), stuck_.end()), stuck_.end());
+    // One pin at a time, the least (cell, triangle) first: the piece let in may take the edge
+    // from the other cell of a mutual pair, whose conflict then goes away.
+    int best_k = -1, best_t = -1;
+    for (int t : stuck_) {
+      const TrianglePolygons& st = state_[t];
+      for (size_t p = 0; p < st.cell.size(); ++p) {
+        const int k = st.cell[p];
+        if (removable(t, k)) continue;
+        for (int e = 0; e < 3; ++e) {
+          const int across = mesh_.neighbor(t, e);
+          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          const TrianglePolygons& sa = state_[across];
+          if (contains(sa.labels, k) || !contains(sa.forbidden, k)) continue;
+          if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
+        }
+      }
+    }
+    if (best_k < 0) {
+      stuck_.clear();
+      return false;
+    }
+    TrianglePolygons& sa = state_[best_t];
+    erase_sorted(sa.forbidden, best_k);
+    insert_sorted(sa.pinned, best_k);
+    add_label(best_t, best_k);
+    activate(best_t);
+    ++stats_.pinned_labels;
+    return true;
   }
 
   // Removes each cell from the triangles of its pieces that do not hold its sample. Returns
@@ -273,8 +330,8 @@ class LrvdBuilder {
       const int keep = home_component[k] >= 0 ? home_component[k] : 0;
       if (comps.polygon_component[p] == keep) continue;
       TrianglePolygons& st = state_[poly.triangle];
+      if (contains(st.pinned, k)) continue;
       if (!remove_label(poly.triangle, k)) continue;
-      labels_removed_ = true;
       insert_sorted(st.forbidden, k);
       ++stats_.forbidden_labels;
       activate(poly.triangle);
@@ -341,6 +398,7 @@ class LrvdBuilder {
   std::vector<char>& clipped_;  // t's polygons are those of its current labels
   std::vector<int>& pending_;
   std::vector<int>&vertex_label_, &home_, &conflicts_;
+  std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
   std::vector<double>& best_;  // region growing: the least entry queued per vertex
   std::vector<int>& best_sample_;
   std::vector<VertexEntry>& heap_;
