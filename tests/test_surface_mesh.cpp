@@ -106,3 +106,23 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
   REQUIRE(sheet.euler_characteristic() == 1);
   REQUIRE_THROWS_AS(refine_long_edges(mesh, 0.0), InputError);
 }
+
+TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic work at its hub") {
+  // Edge and duplicate look-ups go through the corner with the fewest triangles, and the
+  // one-ring check searches the hub's sorted list: a hub costs O(d log d), not O(d²) (which would
+  // be 4·10¹⁰ steps here).
+  const int n = 200000;
+  std::vector<Vec3> p = {{0, 0, 0}};
+  for (int i = 0; i < n; ++i) p.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+  std::vector<Triangle> t;
+  for (int i = 0; i < n; ++i) t.push_back({0, 1 + i, 1 + (i + 1) % n});
+  const SurfaceMesh fan(p, t);
+  REQUIRE(fan.vertex_triangle_count(0) == n);
+  REQUIRE(fan.euler_characteristic() == 1);
+  REQUIRE(fan.boundary_loops().size() == 1);
+  REQUIRE(fan.neighbor(0, 0) == n - 1);  // triangle 0's edge (0, 1) is the last triangle's (1, 0)
+  REQUIRE(fan.neighbor(0, 2) == 1);      // and its edge (2, 0) triangle 1's (0, 2)
+  // The same fan with a triangle repeated is refused, naming both.
+  t.push_back(t[n / 2]);
+  REQUIRE_THROWS_WITH(SurfaceMesh(p, t), Catch::Contains(std::to_string(n / 2)) && Catch::Contains("duplicates"));
+}

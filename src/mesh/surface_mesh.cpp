@@ -68,23 +68,27 @@ void SurfaceMesh::build_topology() {
   }
 
   // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
-  // around the smallest vertex, before this one.
+  // around the corner with the fewest triangles (a fan's hub would make this quadratic), before
+  // this one.
   auto sorted_corners = [&](int t) {
     std::array<int, 3> corners = triangles_[t];
     std::sort(corners.begin(), corners.end());
     return corners;
   };
+  auto least_used = [&](int a, int b) { return vertex_triangle_count(a) <= vertex_triangle_count(b) ? a : b; };
   for (int t = 0; t < nt; ++t) {
     const std::array<int, 3> corners = sorted_corners(t);
-    for (const int* u = vertex_triangles_begin(corners[0]); *u < t; ++u)
+    const int pivot = least_used(least_used(corners[0], corners[1]), corners[2]);
+    for (const int* u = vertex_triangles_begin(pivot); *u < t; ++u)
       if (sorted_corners(*u) == corners)
         throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})", *u, t, corners[0],
                                      corners[1], corners[2]));
   }
 
   // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
-  // those around a that hold b, in increasing order; each (t, e) is checked when t is reached,
-  // so the first offending triangle is named, as a single pass over the triangles would.
+  // those around a or b (whichever has fewer) that hold both, in increasing order; each (t, e) is
+  // checked when t is reached, so the first offending triangle is named, as a single pass over the
+  // triangles would.
   neighbors_.assign(nt, {-1, -1, -1});
   edge_count_ = 0;
   auto edge_index = [&](int t, int a, int b) {  // the edge of t from a to b, or -1
@@ -96,9 +100,10 @@ void SurfaceMesh::build_topology() {
     for (int e = 0; e < 3; ++e) {
       const int a = triangles_[t][e], b = triangles_[t][(e + 1) % 3];
       int users[3] = {-1, -1, -1}, count = 0;
-      for (const int* u = vertex_triangles_begin(a); u != vertex_triangles_end(a) && count < 3; ++u) {
+      const int pivot = least_used(a, b), other = pivot == a ? b : a;
+      for (const int* u = vertex_triangles_begin(pivot); u != vertex_triangles_end(pivot) && count < 3; ++u) {
         const Triangle& tri = triangles_[*u];
-        if (tri[0] == b || tri[1] == b || tri[2] == b) users[count++] = *u;
+        if (tri[0] == other || tri[1] == other || tri[2] == other) users[count++] = *u;
       }
       if (users[0] == t) {
         ++edge_count_;
@@ -134,7 +139,7 @@ void SurfaceMesh::build_topology() {
           if (tri[e] != v && tri[(e + 1) % 3] != v) continue;
           const int across = neighbors_[t][e];
           if (across < 0) continue;
-          const int b = static_cast<int>(std::find(begin, begin + count, across) - begin);
+          const int b = static_cast<int>(std::lower_bound(begin, begin + count, across) - begin);  // sorted list
           const int ra = find_root(parent, a), rb = find_root(parent, b);
           if (ra != rb) { parent[ra] = rb; --groups; }
         }
