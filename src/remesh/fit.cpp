@@ -111,11 +111,17 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   const std::vector<CellQuadric> quadric = cell_quadrics(diagram, mesh);
   std::vector<Vec3> target(n);
   for (int v = 0; v < n; ++v) target[v] = quadric_target(quadric[v], original[v], options.rank_threshold);
+  // The longest moves first (tips of the surface), each taken whole or in eighths.
+  std::vector<int> order(n);
+  for (int v = 0; v < n; ++v) order[v] = v;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return distance(target[a], original[a]) > distance(target[b], original[b]);
+  });
   for (int pass = 0; pass < options.passes; ++pass)
-    for (int v = 0; v < n; ++v) {
+    for (int v : order) {
       if (incident[v].empty()) continue;
       const Vec3 from = dual.positions[v];
-      for (double step : {1.0, 0.75, 0.5, 0.25}) {
+      for (double step : {1.0, 0.875, 0.75, 0.625, 0.5, 0.375, 0.25, 0.125}) {
         dual.positions[v] = from + step * (target[v] - from);
         if (acceptable(v)) break;
         dual.positions[v] = from;
