@@ -8,6 +8,8 @@
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
+#include "predicates/predicates.h"
+
 namespace lrvd {
 
 namespace {
@@ -55,6 +57,16 @@ bool intersect_illegitimately(const Triangle& f, const Triangle& g, const std::v
 }
 
 }  // namespace
+
+std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  std::vector<char> proper(triangles.size());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const Triangle& f = triangles[t];
+    proper[t] = f[0] != f[1] && f[1] != f[2] && f[0] != f[2] &&
+                !predicates::collinear(positions[f[0]], positions[f[1]], positions[f[2]]);
+  }
+  return proper;
+}
 
 std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
                                                          const std::vector<Triangle>& triangles,

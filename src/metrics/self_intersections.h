@@ -15,6 +15,9 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
                                                          const std::vector<Triangle>& triangles,
                                                          const std::vector<char>& testable = {});
 
+//! The triangles find_self_intersections can take: three distinct corners, not collinear (exact).
+std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);
+
 //! Whether two different connected components of the mesh cut through each other (a
 //! self-intersecting surface such as two interpenetrating spheres, paper Fig. 11).
 bool components_intersect(const SurfaceMesh& mesh);

@@ -8,7 +8,6 @@
 
 #include "metrics/quality.h"
 #include "metrics/self_intersections.h"
-#include "predicates/predicates.h"
 
 namespace lrvd {
 
@@ -57,18 +56,8 @@ Vec3 quadric_target(const CellQuadric& q, const Vec3& x0, double rank_threshold)
   return {x0.x + step[0], x0.y + step[1], x0.z + step[2]};
 }
 
-std::vector<char> testable_triangles(const DualMesh& dual) {
-  std::vector<char> testable(dual.triangles.size());
-  for (size_t t = 0; t < dual.triangles.size(); ++t) {
-    const Triangle& f = dual.triangles[t];
-    testable[t] = f[0] != f[1] && f[1] != f[2] && f[0] != f[2] &&
-                  !predicates::collinear(dual.positions[f[0]], dual.positions[f[1]], dual.positions[f[2]]);
-  }
-  return testable;
-}
-
 std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
-  const auto pairs = find_self_intersections(dual.positions, dual.triangles, testable_triangles(dual));
+  const auto pairs = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
   return {pairs.begin(), pairs.end()};
 }
 

@@ -8,7 +8,6 @@
 #include <tuple>
 
 #include "metrics/self_intersections.h"
-#include "predicates/predicates.h"
 
 
 namespace lrvd {
@@ -105,12 +104,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   for (size_t i = 0; i < used.size(); ++i)
     if (!used[i]) defect.insert(static_cast<int>(i));
   // Triangles that cut through each other (nearby sheets sampled too coarsely).
-  std::vector<char> testable(dual.triangles.size(), 1);
-  for (size_t t = 0; t < dual.triangles.size(); ++t) {
-    const Triangle& f = dual.triangles[t];
-    testable[t] = f[0] != f[1] && f[1] != f[2] && f[0] != f[2] &&
-                  !predicates::collinear(dual.positions[f[0]], dual.positions[f[1]], dual.positions[f[2]]);
-  }
+  const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
   std::set<int> crossing;
   const auto pairs = find_self_intersections(dual.positions, dual.triangles, testable);
   // Crossings between components whose input components cross too are the input's own.
