@@ -7,6 +7,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 using nlohmann::json;
@@ -23,7 +25,8 @@ struct Run {
 };
 
 Run run(const std::string& args) {
-  const std::string err_path = kOut + "stderr.txt";
+  // CTest runs test cases in parallel, each in its own process: one stderr file per process.
+  const std::string err_path = kOut + "stderr_" + std::to_string(getpid()) + ".txt";
   const int raw = std::system((kCli + " " + args + " > /dev/null 2> " + err_path).c_str());
   std::ifstream in(err_path);
   std::stringstream text;
