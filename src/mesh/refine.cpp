@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
-#include <unordered_map>
+#include <array>
+#include <cstdint>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -18,6 +20,75 @@ uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
 }
+
+// Undirected edge -> the one or two triangles using it: open addressing with linear probing (the
+// refinement of a large mesh makes millions of look-ups, and a node per edge would dominate).
+// Erased slots become tombstones; the table doubles when live + dead slots pass half of it.
+class EdgeTable {
+ public:
+  using Users = std::array<int, 2>;
+  explicit EdgeTable(size_t expected) { rehash(std::max<size_t>(64, 2 * expected)); }
+
+  //! The users of the edge, nullptr if it is not in the table.
+  Users* find(uint64_t key) {
+    for (size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return &users_[i];
+      if (keys_[i] == kEmpty) return nullptr;
+    }
+  }
+  //! The users of the edge, inserted as {t, -1} if it was not there (then `fresh` is true).
+  Users& emplace(uint64_t key, int t, bool& fresh) {
+    if (2 * (live_ + dead_ + 1) > keys_.size()) rehash(keys_.size() * (live_ + 1 > keys_.size() / 4 ? 2 : 1));
+    size_t tomb = SIZE_MAX;
+    for (size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) {
+        fresh = false;
+        return users_[i];
+      }
+      if (keys_[i] == kDead && tomb == SIZE_MAX) tomb = i;
+      if (keys_[i] == kEmpty) {
+        const size_t at = tomb != SIZE_MAX ? tomb : i;
+        if (at == tomb) --dead_;
+        keys_[at] = key;
+        users_[at] = {t, -1};
+        ++live_;
+        fresh = true;
+        return users_[at];
+      }
+    }
+  }
+  //! Removes the edge whose users `found` (from find) points at.
+  void erase(Users* found) {
+    const size_t i = static_cast<size_t>(found - users_.data());
+    keys_[i] = kDead;
+    --live_;
+    ++dead_;
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0}, kDead = kEmpty - 1;  // no edge (a < b) has these keys
+  size_t slot(uint64_t key) const { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
+  void rehash(size_t capacity) {
+    size_t size = 64;
+    while (size < capacity) size *= 2;
+    std::vector<uint64_t> keys(size, kEmpty);
+    std::vector<Users> users(size);
+    mask_ = size - 1;
+    for (size_t i = 0; i < keys_.size(); ++i) {
+      if (keys_[i] == kEmpty || keys_[i] == kDead) continue;
+      size_t j = slot(keys_[i]);
+      while (keys[j] != kEmpty) j = (j + 1) & mask_;
+      keys[j] = keys_[i];
+      users[j] = users_[i];
+    }
+    keys_.swap(keys);
+    users_.swap(users);
+    dead_ = 0;
+  }
+  std::vector<uint64_t> keys_;
+  std::vector<Users> users_;
+  size_t mask_ = 0, live_ = 0, dead_ = 0;
+};
 
 struct LongEdge {
   double length;
@@ -34,13 +105,14 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
   std::vector<Triangle> triangles = mesh.triangles();
 
   // Which triangles use each undirected edge (one or two).
-  std::unordered_map<uint64_t, std::array<int, 2>> edge_triangles;
+  EdgeTable edge_triangles(3 * triangles.size() / 2);
   auto attach = [&](int a, int b, int t) {
-    auto [it, fresh] = edge_triangles.try_emplace(edge_key(a, b), std::array<int, 2>{t, -1});
-    if (!fresh) it->second[1] = t;
+    bool fresh = false;
+    EdgeTable::Users& users = edge_triangles.emplace(edge_key(a, b), t, fresh);
+    if (!fresh) users[1] = t;
   };
   auto replace = [&](int a, int b, int old_t, int new_t) {
-    auto& slot = edge_triangles.at(edge_key(a, b));
+    EdgeTable::Users& slot = *edge_triangles.find(edge_key(a, b));
     (slot[0] == old_t ? slot[0] : slot[1]) = new_t;
   };
   std::priority_queue<LongEdge> queue;
@@ -58,9 +130,9 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
   while (!queue.empty()) {
     const LongEdge edge = queue.top();
     queue.pop();
-    auto found = edge_triangles.find(edge_key(edge.a, edge.b));
-    if (found == edge_triangles.end()) continue;  // already split
-    const std::array<int, 2> users = found->second;
+    EdgeTable::Users* found = edge_triangles.find(edge_key(edge.a, edge.b));
+    if (found == nullptr) continue;  // already split
+    const EdgeTable::Users users = *found;
     edge_triangles.erase(found);
     const int m = static_cast<int>(positions.size());
     positions.push_back(0.5 * (positions[edge.a] + positions[edge.b]));

@@ -123,12 +123,30 @@ void SurfaceMesh::build_topology() {
     }
   }
 
-  // Manifold vertices: the triangles around v form a single fan (edge-connected through v).
+  // Manifold vertices: the triangles around v form a single fan (edge-connected through v). With
+  // every edge manifold and consistently oriented, the triangles around v chain across their
+  // edges at v; a walk both ways from the first one meets all of them iff they form one fan.
+  // Only a failing vertex is looked at again, to count its fans for the message.
+  auto corner_of = [&](int t, int v) { return triangles_[t][0] == v ? 0 : triangles_[t][1] == v ? 1 : 2; };
+  auto fan_size = [&](int v) {
+    const int start = *vertex_triangles_begin(v), count = vertex_triangle_count(v);
+    int seen = 1;
+    // Forward: across edge (v, next); stops back at the start (a closed fan) or at the boundary.
+    int t = neighbors_[start][corner_of(start, v)];
+    for (; t >= 0 && t != start && seen <= count; t = neighbors_[t][corner_of(t, v)]) ++seen;
+    if (t == start) return seen;
+    // Backward: across edge (previous, v), from the start to the other end of the open fan.
+    for (t = neighbors_[start][(corner_of(start, v) + 2) % 3]; t >= 0 && seen <= count;
+         t = neighbors_[t][(corner_of(t, v) + 2) % 3])
+      ++seen;
+    return seen;
+  };
   {
     std::vector<int> parent;
     for (int v = 0; v < nv; ++v) {
-      const int* begin = vertex_triangles_begin(v);
       const int count = vertex_triangle_count(v);
+      if (fan_size(v) == count) continue;
+      const int* begin = vertex_triangles_begin(v);
       parent.resize(count);
       std::iota(parent.begin(), parent.end(), 0);
       int groups = count;
@@ -144,27 +162,24 @@ void SurfaceMesh::build_topology() {
           if (ra != rb) { parent[ra] = rb; --groups; }
         }
       }
-      if (groups > 1)
-        throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v,
-                                     groups));
+      throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v, groups));
     }
   }
 
-  // Vertex-to-vertex lists (CSR), sorted.
+  // Vertex-to-vertex lists (CSR), sorted. Around a manifold vertex each neighbour u follows v in
+  // the one triangle holding edge (v, u), or, on the boundary, precedes it in the one holding (u, v).
   vv_offsets_.assign(nv + 1, 0);
   vv_vertices_.clear();
-  {
-    std::vector<int> around;
-    for (int v = 0; v < nv; ++v) {
-      around.clear();
-      for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t)
-        for (int u : triangles_[*t])
-          if (u != v) around.push_back(u);
-      std::sort(around.begin(), around.end());
-      around.erase(std::unique(around.begin(), around.end()), around.end());
-      vv_vertices_.insert(vv_vertices_.end(), around.begin(), around.end());
-      vv_offsets_[v + 1] = static_cast<int>(vv_vertices_.size());
+  vv_vertices_.reserve(vt_triangles_.size() + 2);
+  for (int v = 0; v < nv; ++v) {
+    const size_t first = vv_vertices_.size();
+    for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t) {
+      const int c = corner_of(*t, v);
+      vv_vertices_.push_back(triangles_[*t][(c + 1) % 3]);
+      if (neighbors_[*t][(c + 2) % 3] < 0) vv_vertices_.push_back(triangles_[*t][(c + 2) % 3]);
     }
+    std::sort(vv_vertices_.begin() + first, vv_vertices_.end());
+    vv_offsets_[v + 1] = static_cast<int>(vv_vertices_.size());
   }
 
   // Connected components over triangle adjacency.

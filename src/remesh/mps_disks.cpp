@@ -23,6 +23,13 @@ bool inside_disk(const Vec3& p, const Vec3& c, double w) {
   return CGAL::sign(exact_power_distance(to_exact(p), Site{c, w, 0})) == CGAL::NEGATIVE;
 }
 
+bool ball_meets_triangle(const SurfaceMesh& mesh, int t, const Vec3& p, double w) {
+  const Triangle& tri = mesh.triangle(t);
+  for (int c = 0; c < 3; ++c)
+    if (squared_distance(p, mesh.position(tri[c])) < w) return true;  // a corner inside decides
+  return triangle_squared_distance(mesh, t, p) < w;
+}
+
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p) {
   const Triangle& tri = mesh.triangle(t);
   const ClosestPoint c = closest_point_on_triangle(p, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
@@ -52,8 +59,23 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
       stamp_(mesh.triangle_count(), 0),
-      normals_(mesh.triangle_count()) {
-  for (int t = 0; t < mesh.triangle_count(); ++t) normals_[t] = mesh.triangle_normal(t);
+      normals_(mesh.triangle_count()),
+      bounds_(mesh.triangle_count()) {
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    normals_[t] = mesh.triangle_normal(t);
+    const Triangle& tri = mesh.triangle(t);
+    const Vec3 c = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+    double r2 = 0;
+    for (int k = 0; k < 3; ++k) r2 = std::max(r2, squared_distance(c, mesh.position(tri[k])));
+    bounds_[t] = {c, std::sqrt(r2)};
+  }
+}
+
+bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
+  // Far outside the triangle's bounding sphere (with room for rounding): no closest point needed.
+  const double reach = r + bounds_[t].radius;
+  if (squared_distance(p, bounds_[t].center) > reach * reach * (1 + 1e-9)) return false;
+  return ball_meets_triangle(mesh_, t, p, w);
 }
 
 bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
@@ -77,6 +99,7 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) 
   stamp_[t] = stamp_value_;
   if (f(t)) return true;
   const Vec3 facing = normals_[t];
+  const double r = std::sqrt(w);
   for (size_t k = 0; k < queue_.size(); ++k) {
     const int s = queue_[k];
     for (int e = 0; e < 3; ++e) {
@@ -84,7 +107,7 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) 
       if (n < 0 || stamp_[n] == stamp_value_) continue;
       stamp_[n] = stamp_value_;
       const bool faces = dot(normals_[n], facing) > kFacingCosine;
-      if ((facing_only && !faces) || !(triangle_squared_distance(mesh_, n, p) < w)) continue;
+      if ((facing_only && !faces) || !meets(n, p, w, r)) continue;
       queue_.push_back(n);
       if (faces && f(n)) return true;
     }

@@ -97,8 +97,10 @@ void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
   if (out.size() < 3) out.clear();
 }
 
-bool ball_meets_polygon(const std::vector<Vec3>& q, const Vec3& x, double w) {
-  for (size_t k = 1; k + 1 < q.size(); ++k)
+bool ball_meets_polygon(const Vec3* q, int count, const Vec3& x, double w) {
+  for (int k = 0; k < count; ++k)
+    if (squared_distance(x, q[k]) < w) return true;  // a corner inside: no closest point needed
+  for (int k = 1; k + 1 < count; ++k)
     if (squared_distance(x, closest_point_on_triangle(x, q[0], q[k], q[k + 1]).point) < w) return true;
   return false;
 }
@@ -128,6 +130,8 @@ void GapSet::extract(const Diagram& lrpd) {
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
     const int t = cp.triangle, i = cp.cell;
+    // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
+    if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
     polygon.clear();
     bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
@@ -154,7 +158,6 @@ void GapSet::extract(const Diagram& lrpd) {
     } else {
       ++uncovered_polygons_;
     }
-    if (disks_.fully_covered(t)) continue;
     // The gap of an uncovered polygon is the part outside the cell's ball that no disk reaching t
     // covers: a spot there may lie in the disk of a sample that is no LRPD candidate of t (its
     // cell was kept connected, or its power cell has a piece here the LRPD does not have), where
@@ -272,13 +275,11 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
   const size_t m = polygon.size();
   // Walk the boundary: corners outside the disk and the points where edges enter or leave it.
   // Each stretch outside, from an exit to the next entry, bounds one corner region of the gap.
-  struct Event {
-    Vec3 p;
-    int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
-  };
-  std::vector<Event> events;
+  std::vector<Event>& events = events_;
+  events.clear();
   bool any_out = false, any_cross = false;
-  std::vector<char> out(m);
+  std::vector<char>& out = outside_;
+  out.assign(m, 0);
   for (size_t k = 0; k < m; ++k) any_out |= (out[k] = !(squared_distance(polygon[k], x) < w));
   if (!any_out) return;
   for (size_t k = 0; k < m; ++k) {
@@ -309,7 +310,8 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
   }
   size_t start = 0;
   while (events[start].kind != 3) ++start;
-  std::vector<Vec3> run;
+  std::vector<Vec3>& run = run_;
+  run.clear();
   bool open = false;
   for (size_t k = 0; k < events.size(); ++k) {
     const Event& e = events[(start + k) % events.size()];
@@ -329,11 +331,13 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
 void GapSet::split(int index, int sample) {
   const Piece pc = pieces_[index];
   if (pc.owner == sample) return;
-  std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
   const Vec3& xe = disks_.center(sample);
   const double we = disks_.weight(sample);
-  if (!ball_meets_polygon(q, xe, we)) return;
+  if (!ball_meets_polygon(points_.data() + pc.first, pc.count, xe, we)) return;
   kill(index);
+  // A copy: the new pieces' corners go to the end of points_.
+  std::vector<Vec3>& q = split_polygon_;
+  q.assign(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
   if (pc.owner < 0) {
     add_outside(q, pc.triangle, sample);
     return;
@@ -343,7 +347,7 @@ void GapSet::split(int index, int sample) {
   const Vec3& xo = disks_.center(pc.owner);
   const double wo = disks_.weight(pc.owner);
   auto h = [&](const Vec3& y) { return (squared_distance(y, xo) - wo) - (squared_distance(y, xe) - we); };
-  std::vector<Vec3> cell;
+  std::vector<Vec3>& cell = split_cell_;
   clip(q, h, cell);
   add_outside(cell, pc.triangle, pc.owner);
   clip(q, [&](const Vec3& y) { return -h(y); }, cell);

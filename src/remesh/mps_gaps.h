@@ -73,8 +73,14 @@ class DiskIndex {
   struct Link {
     int item, next;
   };
+  struct Sphere {
+    Vec3 center;
+    double radius;
+  };
   template <class F>
   bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
+  //! ball_meets_triangle(t, p, w), r = √w, rejecting balls far from t's bounding sphere at once.
+  bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
   std::vector<Vec3> centers_, barycentric_;
   std::vector<double> weights_;
@@ -85,10 +91,14 @@ class DiskIndex {
   std::uint32_t stamp_value_ = 0;
   std::vector<int> region_, queue_;
   std::vector<Vec3> normals_;  // unit normal per triangle
+  std::vector<Sphere> bounds_;  // per triangle: centroid and the distance to its farthest corner
 };
 
 //! Squared distance from p to triangle t of the mesh.
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
+//! The ball (p, w) meets triangle t: triangle_squared_distance(mesh, t, p) < w, with a corner
+//! inside the ball deciding at once.
+bool ball_meets_triangle(const SurfaceMesh& mesh, int t, const Vec3& p, double w);
 
 //! Barycentric coordinates of p (a point of the plane of triangle t) in t, clamped to the triangle.
 Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
@@ -110,8 +120,8 @@ class GapSet {
   //! of samples the LRPD lists as no candidate there). With local updates also the polygons only a
   //! *remote* ball covers (one whose disk does not reach the triangle), minus those disks.
   void extract(const Diagram& lrpd);
-  //! Of the last extract(): polygons their ball does not cover (the LRPD's gaps), and polygons
-  //! covered by a remote ball.
+  //! Of the last extract(), in the triangles no single disk covers: polygons their ball does not
+  //! cover (the LRPD's gaps), and polygons covered by a remote ball.
   int uncovered_polygons() const { return uncovered_polygons_; }
   int remote_claims() const { return remote_claims_; }
   //! After the insertion of `sample` with local region `region`: with local updates, the pieces
@@ -171,9 +181,17 @@ class GapSet {
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   double drop_area_ = 0;
-  // scratch
+  // Scratch, kept to avoid an allocation per piece. add_outside uses events_, outside_, run_ (its
+  // polygon argument may be split_cell_, never one of those); split uses split_polygon_, split_cell_.
+  struct Event {
+    Vec3 p;
+    int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
+  };
   std::vector<int> scratch_pieces_, fresh_;
   std::vector<double> fan_;
+  std::vector<Event> events_;
+  std::vector<char> outside_;
+  std::vector<Vec3> run_, split_polygon_, split_cell_;
 };
 
 }  // namespace lrvd::mps_detail
