@@ -5,6 +5,7 @@
 #include <queue>
 #include <array>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include <fmt/format.h>
@@ -98,9 +99,11 @@ struct LongEdge {
 
 }  // namespace
 
-SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
   if (!(max_length > 0))
     throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
+  if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
+    throw std::invalid_argument("refine_long_edges: one value per vertex expected");
   std::vector<Vec3> positions = mesh.positions();
   std::vector<Triangle> triangles = mesh.triangles();
 
@@ -136,6 +139,7 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length) {
     edge_triangles.erase(found);
     const int m = static_cast<int>(positions.size());
     positions.push_back(0.5 * (positions[edge.a] + positions[edge.b]));
+    if (vertex_values) vertex_values->push_back(0.5 * ((*vertex_values)[edge.a] + (*vertex_values)[edge.b]));
     for (int t : users) {
       if (t < 0) continue;
       // Rotate so that the split edge is (u, v) = corners 0 -> 1 of t, w opposite.

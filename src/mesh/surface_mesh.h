@@ -87,7 +87,10 @@ class SurfaceMesh {
 //! Splits every edge longer than max_length (both triangles beside it, 1-to-2 splits at the
 //! midpoint, longest edges first) until no edge is longer (paper §4.2). The surface is unchanged.
 //! \pre max_length > 0.
-SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length);
+//! `vertex_values`, when given, holds one value per vertex of `mesh` and is extended to the new
+//! vertices, each taking the mean of its edge's end points: a field linear over each input
+//! triangle is carried over exactly (up to rounding), since every edge split lies in one of them.
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values = nullptr);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.

@@ -11,7 +11,6 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/closest_point.h"
 #include "mesh/curvature.h"
 #include "remesh/mps_gaps.h"
 #include "voronoi/lrvd.h"
@@ -209,27 +208,17 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
 
   // Initialisation: split long edges so a triangle is smaller than any disk (§4.2, first change).
   progress(fmt::format("splitting edges longer than r = {:.4g}", r_min));
-  result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min) : mesh;
-  const SurfaceMesh& m = result.mesh;
   std::vector<double> vertex_radius;
   if (options.adaptive) {
-    const std::vector<double> coarse = adaptive_radius_field(mesh, r_min, options);
-    // The field is linear over each input triangle; the refined vertices take its value there.
-    const ClosestPointIndex index(mesh);
-    vertex_radius.resize(m.vertex_count());
-    for (int v = 0; v < m.vertex_count(); ++v) {
-      if (v < mesh.vertex_count() && m.position(v) == mesh.position(v)) {
-        vertex_radius[v] = coarse[v];
-        continue;
-      }
-      const ClosestPoint c = index.query(m.position(v));
-      const Triangle& tri = mesh.triangle(c.triangle);
-      vertex_radius[v] = c.barycentric.x * coarse[tri[0]] + c.barycentric.y * coarse[tri[1]] + c.barycentric.z * coarse[tri[2]];
-    }
+    // The field is linear over each input triangle; the refinement carries it to the new vertices.
+    vertex_radius = adaptive_radius_field(mesh, r_min, options);
+    result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min, &vertex_radius) : mesh;
     result.max_radius = *std::max_element(vertex_radius.begin(), vertex_radius.end());
   } else {
+    result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min) : mesh;
     result.max_radius = r_min;
   }
+  const SurfaceMesh& m = result.mesh;
   std::vector<double> areas(m.triangle_count());
   for (int t = 0; t < m.triangle_count(); ++t) areas[t] = m.triangle_area(t);
   const AliasTable by_area(areas);
