@@ -144,6 +144,30 @@ TEST_CASE("MPS of two interpenetrating spheres keeps each sphere's samples apart
   }
 }
 
+TEST_CASE("Adaptive MPS on sheets thinner than r fills the spots a disk across the sheet crowds", "[mps][stress]") {
+  // thin_plate (0.01 thick) and folded_sheet (walls 0.02 apart) at r_min = 0.02: a big disk on one
+  // side leaves spots on the other side where no radius keeps both samples in their power cells;
+  // those spots take a dart that keeps the condition only against the samples facing alike.
+  for (const char* name : {"thin_plate", "folded_sheet"}) {
+    INFO(name);
+    const SurfaceMesh sheet = make_stress_mesh(name);
+    int exceptions = 0;
+    for (std::uint64_t seed : {1, 2}) {
+      INFO("seed " << seed);
+      MpsOptions options;
+      options.radius = 0.02;
+      options.adaptive = true;
+      options.seed = seed;
+      const MpsResult r = maximal_poisson_disk_sampling(sheet, options);
+      check_sampling(sheet, r, false);
+      exceptions += r.power_cell_exceptions;
+      // Local pairs keep their distance whatever the exceptions; those across the sheet are closer.
+      CHECK(verify_mps(r.mesh, r.samples).close_pairs_not_local > 0);
+    }
+    CHECK(exceptions > 0);  // the case this is about did occur
+  }
+}
+
 TEST_CASE("The adaptive radius field stays within [r_min, r_max] and changes gradually", "[mps]") {
   const SurfaceMesh elk = cgal_mesh("elk.off");
   MpsOptions options;

@@ -87,6 +87,7 @@ int run_mps(const MpsCommandOptions& opt) {
   report["gap_pieces"] = result.gap_pieces;
   report["dropped_gap_pieces"] = result.dropped_gap_pieces;
   report["clamped_radii"] = result.clamped_radii;
+  report["power_cell_exceptions"] = result.power_cell_exceptions;
   report["gaps_closed"] = result.gaps_closed;
   report["maximal"] = maximal;
   report["min_distance_ok"] = min_distance_ok;

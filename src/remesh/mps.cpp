@@ -77,7 +77,11 @@ Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bar
 //! of every local sample closer than that (which is at least that sample's radius, so never below
 //! r_min; a local sample closer than its own radius rejects the dart); and against every sample
 //! around, local or not (another sheet, past a notch), it keeps |r_p² − r_j²| <= |p − x_j|², so
-//! that no sample falls into another's power cell and the LRPD keeps one cell per sample.
+//! that no sample falls into another's power cell and the LRPD keeps one cell per sample. Where no
+//! radius meets that against every sample around (a sheet thinner than r, a big disk across it)
+//! and the spot would otherwise stay uncovered, the condition is kept only against the samples on
+//! triangles facing like p's: the dart goes in, and a sample across may then lie outside its power
+//! cell (`power_cell_exceptions`).
 class Sampler {
  public:
   Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
@@ -86,6 +90,10 @@ class Sampler {
   DiskIndex& disks() { return disks_; }
   const std::vector<int>& last_region() const { return region_; }
   int clamped() const { return clamped_; }
+  int power_cell_exceptions() const { return power_cell_exceptions_; }
+  //! From now on, a dart no radius admits against every sample around is tried against those
+  //! facing like it only (the sampler turns this on for spots that would stay uncovered).
+  void allow_power_cell_exceptions() { allow_exceptions_ = true; }
 
   double weight_at(int t, const Vec3& bary) const {
     if (vertex_radius_.empty()) return r_min2_;
@@ -105,25 +113,13 @@ class Sampler {
     }
     // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets.
     met_ = disks_.met(p, t, kScan * kScan * w);
-    double lo = r_min2_, hi = w;  // the allowed range of p's weight
-    bool reject = false;
-    for (int s : met_)
-      disks_.for_each_center(s, [&](int j) {
-        if (reject) return;
-        const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
-        hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
-        lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
-        if (!disks_.faces_like(s, t) || !inside_disk(disks_.center(j), p, hi)) return;
-        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j) (on p's
-        // side, meeting the ball and facing alike is taken as enough: cutting more is safe).
-        if (!disks_.reaches(disks_.center(j), disks_.triangle(j), std::max(hi, wj), t)) return;
-        if (inside_disk(p, disks_.center(j), wj)) {
-          reject = true;  // closer than r_j: no radius for p helps
-          return;
-        }
-        hi = d2 * (1 - 1e-14);  // |p - x_j|² > hi exactly
-      });
-    if (reject || lo > hi) return false;
+    double hi = 0;
+    const Admission admitted = admit(p, t, w, false, hi);
+    if (admitted == Admission::Rejected) return false;
+    if (admitted == Admission::NoRadius) {
+      if (!allow_exceptions_ || admit(p, t, w, true, hi) != Admission::Radius) return false;
+      ++power_cell_exceptions_;
+    }
     if (hi < w) ++clamped_;
     region_ = disks_.grow(p, t, hi);
     disks_.insert(p, t, bary, hi, region_);
@@ -133,12 +129,45 @@ class Sampler {
  private:
   static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
 
+  enum class Admission { Radius, NoRadius, Rejected };
+  //! Adaptive: the largest weight `hi` ≤ w that p in triangle t may take against the samples
+  //! around (met_): below the squared distance of every local sample within reach, and keeping
+  //! both in their power cells against every sample around, or with `facing_only` only against
+  //! those on triangles facing like t. Rejected: a local sample is closer than its own radius.
+  Admission admit(const Vec3& p, int t, double w, bool facing_only, double& hi) {
+    double lo = r_min2_;  // the allowed range of p's weight
+    hi = w;
+    bool reject = false;
+    for (int s : met_) {
+      const bool faces = disks_.faces_like(s, t);
+      if (facing_only && !faces) continue;
+      disks_.for_each_center(s, [&](int j) {
+        if (reject) return;
+        const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
+        hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
+        lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
+        if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
+        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j) (on p's
+        // side, meeting the ball and facing alike is taken as enough: cutting more is safe).
+        if (!disks_.reaches(disks_.center(j), disks_.triangle(j), std::max(hi, wj), t)) return;
+        if (inside_disk(p, disks_.center(j), wj)) {
+          reject = true;  // closer than r_j: no radius for p helps
+          return;
+        }
+        hi = d2 * (1 - 1e-14);  // |p - x_j|² > hi exactly
+      });
+      if (reject) return Admission::Rejected;
+    }
+    return lo > hi ? Admission::NoRadius : Admission::Radius;
+  }
+
   const SurfaceMesh& mesh_;
   double r_min2_;
   std::vector<double> vertex_radius_;
   DiskIndex disks_;
   std::vector<int> region_, met_;
-  int clamped_ = 0;
+  int clamped_ = 0, power_cell_exceptions_ = 0;
+  bool allow_exceptions_ = false;
 };
 
 }  // namespace
@@ -269,10 +298,15 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   GapSet gaps(m, sampler.disks(), local, 1e-15 * r_min * r_min);
   LrvdOptions lrpd_options;
   lrpd_options.weighted = true;
+  Diagram lrpd;
+  bool stale = true;  // the LRPD is not that of the current samples
   for (int round = 0; round < options.max_gap_rounds; ++round) {
-    progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
-    const Diagram lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
-    ++result.lrpd_evaluations;
+    if (stale) {
+      progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
+      lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
+      ++result.lrpd_evaluations;
+    }
+    stale = true;
     gaps.extract(lrpd);
     if (round == 0) result.gap_pieces = gaps.alive();
     // No piece left: every spot of the surface is in the ball of its LRPD cell or in a disk
@@ -316,12 +350,25 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     // No progress: this LRPD is that of the final samples. Closed when the pieces no dart fits
     // are only where the balls of their LRPD cells cover (remote claims).
     if (sampler.disks().size() == before) {
+      // Adaptive, spots no dart fits: outside their cells' balls, where the power-cell condition
+      // against a sample across (another sheet, a big disk past a fold) leaves no radius. Once, the
+      // required pieces of this same LRPD are tried again with that condition kept only against
+      // the samples facing alike.
+      if (options.adaptive && gaps.required_pieces() > 0 && !gaps.required_only()) {
+        progress(fmt::format("{} gap pieces no dart fits: power-cell condition against samples facing alike only",
+                             gaps.required_pieces()));
+        sampler.allow_power_cell_exceptions();
+        gaps.set_required_only();
+        stale = false;
+        continue;
+      }
       result.gaps_closed = gaps.required_pieces() == 0;
       break;
     }
   }
   result.dropped_gap_pieces = gaps.dropped();
   result.clamped_radii = sampler.clamped();
+  result.power_cell_exceptions = sampler.power_cell_exceptions();
   result.samples = sampler.disks().samples();
   result.radii.resize(result.samples.size());
   for (int i = 0; i < result.samples.size(); ++i) result.radii[i] = std::sqrt(result.samples.weights[i]);

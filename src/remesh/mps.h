@@ -56,6 +56,8 @@ struct MpsResult {
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
+  int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the
+                                  //!< samples facing like them (none met it against all; docs/mps.md)
   bool gaps_closed = false;       //!< the sampler found no gap left (verify_mps checks it independently)
   MpsTimings time_s;
 };

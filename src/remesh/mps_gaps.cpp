@@ -154,7 +154,7 @@ void GapSet::extract(const Diagram& lrpd) {
       // gap of the disks that do reach t, which cover it for good once the darts are done; it is
       // not *required*: where no dart fits (adaptive radius), the cell's ball covers it.
       ++remote_claims_;
-      if (!local_) continue;
+      if (!local_ || required_only_) continue;
     } else {
       ++uncovered_polygons_;
     }
@@ -165,7 +165,7 @@ void GapSet::extract(const Diagram& lrpd) {
     // reaching t. Those pieces are *required*: the sampling is maximal once none is left.
     if (covered) {
       add_split(polygon, t, -1);
-    } else if (own || !local_) {
+    } else if (own || !local_ || required_only_) {
       required_pieces_ += add_split(polygon, t, i);
     } else {
       // Local updates, a polygon of a remote ball that does not cover it: as for a remote claim

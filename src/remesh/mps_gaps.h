@@ -142,6 +142,10 @@ class GapSet {
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
   //! cell or in a disk reaching it, which is what verify_mps calls maximal.
   int required_pieces() const { return required_pieces_; }
+  //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
+  //! go only where a spot would stay uncovered.
+  void set_required_only() { required_only_ = true; }
+  bool required_only() const { return required_only_; }
 
   double gap_area() const;    //!< total uncovered area of the live pieces
   int created() const { return created_; }
@@ -173,6 +177,7 @@ class GapSet {
   const SurfaceMesh& mesh_;
   const DiskIndex& disks_;
   bool local_;
+  bool required_only_ = false;
   std::vector<Piece> pieces_;
   std::vector<Vec3> points_;
   std::vector<int> head_;       // per triangle: first piece, -1 if none
