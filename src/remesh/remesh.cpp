@@ -170,7 +170,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
     raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
     ++result.repair_rounds;
-    result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
+    // The diagram of the samples is the last one computed: the density changed, the diagram not.
+    result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram);
     result.total_iterations += result.cvt.iterations;
     result.diagram_evaluations += result.cvt.diagram_evaluations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
