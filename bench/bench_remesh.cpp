@@ -4,6 +4,7 @@
 //                     [--out F.md] [--json F]
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -29,6 +30,13 @@ std::vector<std::string> split(const std::string& s) {
   std::stringstream in(s);
   for (std::string item; std::getline(in, item, ',');) out.push_back(item);
   return out;
+}
+
+// CPU time of the process (all threads): with --threads 1, a load-independent measure of the work.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 }  // namespace
@@ -78,7 +86,9 @@ int main(int argc, char** argv) {
       for (DiagramKind kind : kinds) {
         RemeshOptions options;
         options.cvt.diagram = kind;
+        const double cpu_start = cpu_seconds();
         const RemeshResult r = remesh_cvt(input, mesh, sample_uniform(mesh, n, 1), options);
+        const double cpu_s = cpu_seconds() - cpu_start;
         const RemeshVerification check = verify_remesh(input, r.dual.positions, r.dual.triangles, n);
         const QualityMetrics q = quality_metrics(input, r.dual.positions, r.dual.triangles);
         const bool manifold = check.manifold.passed && check.closed.passed && check.oriented.passed;
@@ -89,7 +99,8 @@ int main(int argc, char** argv) {
                           q.pct_triangles_below_30, q.hausdorff_pct, q.rms_pct, r.repair_rounds, r.time_s);
         rows.push_back({{"model", model}, {"n", n}, {"diagram", to_string(kind)}, {"triangles_in", mesh.triangle_count()},
                         {"quality", q.to_json()}, {"verification", check.to_json()}, {"repair_rounds", r.repair_rounds},
-                        {"iterations", r.total_iterations}, {"time_s", r.time_s}});
+                        {"iterations", r.total_iterations}, {"diagram_evaluations", r.diagram_evaluations},
+                        {"time_s", r.time_s}, {"cpu_s", cpu_s}});
         std::fprintf(stderr, "%s %d %s: %s\n", model.c_str(), n, to_string(kind).c_str(),
                      check.passed ? "valid" : check.summary().c_str());
       }

@@ -82,6 +82,21 @@ TEST_CASE("Lloyd and L-BFGS both lower the CVT energy", "[cvt]") {
   }
 }
 
+TEST_CASE("A CVT given the diagram of its start computes no diagram twice and ends where it would without it", "[cvt]") {
+  const SurfaceMesh mesh = cgal_mesh("knot.off");
+  CvtOptions options;
+  options.iterations = 12;
+  const CvtResult first = optimize_cvt(mesh, sample_uniform(mesh, 200, 2), options);
+  options.lloyd_warmup = 1;
+  options.triangle_density.assign(mesh.triangle_count(), 1.0);
+  for (int t = 0; t < mesh.triangle_count(); t += 7) options.triangle_density[t] = 4.0;  // as a repair round
+  const CvtResult fresh = optimize_cvt(mesh, first.samples, options);
+  const CvtResult reused = optimize_cvt(mesh, first.samples, options, &first.diagram);
+  REQUIRE(reused.diagram_evaluations == fresh.diagram_evaluations - 1);
+  REQUIRE(reused.energy_history == fresh.energy_history);
+  REQUIRE(reused.samples.positions == fresh.samples.positions);
+}
+
 TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's topology at low N", "[cvt][remesh]") {
   // The stress meshes where the remesh is a manifold of the right topology today; folded_sheet
   // (n = 300) and comb (n = 100), and the crossings between nearly touching sheets, are open

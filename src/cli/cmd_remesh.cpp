@@ -66,7 +66,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["density"] = opt.density;
   report["iterations"] = remeshed.total_iterations;
   report["repair_rounds"] = remeshed.repair_rounds;
-  report["diagram_evaluations"] = result.diagram_evaluations;
+  report["diagram_evaluations"] = remeshed.diagram_evaluations;
   report["line_search_stopped"] = result.line_search_stopped;
   report["fit"] = {{"enabled", remesh.fit},
                    {"moved", remeshed.fit.moved},

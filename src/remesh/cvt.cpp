@@ -47,8 +47,13 @@ std::vector<Vec3> to_points(const Eigen::VectorXd& x) {
 
 CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
                      const std::vector<double>* density) {
+  return cvt_energy(mesh, samples, compute_diagram(mesh, samples, kind), density);
+}
+
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, Diagram diagram,
+                     const std::vector<double>* density) {
   CvtEnergy e;
-  e.diagram = compute_diagram(mesh, samples, kind);
+  e.diagram = std::move(diagram);
   e.cells = integrate_cells(e.diagram, mesh, samples, density);
   e.energy = e.cells.total_energy;
   e.gradient.resize(samples.size());
@@ -82,7 +87,8 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
   return smooth;
 }
 
-CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options) {
+CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
+                       const Diagram* diagram_of_initial) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
   const auto start = std::chrono::steady_clock::now();
   const int n = initial.size();
@@ -101,8 +107,9 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
   CvtResult result;
   Samples samples = initial;
   samples.weights.clear();
-  CvtEnergy current = cvt_energy(mesh, samples, options.diagram, density);
-  ++result.diagram_evaluations;
+  CvtEnergy current = diagram_of_initial ? cvt_energy(mesh, samples, *diagram_of_initial, density)
+                                         : cvt_energy(mesh, samples, options.diagram, density);
+  if (!diagram_of_initial) ++result.diagram_evaluations;
   result.energy_history.push_back(current.energy);
   int iteration = 0;
   auto report = [&](double energy) {
@@ -132,11 +139,16 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     Samples best = samples;
     double best_energy = current.energy;
     int lbfgs_evaluations = 0;
+    // The solver's first call is at the starting point, whose energy and gradient are `current`.
+    const std::vector<Vec3> start_points = samples.positions;
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
       ++lbfgs_evaluations;
-      project(index, to_points(x), samples, false);
-      const CvtEnergy e = cvt_energy(mesh, samples, options.diagram, density);
-      ++result.diagram_evaluations;
+      const std::vector<Vec3> points = to_points(x);
+      const bool at_start = lbfgs_evaluations == 1 && points == start_points;
+      project(index, points, samples, false);
+      const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh, samples, options.diagram, density);
+      const CvtEnergy& e = at_start ? current : evaluated;
+      if (!at_start) ++result.diagram_evaluations;
       grad.resize(3 * n);
       for (int i = 0; i < n; ++i)
         for (int c = 0; c < 3; ++c) grad[3 * i + c] = e.gradient[i][c];

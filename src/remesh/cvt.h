@@ -50,9 +50,16 @@ struct CvtEnergy {
 };
 CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
                      const std::vector<double>* density = nullptr);
+//! The same, on the diagram of the samples already computed (the density may differ from the one
+//! the diagram was last integrated with: the diagram does not depend on it).
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, Diagram diagram,
+                     const std::vector<double>* density = nullptr);
 
-//! Moves the samples towards a CVT of the surface.
+//! Moves the samples towards a CVT of the surface. `diagram_of_initial`, when the caller has it
+//! (a previous CVT's result), is the diagram of `initial` of the kind `options.diagram`: it is used
+//! instead of computing the same diagram again.
 //! \throw InputError on an empty sample set.
-CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options = {});
+CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options = {},
+                       const Diagram* diagram_of_initial = nullptr);
 
 }  // namespace lrvd

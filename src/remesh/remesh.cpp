@@ -153,6 +153,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   RemeshResult result;
   result.cvt = optimize_cvt(mesh, initial, options.cvt);
   result.total_iterations = result.cvt.iterations;
+  result.diagram_evaluations = result.cvt.diagram_evaluations;
   result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
   CvtOptions again = options.cvt;
   again.iterations = options.repair_iterations;
@@ -169,8 +170,10 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
     raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
     ++result.repair_rounds;
-    result.cvt = optimize_cvt(mesh, result.cvt.samples, again);
+    // The diagram of the samples is the last one computed: the density changed, the diagram not.
+    result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram);
     result.total_iterations += result.cvt.iterations;
+    result.diagram_evaluations += result.cvt.diagram_evaluations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
     defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
     if (defects.fewer_than(best_defects)) {
@@ -180,6 +183,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   }
   best.repair_rounds = result.repair_rounds;
   best.total_iterations = result.total_iterations;
+  best.diagram_evaluations = result.diagram_evaluations;
   result = std::move(best);
   if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

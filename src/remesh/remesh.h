@@ -24,6 +24,7 @@ struct RemeshResult {
   CvtResult cvt;            //!< the final CVT (samples, diagram, energy, iterations of the last run)
   DualMesh dual;            //!< the output mesh: one vertex per sample
   int total_iterations = 0; //!< over the first optimisation and every repair round
+  int diagram_evaluations = 0;  //!< diagrams computed, over the first optimisation and every repair round
   int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
   FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
   double time_s = 0;
