@@ -107,6 +107,21 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
   REQUIRE_THROWS_AS(refine_long_edges(mesh, 0.0), InputError);
 }
 
+TEST_CASE("Refinement carries a field that is linear over each input triangle to the new vertices") {
+  // f = a·x + b is linear everywhere, so the mean at each split must equal f at the new vertex.
+  const SurfaceMesh mesh = test::octahedron();
+  const Vec3 a{0.3, -1.7, 2.2};
+  auto f = [&](const Vec3& p) { return dot(a, p) + 0.5; };
+  std::vector<double> values;
+  for (const Vec3& p : mesh.positions()) values.push_back(f(p));
+  const SurfaceMesh fine = refine_long_edges(mesh, 0.11, &values);
+  REQUIRE(values.size() == static_cast<size_t>(fine.vertex_count()));
+  REQUIRE(fine.vertex_count() > 10 * mesh.vertex_count());
+  for (int v = 0; v < fine.vertex_count(); ++v) REQUIRE(values[v] == Approx(f(fine.position(v))).margin(1e-12));
+  std::vector<double> wrong(mesh.vertex_count() - 1, 0.0);
+  REQUIRE_THROWS(refine_long_edges(mesh, 0.11, &wrong));
+}
+
 TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic work at its hub") {
   // Edge and duplicate look-ups go through the corner with the fewest triangles, and the
   // one-ring check searches the hub's sorted list: a hub costs O(d log d), not O(d²) (which would
