@@ -75,6 +75,8 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
        {std::string("compute ") + kData + "/missing.off -n 10", "compute " + kData + "/elk.off -n 0",
         "compute " + kData + "/elk.off --points " + points, "compute " + kData + "/elk.off -n 10 --diagram lrpd",
         "compute " + kData + "/elk.off -n 10 --refine banana", "remesh " + kData + "/elk.off -n 10",
+        // The elk is a torus: no triangle mesh of it has fewer than 7 vertices.
+        "remesh " + kData + "/elk.off -n 6 -o " + kOut + "elk_6.off",
         std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand")}) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);
@@ -111,6 +113,18 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   REQUIRE(j["verification"]["passed"] == false);
   std::ifstream written(out);
   REQUIRE(written.good());
+}
+
+TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the checks, not a crash", "[cli][remesh]") {
+  // 7 vertices on the elk (a torus) is the bound, but the CVT's dual of 7 cells has no triangle.
+  const std::string out = kOut + "elk_7.off", report = kOut + "elk_7.json";
+  const Run r = run("remesh " + kData + "/elk.off -n 7 -o " + out + " --report " + report);
+  INFO(r.err);
+  REQUIRE(r.status == 3);
+  const json j = read_json(report);
+  REQUIRE(j["verification"]["passed"] == false);
+  REQUIRE(j["quality"].is_null());
+  REQUIRE(j["output"]["triangles"] == 0);
 }
 
 TEST_CASE("lrvd stress lists and writes the stress meshes", "[cli]") {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "common/error.h"
+#include "mesh/stress.h"
 #include "mesh/surface_mesh.h"
 #include "test_meshes.h"
 
@@ -140,4 +141,11 @@ TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic w
   // The same fan with a triangle repeated is refused, naming both.
   t.push_back(t[n / 2]);
   REQUIRE_THROWS_WITH(SurfaceMesh(p, t), Catch::Contains(std::to_string(n / 2)) && Catch::Contains("duplicates"));
+}
+
+TEST_CASE("The fewest vertices a mesh of the same topology can have") {
+  REQUIRE(test::octahedron().minimum_vertex_count() == 4);  // a sphere: the tetrahedron
+  REQUIRE(test::grid(3, 3).minimum_vertex_count() == 3);    // a disk: one triangle
+  REQUIRE(test::merge(test::octahedron(), test::grid(2, 2), Vec3{5, 0, 0}).minimum_vertex_count() == 7);
+  REQUIRE(make_stress_mesh("knot_tube").minimum_vertex_count() == 7);  // a torus
 }

@@ -33,6 +33,12 @@ int run_remesh(const RemeshCommandOptions& opt) {
   Input input = load_input(opt.input);
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+  const int fewest = input.loaded.mesh.minimum_vertex_count();
+  if (input.samples.size() < fewest)
+    throw InputError(fmt::format("{} vertices are too few for this surface: no triangle mesh with its topology ({} "
+                                 "component(s), Euler characteristic {}) has fewer than {}",
+                                 input.samples.size(), input.loaded.mesh.component_count(),
+                                 input.loaded.mesh.euler_characteristic(), fewest));
 
   RemeshOptions remesh;
   CvtOptions& cvt = remesh.cvt;
@@ -53,13 +59,17 @@ int run_remesh(const RemeshCommandOptions& opt) {
 
   progress("checking the remesh");
   const RemeshVerification check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
-  const QualityMetrics quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
+  // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
+  // is nothing to measure.
+  const bool measurable = !dual.triangles.empty();
+  const QualityMetrics quality =
+      measurable ? quality_metrics(input.loaded.mesh, dual.positions, dual.triangles) : QualityMetrics{};
 
   nlohmann::json report;
   report["input"] = input_json(input);
   report["input"]["path"] = opt.input.mesh_path;
   report["output"] = {{"path", opt.output}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
-  report["quality"] = remesh_quality_json(quality, check);
+  report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
   report["verification"] = check.to_json();
   report["diagram"] = opt.kind;
   report["optimizer"] = opt.optimizer;
@@ -80,9 +90,12 @@ int run_remesh(const RemeshCommandOptions& opt) {
 
   std::printf("remesh (%s): %zu vertices, %zu triangles, %d iterations, %.3f s -> %s\n", opt.kind.c_str(),
               dual.positions.size(), dual.triangles.size(), remeshed.total_iterations, remeshed.time_s, opt.output.c_str());
-  std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%%\n",
-              quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
-              quality.hausdorff_pct);
+  if (measurable)
+    std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%%\n",
+                quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
+                quality.hausdorff_pct);
+  else
+    std::printf("quality: not measured (the remesh has no triangles)\n");
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
   return check.passed ? kOk : kCheckFailed;

@@ -247,6 +247,16 @@ std::vector<int> SurfaceMesh::component_euler_characteristics() const {
   return chi;
 }
 
+int SurfaceMesh::minimum_vertex_count() const {
+  std::vector<char> open(component_count_, 0);
+  for (const std::vector<int>& loop : boundary_loops_) open[vertex_component(loop.front())] = 1;
+  const std::vector<int> chi = component_euler_characteristics();
+  int total = 0;
+  for (int c = 0; c < component_count_; ++c)
+    total += open[c] ? 3 : static_cast<int>(std::ceil((7 + std::sqrt(49.0 - 24.0 * chi[c])) / 2 - 1e-9));
+  return total;
+}
+
 double SurfaceMesh::triangle_area(int t) const {
   const Triangle& tri = triangles_[t];
   const Vec3& a = positions_[tri[0]];

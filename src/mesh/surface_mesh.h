@@ -63,6 +63,10 @@ class SurfaceMesh {
   //! Euler characteristic V - E + F of the whole mesh / of each component.
   int euler_characteristic() const;
   std::vector<int> component_euler_characteristics() const;
+  //! The fewest vertices a triangle mesh of the same topology can have, summed over the
+  //! components: a closed component of Euler characteristic χ needs ⌈(7 + √(49 − 24χ))/2⌉ (Heawood:
+  //! 4 for a sphere, 7 for a torus), one with boundary 3. A lower bound: genus 2 needs 10, not 9.
+  int minimum_vertex_count() const;
 
   double triangle_area(int t) const;
   double area() const;
