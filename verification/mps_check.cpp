@@ -151,7 +151,7 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
       }
     }
   }
-  out.min_distance_ratio = std::isfinite(min_ratio2) ? std::sqrt(min_ratio2) : 0;
+  out.min_distance_ratio = std::isfinite(min_ratio2) ? std::sqrt(min_ratio2) : std::numeric_limits<double>::quiet_NaN();
   return close;
 }
 

@@ -38,7 +38,8 @@ struct MpsVerification {
   PropertyResult maximal;
   //! The LRPD's polygons fill every triangle (area sums, relative 1e-9): the cells do cover the surface.
   PropertyResult diagram_covers;
-  double min_distance_ratio = 0;           //!< smallest |x_i - x_j| / max(r_i, r_j) over pairs seen in a region, not one-sided
+  double min_distance_ratio = 0;           //!< smallest |x_i - x_j| / max(r_i, r_j) over pairs seen in a region, not one-sided;
+                                           //!< NaN (null in JSON) when no such pair exists
   std::int64_t close_pairs_not_local = 0;  //!< pairs closer than max(r_i, r_j) that are not local (other sheet, past a notch); allowed
   std::int64_t one_sided_close_pairs = 0;  //!< of those, pairs where one sees the other in its region but not back (a notch)
   std::int64_t exact_vertex_tests = 0;       //!< maximality decisions that needed rational arithmetic

@@ -125,8 +125,11 @@ int run_mps(const MpsCommandOptions& opt) {
               opt.adaptive ? "adaptive" : "uniform", opt.radius, samples.size(), result.dart_samples, result.gap_samples,
               result.time_s.total, result.time_s.init, result.time_s.dart_throwing, result.time_s.gap_filling,
               opt.output.c_str());
-  std::printf("maximal: %s, minimum distance: %s (smallest ratio %.4f)\n", maximal ? "yes" : "NO",
-              min_distance_ok ? "yes" : "NO", check.min_distance_ratio);
+  const std::string ratio = std::isnan(check.min_distance_ratio)
+                                ? std::string("no two samples near each other")
+                                : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
+  std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
+              ratio.c_str());
   if (check.polygons_outside_own_ball > 0)
     std::printf("  %lld LRPD polygons reach outside their cell's ball; in %lld of their triangles disks of samples "
                 "that are no LRPD candidate there cover them\n",
