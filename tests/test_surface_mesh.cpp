@@ -99,6 +99,17 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
     for (const Vec3& q : fine.positions())
       REQUIRE(std::abs(q.x) + std::abs(q.y) + std::abs(q.z) == Approx(1.0).epsilon(1e-14));
   }
+  // The refinement hands its adjacency to the mesh instead of having it rebuilt and re-checked:
+  // the same as the checking constructor finds, closed and open.
+  for (const SurfaceMesh& fine : {refine_long_edges(mesh, 0.11), refine_long_edges(test::grid(3, 2), 0.1)}) {
+    const SurfaceMesh checked(fine.positions(), fine.triangles());
+    REQUIRE(fine.edge_count() == checked.edge_count());
+    REQUIRE(fine.boundary_loops() == checked.boundary_loops());
+    REQUIRE(fine.component_count() == checked.component_count());
+    for (int t = 0; t < fine.triangle_count(); ++t)
+      for (int e = 0; e < 3; ++e) REQUIRE(fine.neighbor(t, e) == checked.neighbor(t, e));
+    for (int v = 0; v < fine.vertex_count(); ++v) REQUIRE(fine.vertex_neighbors(v) == checked.vertex_neighbors(v));
+  }
   // An open sheet keeps its boundary length and single loop.
   const SurfaceMesh sheet = refine_long_edges(test::grid(2, 2), 0.2);
   REQUIRE(sheet.max_edge_length() <= 0.2);

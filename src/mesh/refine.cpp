@@ -58,6 +58,7 @@ class EdgeTable {
       }
     }
   }
+  size_t size() const { return live_; }
   //! Removes the edge whose users `found` (from find) points at.
   void erase(Users* found) {
     const size_t i = static_cast<size_t>(found - users_.data());
@@ -160,7 +161,16 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     push_if_long(edge.a, m);
     push_if_long(m, edge.b);
   }
-  return SurfaceMesh(std::move(positions), std::move(triangles));
+  // The adjacency is in the edge table: the refinement of a valid mesh is valid by construction
+  // (only its rounded midpoints' triangles get the zero-area check again).
+  std::vector<std::array<int, 3>> neighbors(triangles.size());
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const EdgeTable::Users& users = *edge_triangles.find(edge_key(triangles[t][e], triangles[t][(e + 1) % 3]));
+      neighbors[t][e] = users[0] == t ? users[1] : users[0];
+    }
+  return SurfaceMesh(std::move(positions), std::move(triangles), std::move(neighbors),
+                     static_cast<int>(edge_triangles.size()));
 }
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {

@@ -44,15 +44,37 @@ SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> tria
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
       throw InputError(fmt::format("triangle {} is degenerate: it repeats a vertex ({}, {}, {})", t, tri[0],
                                    tri[1], tri[2]));
-    if (predicates::collinear(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]))
-      throw InputError(fmt::format("triangle {} ({}, {}, {}) has zero area", t, tri[0], tri[1], tri[2]));
   }
+  check_triangle_areas();
   for (int v = 0; v < vertex_count(); ++v)
     if (!referenced[v]) throw InputError(fmt::format("vertex {} is not used by any triangle", v));
   build_topology();
 }
 
+SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
+                         std::vector<std::array<int, 3>> neighbors, int edge_count)
+    : positions_(std::move(positions)), triangles_(std::move(triangles)), neighbors_(std::move(neighbors)),
+      edge_count_(edge_count) {
+  check_triangle_areas();
+  build_vertex_triangles();
+  finish_topology();
+}
+
+void SurfaceMesh::check_triangle_areas() const {
+  for (int t = 0; t < triangle_count(); ++t) {
+    const Triangle& tri = triangles_[t];
+    if (predicates::collinear(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]))
+      throw InputError(fmt::format("triangle {} ({}, {}, {}) has zero area", t, tri[0], tri[1], tri[2]));
+  }
+}
+
 void SurfaceMesh::build_topology() {
+  build_vertex_triangles();
+  link_and_check();
+  finish_topology();
+}
+
+void SurfaceMesh::build_vertex_triangles() {
   const int nt = triangle_count(), nv = vertex_count();
 
   // Vertex-to-triangle lists (CSR), each in increasing triangle order.
@@ -66,7 +88,10 @@ void SurfaceMesh::build_topology() {
     for (int t = 0; t < nt; ++t)
       for (int v : triangles_[t]) vt_triangles_[fill[v]++] = t;
   }
+}
 
+void SurfaceMesh::link_and_check() {
+  const int nt = triangle_count(), nv = vertex_count();
   // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
   // around the corner with the fewest triangles (a fan's hub would make this quadratic), before
   // this one.
@@ -166,6 +191,11 @@ void SurfaceMesh::build_topology() {
     }
   }
 
+}
+
+void SurfaceMesh::finish_topology() {
+  const int nt = triangle_count(), nv = vertex_count();
+  auto corner_of = [&](int t, int v) { return triangles_[t][0] == v ? 0 : triangles_[t][1] == v ? 1 : 2; };
   // Vertex-to-vertex lists (CSR), sorted. Around a manifold vertex each neighbour u follows v in
   // the one triangle holding edge (v, u), or, on the boundary, precedes it in the one holding (u, v).
   vv_offsets_.assign(nv + 1, 0);

@@ -75,7 +75,17 @@ class SurfaceMesh {
   double max_edge_length() const;
 
  private:
-  void build_topology();
+  friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*);
+  //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
+  //! check is repeated (midpoints are rounded); the rest holds by construction.
+  SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles, std::vector<std::array<int, 3>> neighbors,
+              int edge_count);
+
+  void build_topology();            // all of the below, in order
+  void build_vertex_triangles();    // vertex-to-triangle lists
+  void link_and_check();            // duplicates, edges and neighbours, one fan per vertex
+  void finish_topology();           // vertex-to-vertex lists, components, boundary loops
+  void check_triangle_areas() const;
 
   std::vector<Vec3> positions_;
   std::vector<Triangle> triangles_;
