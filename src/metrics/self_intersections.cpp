@@ -34,7 +34,8 @@ class TriangleBox : public CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_
 //! Shared one vertex v: the intersection is convex and contains v, so it holds another point iff
 //! the edge opposite v of one triangle meets the other. Shared edge: triangles in different planes
 //! meet exactly in it; in one plane they overlap iff the opposite corners lie on the same side.
-bool intersect_illegitimately(const Triangle& f, const Triangle& g, const std::vector<Point>& p) {
+template <class Points>
+bool intersect_illegitimately(const Triangle& f, const Triangle& g, const Points& p) {
   int shared = 0, fi[3], gi[3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
@@ -56,7 +57,31 @@ bool intersect_illegitimately(const Triangle& f, const Triangle& g, const std::v
   return false;  // the same three vertices: a duplicate, reported by `manifold`
 }
 
+// Corners of two triangles as Epick points, indexed by vertex id (at most six distinct ids).
+struct SixPoints {
+  int id[6];
+  Point point[6];
+  int count = 0;
+  SixPoints(const std::vector<Vec3>& positions, const Triangle& f, const Triangle& g) {
+    for (const Triangle* t : {&f, &g})
+      for (int v : *t) {
+        bool seen = false;
+        for (int k = 0; k < count; ++k) seen = seen || id[k] == v;
+        if (!seen) id[count] = v, point[count++] = Point(positions[v].x, positions[v].y, positions[v].z);
+      }
+  }
+  const Point& operator[](int v) const {
+    int k = 0;
+    while (id[k] != v) ++k;
+    return point[k];
+  }
+};
+
 }  // namespace
+
+bool triangles_cross(const std::vector<Vec3>& positions, const Triangle& f, const Triangle& g) {
+  return intersect_illegitimately(f, g, SixPoints(positions, f, g));
+}
 
 std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
   std::vector<char> proper(triangles.size());

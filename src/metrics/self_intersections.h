@@ -15,6 +15,10 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
                                                          const std::vector<Triangle>& triangles,
                                                          const std::vector<char>& testable = {});
 
+//! Whether triangles f and g meet anywhere but in the vertices or the edge they share: the pair
+//! test of find_self_intersections (exact). \pre f and g have three distinct, non-collinear corners.
+bool triangles_cross(const std::vector<Vec3>& positions, const Triangle& f, const Triangle& g);
+
 //! The triangles find_self_intersections can take: three distinct corners, not collinear (exact).
 std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);
 

@@ -162,9 +162,22 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     again.triangle_density = options.cvt.density == CvtDensity::Curvature
                                  ? curvature_density(mesh, initial.size())
                                  : std::vector<double>(mesh.triangle_count(), 1.0);
+  // A dual whose only defect is crossings is fitted and untangled; the crossings left, if any, are
+  // the ones to act on.
+  auto settle = [&](RemeshResult& r, DualDefects& d) {
+    if (!options.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
+    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options);
+    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options);
+    r.fitted = true;
+    std::set<int> left;
+    for (const auto& [s, t] : r.untangle.remaining)
+      for (int u : {s, t}) left.insert(r.dual.triangles[u].begin(), r.dual.triangles[u].end());
+    d.crossing.assign(left.begin(), left.end());
+  };
   // Each round raises the density where the worst kind of defect is (topology first, crossings
   // next); the state with the fewest defects is the result.
   DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+  settle(result, defects);
   RemeshResult best = result;
   DualDefects best_defects = defects;
   for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
@@ -176,6 +189,10 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     result.diagram_evaluations += result.cvt.diagram_evaluations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
     defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+    result.fitted = false;
+    result.fit = {};
+    result.untangle = {};
+    settle(result, defects);
     if (defects.fewer_than(best_defects)) {
       best_defects = defects;
       best = result;
@@ -185,7 +202,11 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   best.total_iterations = result.total_iterations;
   best.diagram_evaluations = result.diagram_evaluations;
   result = std::move(best);
-  if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
+  if (!result.fitted) {
+    if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
+    if (options.untangle)
+      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options);
+  }
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

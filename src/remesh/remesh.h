@@ -7,6 +7,7 @@
 
 #include "remesh/cvt.h"
 #include "remesh/fit.h"
+#include "remesh/untangle.h"
 #include "voronoi/dual.h"
 
 namespace lrvd {
@@ -18,6 +19,10 @@ struct RemeshOptions {
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
   bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
   FitOptions fit_options;
+  //! when the dual's only defect is crossings, fit and untangle it (remesh/untangle.h) before
+  //! deciding whether to raise the density; the crossings left are where it is raised
+  bool untangle = true;
+  UntangleOptions untangle_options;
 };
 
 struct RemeshResult {
@@ -27,6 +32,8 @@ struct RemeshResult {
   int diagram_evaluations = 0;  //!< diagrams computed, over the first optimisation and every repair round
   int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
   FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
+  UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
+  bool fitted = false;      //!< `dual` is fitted and untangled already
   double time_s = 0;
 };
 
