@@ -82,6 +82,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
                    {"moved", remeshed.fit.moved},
                    {"reverted", remeshed.fit.reverted},
                    {"max_displacement_pct", 100.0 * remeshed.fit.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
+  report["untangle"] = {{"crossings_before", remeshed.untangle.crossings_before},
+                        {"crossings_after", remeshed.untangle.crossings_after},
+                        {"moved", remeshed.untangle.moved},
+                        {"max_displacement_pct",
+                         100.0 * remeshed.untangle.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
