@@ -43,9 +43,12 @@ void lattice(const Triangle& f, int k, std::vector<Vec3>& out) {
   if (k == 2) out.push_back({1 / 3.0, 1 / 3.0, 1 / 3.0});
 }
 
-int lattice_level(const Vec3& a, const Vec3& b, const Vec3& c, double spacing) {
+// The lattice level for a spacing, even from 2 on (so that the edge midpoints are samples: a chord's
+// distance to a bend is largest there), at least `lowest`.
+int lattice_level(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, int lowest) {
   const double longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
-  return std::clamp(static_cast<int>(std::ceil(longest / spacing)), 1, 16);
+  const int k = std::clamp(static_cast<int>(std::ceil(longest / spacing)), lowest, 16);
+  return k == 1 ? 1 : k + k % 2;
 }
 
 // x^p for an integer p ≥ 1, by squaring.
@@ -123,9 +126,9 @@ class OffsetBalancer {
     return largest;
   }
 
-  // One sweep of coordinate descent on the linearised distances: each vertex tries its normal and
-  // the steepest-descent direction of its samples' Σ|d|^p (which leaves the normal at a tip that
-  // the vertex must reach sideways) and keeps the better accepted move.
+  // One sweep of coordinate descent on the linearised distances: each vertex tries a few directions
+  // (its normal; the steepest descent of its samples' Σ|d|^p, which leaves the normal at a tip the
+  // vertex must reach sideways; that descent's tangential part) and keeps the best accepted step.
   void sweep(double floor) {
     const int n = static_cast<int>(dual_.positions.size());
     for (int v = 0; v < n; ++v) {
@@ -153,9 +156,14 @@ class OffsetBalancer {
       const Vec3 from = dual_.positions[v];
       Vec3 best_move{0, 0, 0};
       double best_value = start;
-      for (int candidate = 0; candidate < (options_.sideways ? 2 : 1); ++candidate) {
-        const Vec3 direction = candidate == 0 ? normal : descent / norm(descent);
-        if (candidate == 1 && !(norm(descent) > 0)) break;
+      // The normal, the steepest descent, and the descent's part along the surface (at a tip, the
+      // descent leans into the surface and its own step is cut short by the floor first).
+      const Vec3 unit = norm(descent) > 0 ? descent / norm(descent) : Vec3{0, 0, 0};
+      const Vec3 along = unit - dot(unit, normal) * normal;
+      const Vec3 candidates[3] = {normal, unit, norm(along) > 1e-3 ? along / norm(along) : Vec3{0, 0, 0}};
+      for (int candidate = 0; candidate < (options_.sideways ? 3 : 1); ++candidate) {
+        const Vec3& direction = candidates[candidate];
+        if (!(norm(direction) > 0)) continue;
         set_coefficients(direction, scale);
         const double t = best_offset(limit);
         for (double step : {1.0, 0.875, 0.75, 0.625, 0.5, 0.375, 0.25, 0.125}) {
@@ -221,7 +229,7 @@ class OffsetBalancer {
           remesh_.push_back({t, {k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0}, 0, {}});
         }
       bary.clear();
-      lattice(f, lattice_level(x[f[0]], x[f[1]], x[f[2]], spacing), bary);
+      lattice(f, lattice_level(x[f[0]], x[f[1]], x[f[2]], spacing, 2), bary);
       for (const Vec3& b : bary) remesh_.push_back({t, b, 0, {}});
     }
     // Input samples: the vertices, then the lattices.
@@ -230,7 +238,7 @@ class OffsetBalancer {
       const Triangle& f = mesh_.triangle(t);
       const std::vector<Vec3>& p = mesh_.positions();
       bary.clear();
-      lattice(f, lattice_level(p[f[0]], p[f[1]], p[f[2]], mean_edge / options_.input_samples_per_edge), bary);
+      lattice(f, lattice_level(p[f[0]], p[f[1]], p[f[2]], mean_edge / options_.input_samples_per_edge, 1), bary);
       for (const Vec3& b : bary) input_points_.push_back(at(p, f, b));
     }
     input_.resize(input_points_.size());

@@ -2,16 +2,18 @@
 // between the remesh and the input is balanced, not only least-squares small.
 //
 // Why: the quadric fit puts a vertex on the planes of its cell, but a chord across a bend then
-// stays below the surface by most of its sagitta (2/3 of it on a cylinder, where the balanced
-// offset halves it), and at the tip of a thin part the vertex would have to move sideways, towards
-// the tip, which the quadric's weak directions leave alone. Points are sampled on both surfaces
-// (lattices at a fraction of the remesh's edge length, and the input's vertices); each carries
-// its distance d to the other surface, signed "remesh outside input" positive, and the outward
-// direction in which d grows. Each vertex then takes, along its normal or along the steepest
-// descent of its samples, the step that minimises Σ|d|^p over the samples of its triangles
-// (p large: close to the maximum), with d linearised in the step (the vertex's barycentric weight
-// times the step along the direction); coordinate descent over the vertices, re-measured a few
-// times.
+// stays inside the surface by most of its sagitta s (2s/3 on a cylinder, where the balanced offset
+// leaves s/2 on each side), and at the tip of a thin part the vertex would have to move sideways,
+// towards the tip, which the quadric's weak directions leave alone.
+//
+// How: points are sampled on both surfaces (lattices at a fraction of the remesh's edge length,
+// always with the edge midpoints, where a chord is farthest from a bend; and the input's
+// vertices). Each carries its distance d to the other surface, signed "remesh outside input"
+// positive, and the outward direction in which d grows. Each vertex then takes the step that
+// minimises Σ|d|^p over the samples of its triangles (p large: close to the maximum), with d
+// linearised in the step (the vertex's barycentric weight times the step along the direction),
+// along its normal, the steepest descent of its samples or that descent's tangential part:
+// coordinate descent over the vertices, re-measured a few times.
 #pragma once
 
 #include <functional>
@@ -25,13 +27,13 @@ namespace lrvd {
 struct OffsetOptions {
   int rounds = 3;                   //!< re-measurements of the samples, each after `sweeps` sweeps
   int sweeps = 2;                   //!< coordinate-descent sweeps per round, on the linearised distances
-  int power = 8;                    //!< p of Σ|d|^p (even): larger is closer to the maximum
-  double trust = 0.25;              //!< longest step, as a fraction of the shortest edge at the vertex
+  int power = 16;                   //!< p of Σ|d|^p (even): larger is closer to the maximum
+  double trust = 0.5;               //!< longest step, as a fraction of the shortest edge at the vertex
   double samples_per_edge = 2;      //!< remesh sample spacing: its mean edge length over this
   double input_samples_per_edge = 2;  //!< the same on the input (its vertices are samples too)
   double active_fraction = 0.5;     //!< after round 1, only vertices with a sample at this × the largest |d|
   double requery_fraction = 0.25;   //!< after round 1, only samples at this × the largest |d| are re-measured
-  bool sideways = true;             //!< also try the steepest-descent direction, not only the normal
+  bool sideways = true;             //!< also try the steepest descent and its tangential part, not only the normal
 };
 
 struct OffsetResult {
