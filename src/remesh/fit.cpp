@@ -62,12 +62,13 @@ std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
   return {pairs.begin(), pairs.end()};
 }
 
-// The quality floor of a state: no triangle below the state's worst Q and its smallest angle (at
-// most `max_angle`), or below its own value where it was worse than that already, and none turned
-// over.
+// The quality floor of a state: no triangle below the state's worst Q, or below its own Q where it
+// was worse than that already; none below the state's smallest angle (at most `max_angle`), or —
+// `per_triangle_angle` — none below `max_angle` that was above it and none below its own smallest
+// angle otherwise; and none turned over.
 class QualityFloor {
  public:
-  QualityFloor(const DualMesh& state, double max_angle) : triangles_(state.triangles) {
+  QualityFloor(const DualMesh& state, double max_angle, bool per_triangle_angle) : triangles_(state.triangles) {
     const int nt = static_cast<int>(triangles_.size());
     q_.resize(nt), angle_.resize(nt), normal_.resize(nt);
     double q_floor = 1, angle_floor = max_angle;
@@ -80,6 +81,7 @@ class QualityFloor {
       q_floor = std::min(q_floor, q_[t]);
       angle_floor = std::min(angle_floor, angle_[t]);
     }
+    if (per_triangle_angle) angle_floor = max_angle;
     for (int t = 0; t < nt; ++t) q_[t] = std::min(q_[t], q_floor), angle_[t] = std::min(angle_[t], angle_floor);
   }
 
@@ -141,7 +143,7 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   const std::set<std::pair<int, int>> allowed = crossing_pairs(dual);
 
   // Step 1, the quadric fit under the CVT's floor.
-  const QualityFloor cvt_floor(dual, options.max_angle_floor);
+  const QualityFloor cvt_floor(dual, options.max_angle_floor, false);
   std::function<bool(int)> acceptable = [&](int v) {
     for (int t : incident[v])
       if (!cvt_floor.holds(t, dual.positions)) return false;
@@ -170,10 +172,11 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   result.reverted = settle(dual, original, cvt_floor, allowed, incident);
 
   // Step 2, balancing the two-sided distance under the floor of step 1's result (so the worst
-  // triangle stays what step 1 made it).
+  // triangle stays what step 1 made it), with the angle floor per triangle: its sideways steps
+  // would otherwise take many triangles down to the smallest angle where that is below 30°.
   if (options.balance) {
     const std::vector<Vec3> quadric_fitted = dual.positions;
-    const QualityFloor fitted_floor(dual, options.max_angle_floor);
+    const QualityFloor fitted_floor(dual, options.max_angle_floor, true);
     acceptable = [&](int v) {
       for (int t : incident[v])
         if (!fitted_floor.holds(t, dual.positions)) return false;
