@@ -2,6 +2,7 @@
 #include "remesh/fit.h"
 
 #include <algorithm>
+#include <functional>
 #include <set>
 
 #include <Eigen/Dense>
@@ -61,6 +62,73 @@ std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
   return {pairs.begin(), pairs.end()};
 }
 
+// The quality floor of a state: no triangle below the state's worst Q, or below its own Q where it
+// was worse than that already; none below the state's smallest angle (at most `max_angle`), or —
+// `per_triangle_angle` — none below `max_angle` that was above it and none below its own smallest
+// angle otherwise; and none turned over.
+class QualityFloor {
+ public:
+  QualityFloor(const DualMesh& state, double max_angle, bool per_triangle_angle) : triangles_(state.triangles) {
+    const int nt = static_cast<int>(triangles_.size());
+    q_.resize(nt), angle_.resize(nt), normal_.resize(nt);
+    double q_floor = 1, angle_floor = max_angle;
+    for (int t = 0; t < nt; ++t) {
+      const Triangle& f = triangles_[t];
+      const Vec3 &a = state.positions[f[0]], &b = state.positions[f[1]], &c = state.positions[f[2]];
+      q_[t] = triangle_quality(a, b, c);
+      angle_[t] = triangle_min_angle(a, b, c);
+      normal_[t] = cross(b - a, c - a);
+      q_floor = std::min(q_floor, q_[t]);
+      angle_floor = std::min(angle_floor, angle_[t]);
+    }
+    if (per_triangle_angle) angle_floor = max_angle;
+    for (int t = 0; t < nt; ++t) q_[t] = std::min(q_[t], q_floor), angle_[t] = std::min(angle_[t], angle_floor);
+  }
+
+  bool holds(int t, const std::vector<Vec3>& positions) const {
+    const Triangle& f = triangles_[t];
+    const Vec3 &a = positions[f[0]], &b = positions[f[1]], &c = positions[f[2]];
+    return !(triangle_quality(a, b, c) < q_[t]) && !(triangle_min_angle(a, b, c) < angle_[t]) &&
+           dot(cross(b - a, c - a), normal_[t]) > 0;
+  }
+
+ private:
+  const std::vector<Triangle>& triangles_;
+  std::vector<double> q_, angle_;
+  std::vector<Vec3> normal_;
+};
+
+// Puts vertices back to `fallback` (a state that meets `floor` and has no crossing outside
+// `allowed`) until the same holds for `dual`: the corners of every new crossing, then the moved
+// corners of every triangle below the floor next to a vertex put back. Returns the vertices put back.
+int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor& floor,
+           const std::set<std::pair<int, int>>& allowed, const std::vector<std::vector<int>>& incident) {
+  int reverted = 0;
+  for (int round = 0; round < 32; ++round) {
+    std::vector<int> back;
+    for (const auto& pair : crossing_pairs(dual))
+      if (!allowed.count(pair))
+        for (int t : {pair.first, pair.second})
+          for (int v : dual.triangles[t])
+            if (dual.positions[v] != fallback[v]) dual.positions[v] = fallback[v], back.push_back(v);
+    if (back.empty()) return reverted;
+    for (size_t i = 0; i < back.size(); ++i)
+      for (int t : incident[back[i]])
+        if (!floor.holds(t, dual.positions))
+          for (int v : dual.triangles[t])
+            if (dual.positions[v] != fallback[v]) dual.positions[v] = fallback[v], back.push_back(v);
+    reverted += static_cast<int>(back.size());
+  }
+  // Not settled after eight rounds: the fallback state, unless the last round settled it.
+  for (const auto& pair : crossing_pairs(dual))
+    if (!allowed.count(pair)) {
+      for (size_t v = 0; v < fallback.size(); ++v) reverted += dual.positions[v] != fallback[v];
+      dual.positions = fallback;
+      break;
+    }
+  return reverted;
+}
+
 }  // namespace
 
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options) {
@@ -69,34 +137,18 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   const int nt = static_cast<int>(dual.triangles.size());
   if (n == 0 || nt == 0) return result;
   const std::vector<Vec3> original = dual.positions;
-
-  // The floor: no triangle below the worst Q and the smallest angle the CVT gave (at most 30°), or
-  // below its own value if it was worse than that already.
-  std::vector<double> q_before(nt), angle_before(nt);
-  std::vector<Vec3> normal_before(nt);
-  double q_floor = 1, angle_floor = options.max_angle_floor;
   std::vector<std::vector<int>> incident(n);
-  for (int t = 0; t < nt; ++t) {
-    const Triangle& f = dual.triangles[t];
-    const Vec3 &a = original[f[0]], &b = original[f[1]], &c = original[f[2]];
-    q_before[t] = triangle_quality(a, b, c);
-    angle_before[t] = triangle_min_angle(a, b, c);
-    normal_before[t] = cross(b - a, c - a);
-    q_floor = std::min(q_floor, q_before[t]);
-    angle_floor = std::min(angle_floor, angle_before[t]);
-    for (int v : f) incident[v].push_back(t);
-  }
-  auto acceptable = [&](int v) {
-    for (int t : incident[v]) {
-      const Triangle& f = dual.triangles[t];
-      const Vec3 &a = dual.positions[f[0]], &b = dual.positions[f[1]], &c = dual.positions[f[2]];
-      if (triangle_quality(a, b, c) < std::min(q_before[t], q_floor)) return false;
-      if (triangle_min_angle(a, b, c) < std::min(angle_before[t], angle_floor)) return false;
-      if (!(dot(cross(b - a, c - a), normal_before[t]) > 0)) return false;
-    }
+  for (int t = 0; t < nt; ++t)
+    for (int v : dual.triangles[t]) incident[v].push_back(t);
+  const std::set<std::pair<int, int>> allowed = crossing_pairs(dual);
+
+  // Step 1, the quadric fit under the CVT's floor.
+  const QualityFloor cvt_floor(dual, options.max_angle_floor, false);
+  std::function<bool(int)> acceptable = [&](int v) {
+    for (int t : incident[v])
+      if (!cvt_floor.holds(t, dual.positions)) return false;
     return true;
   };
-
   const std::vector<CellQuadric> quadric = cell_quadrics(diagram, mesh);
   std::vector<Vec3> target(n);
   for (int v = 0; v < n; ++v) target[v] = quadric_target(quadric[v], original[v], options.rank_threshold);
@@ -116,23 +168,22 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
         dual.positions[v] = from;
       }
     }
+  // Moving vertices must not make triangles cross.
+  result.reverted = settle(dual, original, cvt_floor, allowed, incident);
 
-  // Moving vertices must not make triangles cross: put back both triangles of every new crossing.
-  DualMesh unfitted;
-  unfitted.positions = original;
-  unfitted.triangles = dual.triangles;
-  const std::set<std::pair<int, int>> before = crossing_pairs(unfitted);
-  for (int round = 0; round < 8; ++round) {
-    std::set<int> back;
-    for (const auto& pair : crossing_pairs(dual))
-      if (!before.count(pair))
-        for (int t : {pair.first, pair.second})
-          for (int v : dual.triangles[t])
-            if (dual.positions[v] != original[v]) back.insert(v);
-    if (back.empty()) break;
-    for (int v : back) dual.positions[v] = original[v];
-    result.reverted += static_cast<int>(back.size());
-    if (round == 7) dual.positions = original;  // not settled: keep the CVT's vertices
+  // Step 2, balancing the two-sided distance under the floor of step 1's result (so the worst
+  // triangle stays what step 1 made it), with the angle floor per triangle: its sideways steps
+  // would otherwise take many triangles down to the smallest angle where that is below 30°.
+  if (options.balance) {
+    const std::vector<Vec3> quadric_fitted = dual.positions;
+    const QualityFloor fitted_floor(dual, options.max_angle_floor, true);
+    acceptable = [&](int v) {
+      for (int t : incident[v])
+        if (!fitted_floor.holds(t, dual.positions)) return false;
+      return true;
+    };
+    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets);
+    result.reverted += settle(dual, quadric_fitted, fitted_floor, allowed, incident);
   }
   for (int v = 0; v < n; ++v)
     if (dual.positions[v] != original[v]) {

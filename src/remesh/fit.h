@@ -5,14 +5,17 @@
 // Why: the dual's triangles are chords of the surface. Where the surface bends (the tips of
 // antlers and hooves, a polyhedral input's corners) every chord cuts the bend on one side, and
 // the two-sided distance is set there. A vertex on the planes of its cell's triangles sits at the
-// apex of the bend instead, which roughly halves that distance. The quality floor keeps the CVT's
-// triangle shape: no triangle goes below the CVT's own worst Q or its own smallest angle (30° at
-// most), and none turns over.
+// apex of the bend instead, which roughly halves that distance. A second step (fit_offsets.h)
+// then balances the sampled two-sided distance, moving vertices along their normals or sideways
+// towards tips. The quality floor keeps the CVT's triangle shape: no triangle goes below the CVT's
+// own worst Q or its own smallest angle (30° at most), and none turns over; the second step keeps
+// the floor of the first step's result, so it never lowers the worst triangle either.
 #pragma once
 
 #include <vector>
 
 #include "mesh/surface_mesh.h"
+#include "remesh/fit_offsets.h"
 #include "voronoi/diagram.h"
 #include "voronoi/dual.h"
 
@@ -25,17 +28,22 @@ struct FitOptions {
   double rank_threshold = 0.1;
   double max_angle_floor = 30.0;  //!< the angle floor is min(this, the smallest angle before)
   int passes = 3;                 //!< sweeps over the vertices (later ones finish partial moves)
+  bool balance = true;            //!< then balance the two-sided distance (fit_offsets.h)
+  OffsetOptions offsets;
 };
 
 struct FitResult {
   int moved = 0;                //!< vertices that left their sample
   double max_displacement = 0;  //!< the longest move, in the mesh's units
   int reverted = 0;             //!< vertices put back because their triangles crossed others
+  OffsetResult offsets;         //!< the sampled distance before and after balancing
 };
 
 //! Moves the vertices of `dual` (the dual of `diagram` on `mesh`) towards their cells' quadric
-//! minimisers under the quality floor, then puts back the vertices of any triangle that crosses
-//! another one and did not before. Triangles and their orientation are unchanged.
+//! minimisers under the quality floor, then (options.balance) balances the two-sided distance under
+//! the floor of that result. After each step the vertices of any triangle that crosses another one
+//! and did not before are put back, with those of any triangle that falls below the floor then.
+//! Triangles and their orientation are unchanged.
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual,
                          const FitOptions& options = {});
 
