@@ -81,7 +81,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["fit"] = {{"enabled", remesh.fit},
                    {"moved", remeshed.fit.moved},
                    {"reverted", remeshed.fit.reverted},
-                   {"max_displacement_pct", 100.0 * remeshed.fit.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
+                   {"max_displacement_pct", 100.0 * remeshed.fit.max_displacement / input.loaded.mesh.bounding_box().diagonal()},
+                   {"balanced_distance_pct_before",
+                    100.0 * remeshed.fit.offsets.max_before / input.loaded.mesh.bounding_box().diagonal()},
+                   {"balanced_distance_pct_after",
+                    100.0 * remeshed.fit.offsets.max_after / input.loaded.mesh.bounding_box().diagonal()}};
   report["untangle"] = {{"crossings_before", remeshed.untangle.crossings_before},
                         {"crossings_after", remeshed.untangle.crossings_after},
                         {"moved", remeshed.untangle.moved},

@@ -68,7 +68,8 @@ std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
 // angle otherwise; and none turned over.
 class QualityFloor {
  public:
-  QualityFloor(const DualMesh& state, double max_angle, bool per_triangle_angle) : triangles_(state.triangles) {
+  QualityFloor(const DualMesh& state, double max_angle, bool per_triangle_angle, double keep_quality = 0)
+      : triangles_(state.triangles) {
     const int nt = static_cast<int>(triangles_.size());
     q_.resize(nt), angle_.resize(nt), normal_.resize(nt);
     double q_floor = 1, angle_floor = max_angle;
@@ -82,7 +83,8 @@ class QualityFloor {
       angle_floor = std::min(angle_floor, angle_[t]);
     }
     if (per_triangle_angle) angle_floor = max_angle;
-    for (int t = 0; t < nt; ++t) q_[t] = std::min(q_[t], q_floor), angle_[t] = std::min(angle_[t], angle_floor);
+    for (int t = 0; t < nt; ++t)
+      q_[t] = std::max(std::min(q_[t], q_floor), keep_quality * q_[t]), angle_[t] = std::min(angle_[t], angle_floor);
   }
 
   bool holds(int t, const std::vector<Vec3>& positions) const {
@@ -176,7 +178,7 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   // would otherwise take many triangles down to the smallest angle where that is below 30°.
   if (options.balance) {
     const std::vector<Vec3> quadric_fitted = dual.positions;
-    const QualityFloor fitted_floor(dual, options.max_angle_floor, true);
+    const QualityFloor fitted_floor(dual, options.max_angle_floor, true, options.keep_quality);
     acceptable = [&](int v) {
       for (int t : incident[v])
         if (!fitted_floor.holds(t, dual.positions)) return false;

@@ -29,6 +29,9 @@ struct FitOptions {
   double max_angle_floor = 30.0;  //!< the angle floor is min(this, the smallest angle before)
   int passes = 3;                 //!< sweeps over the vertices (later ones finish partial moves)
   bool balance = true;            //!< then balance the two-sided distance (fit_offsets.h)
+  //! While balancing, each triangle also keeps this fraction of its Q: the sideways steps would
+  //! otherwise spend the triangles' shape on distance (with 0: Qavg 0.94 -> 0.86 on ellipsoid 4000).
+  double keep_quality = 0.95;
   OffsetOptions offsets;
 };
 
