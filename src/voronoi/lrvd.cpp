@@ -174,20 +174,13 @@ class LrvdBuilder {
   // Clips triangle t by its candidates into its polygons. Reads only t's labels and writes only
   // t's polygons (the buffers belong to the thread), so triangles can be clipped in parallel.
   void clip(int t) const {
-    thread_local std::vector<SymbolicVertex> polygon, scratch;
+    thread_local CellClipper clipper;
     TrianglePolygons& st = state_[t];
     st.cell.clear();
     st.offset.assign(1, 0);
     st.reach.clear();
     st.verts.clear();
-    for (int k : st.labels) {
-      clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon, scratch);
-      if (polygon.empty()) continue;
-      st.cell.push_back(k);
-      st.reach.push_back(polygon_edges(polygon.data(), static_cast<int>(polygon.size()), mesh_.triangle(t)).reach);
-      st.verts.insert(st.verts.end(), polygon.begin(), polygon.end());
-      st.offset.push_back(static_cast<int>(st.verts.size()));
-    }
+    clipper.clip(mesh_, t, st.labels, ctx_, st.cell, st.offset, st.reach, st.verts);
     clipped_[t] = 1;
   }
 
