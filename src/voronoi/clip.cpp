@@ -150,14 +150,14 @@ CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, cons
 }
 
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
-                       std::vector<int>& cells, std::vector<int>& offsets, std::vector<unsigned>& reach,
+                       std::vector<int>& cells, std::vector<int>& offsets, std::vector<PolygonEdges>& edges,
                        std::vector<SymbolicVertex>& verts) {
   const Triangle& tri = mesh.triangle(t);
   const int m = static_cast<int>(labels.size());
   if (m == 1) {  // the whole triangle
     for (int c = 0; c < 3; ++c) verts.push_back(SymbolicVertex::mesh_vertex(tri[c]));
     cells.push_back(labels[0]);
-    reach.push_back(7u);
+    edges.push_back({7u, 7u});
     offsets.push_back(static_cast<int>(verts.size()));
     return;
   }
@@ -166,7 +166,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
       clip_triangle(mesh, t, k, labels.data(), m, ctx, fallback_polygon_, fallback_scratch_);
       if (fallback_polygon_.empty()) continue;
       cells.push_back(k);
-      reach.push_back(polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri).reach);
+      edges.push_back(polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri));
       verts.insert(verts.end(), fallback_polygon_.begin(), fallback_polygon_.end());
       offsets.push_back(static_cast<int>(verts.size()));
     }
@@ -217,13 +217,16 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
       polygon_.swap(scratch_);
     }
     if (polygon_.empty()) continue;
-    unsigned edges = 0;
+    PolygonEdges pe;  // as polygon_edges
+    unsigned previous = polygon_.back().mask;
     for (const LocalVertex& q : polygon_) {
-      edges |= q.mask;
+      pe.reach |= q.mask;
+      pe.along |= previous & q.mask;
+      previous = q.mask;
       verts.push_back(to_symbolic(q));
     }
     cells.push_back(labels[k]);
-    reach.push_back(edges);
+    edges.push_back(pe);
     offsets.push_back(static_cast<int>(verts.size()));
   }
 }

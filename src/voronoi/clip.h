@@ -69,9 +69,9 @@ class CellClipper {
  public:
   //! Appends, for each cell k of `labels` (sorted, distinct) in order whose polygon in triangle t
   //! is not empty: k to `cells`, the polygon's vertices to `verts`, their end to `offsets` and the
-  //! triangle edges it reaches (edge_mask bits) to `reach`.
+  //! triangle edges it reaches and runs along (polygon_edges) to `edges`.
   void clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
-            std::vector<int>& cells, std::vector<int>& offsets, std::vector<unsigned>& reach,
+            std::vector<int>& cells, std::vector<int>& offsets, std::vector<PolygonEdges>& edges,
             std::vector<SymbolicVertex>& verts);
 
  private:

@@ -55,7 +55,7 @@ struct TrianglePolygons {
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
   std::vector<int> cell;       // cell of each polygon
   std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
-  std::vector<unsigned> reach; // polygon p: the edges of the triangle it reaches (edge_mask bits)
+  std::vector<PolygonEdges> edges;  // polygon p: the edges of the triangle it reaches, runs along
   std::vector<SymbolicVertex> verts;
 
   //! Empties every list but keeps its storage for the next diagram.
@@ -65,7 +65,7 @@ struct TrianglePolygons {
     pinned.clear();
     cell.clear();
     offset.assign(1, 0);
-    reach.clear();
+    edges.clear();
     verts.clear();
   }
 };
@@ -80,6 +80,7 @@ struct LrvdWorkspace {
   std::vector<int> vertex_label, home, conflicts, best_sample, stuck;
   std::vector<double> best;
   std::vector<VertexEntry> heap;
+  std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
     if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
@@ -96,7 +97,7 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
@@ -178,9 +179,9 @@ class LrvdBuilder {
     TrianglePolygons& st = state_[t];
     st.cell.clear();
     st.offset.assign(1, 0);
-    st.reach.clear();
+    st.edges.clear();
     st.verts.clear();
-    clipper.clip(mesh_, t, st.labels, ctx_, st.cell, st.offset, st.reach, st.verts);
+    clipper.clip(mesh_, t, st.labels, ctx_, st.cell, st.offset, st.edges, st.verts);
     clipped_[t] = 1;
   }
 
@@ -231,7 +232,7 @@ class LrvdBuilder {
         const int k = st.cell[p];
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          if (across < 0 || !(st.edges[p].reach & (1u << e))) continue;
           // The triangle across holds the labels of the edge's end points from the start, and
           // keeps them until a label is first taken away.
           if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
@@ -284,7 +285,7 @@ class LrvdBuilder {
         if (removable(t, k)) continue;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          if (across < 0 || !(st.edges[p].reach & (1u << e))) continue;
           const TrianglePolygons& sa = state_[across];
           if (contains(sa.labels, k) || !contains(sa.forbidden, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
@@ -307,7 +308,7 @@ class LrvdBuilder {
   // Removes each cell from the triangles of its pieces that do not hold its sample. Returns
   // whether anything was removed.
   bool forbid_stray_pieces(const Diagram& diagram) {
-    const CellComponents comps = cell_components(diagram, mesh_);
+    const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
@@ -355,7 +356,8 @@ class LrvdBuilder {
     }
   }
 
-  Diagram flatten() const {
+  // The Diagram of the current polygons; along_ gets each polygon's along edges.
+  Diagram flatten() {
     Diagram d;
     d.kind = options_.weighted ? DiagramKind::Lrpd : DiagramKind::Lrvd;
     d.sample_count = samples_.size();
@@ -369,9 +371,11 @@ class LrvdBuilder {
     }
     d.polygons.reserve(polygons);
     d.vertices.reserve(vertices);
+    along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       const TrianglePolygons& st = state_[t];
       for (size_t p = 0; p < st.cell.size(); ++p) {
+        along_.push_back(static_cast<unsigned char>(st.edges[p].along));
         d.polygons.push_back({t, st.cell[p], static_cast<int>(d.vertices.size()), st.offset[p + 1] - st.offset[p]});
         d.vertices.insert(d.vertices.end(), st.verts.begin() + st.offset[p], st.verts.begin() + st.offset[p + 1]);
       }
@@ -395,6 +399,7 @@ class LrvdBuilder {
   std::vector<double>& best_;  // region growing: the least entry queued per vertex
   std::vector<int>& best_sample_;
   std::vector<VertexEntry>& heap_;
+  std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };
