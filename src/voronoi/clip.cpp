@@ -150,25 +150,22 @@ CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, cons
 }
 
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
-                       std::vector<int>& cells, std::vector<int>& offsets, std::vector<PolygonEdges>& edges,
-                       std::vector<SymbolicVertex>& verts) {
+                       std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) {
   const Triangle& tri = mesh.triangle(t);
   const int m = static_cast<int>(labels.size());
   if (m == 1) {  // the whole triangle
     for (int c = 0; c < 3; ++c) verts.push_back(SymbolicVertex::mesh_vertex(tri[c]));
-    cells.push_back(labels[0]);
-    edges.push_back({7u, 7u});
-    offsets.push_back(static_cast<int>(verts.size()));
+    polygons.push_back({labels[0], static_cast<int>(verts.size()), 7, 7});
     return;
   }
   if (m > kMaxMemoLabels) {
     for (int k : labels) {
       clip_triangle(mesh, t, k, labels.data(), m, ctx, fallback_polygon_, fallback_scratch_);
       if (fallback_polygon_.empty()) continue;
-      cells.push_back(k);
-      edges.push_back(polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri));
+      const PolygonEdges pe = polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri);
       verts.insert(verts.end(), fallback_polygon_.begin(), fallback_polygon_.end());
-      offsets.push_back(static_cast<int>(verts.size()));
+      polygons.push_back({k, static_cast<int>(verts.size()), static_cast<std::uint8_t>(pe.reach),
+                          static_cast<std::uint8_t>(pe.along)});
     }
     return;
   }
@@ -225,9 +222,8 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
       previous = q.mask;
       verts.push_back(to_symbolic(q));
     }
-    cells.push_back(labels[k]);
-    edges.push_back(pe);
-    offsets.push_back(static_cast<int>(verts.size()));
+    polygons.push_back({labels[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(pe.reach),
+                        static_cast<std::uint8_t>(pe.along)});
   }
 }
 

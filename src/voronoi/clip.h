@@ -59,6 +59,14 @@ inline PolygonEdges polygon_edges(const SymbolicVertex* v, int count, const std:
 void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
                       std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch);
 
+//! One cell's polygon among the polygons of a triangle: the cell, the end of its vertices in the
+//! triangle's vertex list (the previous polygon's end, or 0, is their start) and its edges.
+struct TrianglePolygon {
+  int cell = -1;
+  int end = 0;
+  std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon
+};
+
 //! The polygons of all candidate cells of one triangle, with storage reused from call to call
 //! (one clipper per thread). Cell k's polygon is the one clip_triangle gives with the whole list
 //! as `others`, vertex for vertex; but a vertex that several cells' polygons share (a mesh
@@ -68,11 +76,9 @@ void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const Sy
 class CellClipper {
  public:
   //! Appends, for each cell k of `labels` (sorted, distinct) in order whose polygon in triangle t
-  //! is not empty: k to `cells`, the polygon's vertices to `verts`, their end to `offsets` and the
-  //! triangle edges it reaches and runs along (polygon_edges) to `edges`.
+  //! is not empty, its vertices to `verts` and the polygon to `polygons`.
   void clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
-            std::vector<int>& cells, std::vector<int>& offsets, std::vector<PolygonEdges>& edges,
-            std::vector<SymbolicVertex>& verts);
+            std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts);
 
  private:
   // A polygon vertex during clipping: labels as indices into the triangle's label list.

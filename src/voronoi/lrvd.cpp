@@ -53,9 +53,7 @@ struct TrianglePolygons {
   std::vector<int> labels;     // candidate cells L(t), sorted
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
-  std::vector<int> cell;       // cell of each polygon
-  std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
-  std::vector<PolygonEdges> edges;  // polygon p: the edges of the triangle it reaches, runs along
+  std::vector<TrianglePolygon> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
   std::vector<SymbolicVertex> verts;
 
   //! Empties every list but keeps its storage for the next diagram.
@@ -63,9 +61,7 @@ struct TrianglePolygons {
     labels.clear();
     forbidden.clear();
     pinned.clear();
-    cell.clear();
-    offset.assign(1, 0);
-    edges.clear();
+    polygons.clear();
     verts.clear();
   }
 };
@@ -83,8 +79,7 @@ struct LrvdWorkspace {
   std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
-    for (int t = 0; t < triangle_count; ++t) state[t].reset();
+    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
@@ -156,8 +151,19 @@ class LrvdBuilder {
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
-    for (int t = 0; t < mesh_.triangle_count(); ++t)
-      for (int v : mesh_.triangle(t)) add_label(t, vertex_label_[v]);
+    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      // The corners' labels, sorted and distinct, as add_label() would leave them.
+      TrianglePolygons& st = state_[t];
+      st.reset();
+      const Triangle& tri = mesh_.triangle(t);
+      int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
+      if (a > b) std::swap(a, b);
+      if (b > c) std::swap(b, c);
+      if (a > b) std::swap(a, b);
+      st.labels.push_back(a);
+      if (b != a) st.labels.push_back(b);
+      if (c != b) st.labels.push_back(c);
+    }
     home_.resize(samples_.size());
     for (int i = 0; i < samples_.size(); ++i) {
       home_[i] = samples_.triangles[i];
@@ -177,11 +183,9 @@ class LrvdBuilder {
   void clip(int t) const {
     thread_local CellClipper clipper;
     TrianglePolygons& st = state_[t];
-    st.cell.clear();
-    st.offset.assign(1, 0);
-    st.edges.clear();
+    st.polygons.clear();
     st.verts.clear();
-    clipper.clip(mesh_, t, st.labels, ctx_, st.cell, st.offset, st.edges, st.verts);
+    clipper.clip(mesh_, t, st.labels, ctx_, st.polygons, st.verts);
     clipped_[t] = 1;
   }
 
@@ -228,11 +232,11 @@ class LrvdBuilder {
       const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
       conflicts_.clear();
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        const int k = st.cell[p];
+      for (const TrianglePolygon& poly : st.polygons) {
+        const int k = poly.cell;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.edges[p].reach & (1u << e))) continue;
+          if (across < 0 || !(poly.reach & (1u << e))) continue;
           // The triangle across holds the labels of the edge's end points from the start, and
           // keeps them until a label is first taken away.
           if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
@@ -280,12 +284,12 @@ class LrvdBuilder {
     int best_k = -1, best_t = -1;
     for (int t : stuck_) {
       const TrianglePolygons& st = state_[t];
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        const int k = st.cell[p];
+      for (const TrianglePolygon& poly : st.polygons) {
+        const int k = poly.cell;
         if (removable(t, k)) continue;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.edges[p].reach & (1u << e))) continue;
+          if (across < 0 || !(poly.reach & (1u << e))) continue;
           const TrianglePolygons& sa = state_[across];
           if (contains(sa.labels, k) || !contains(sa.forbidden, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
@@ -366,7 +370,7 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      polygons += state_[t].cell.size();
+      polygons += state_[t].polygons.size();
       vertices += state_[t].verts.size();
     }
     d.polygons.reserve(polygons);
@@ -374,11 +378,13 @@ class LrvdBuilder {
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       const TrianglePolygons& st = state_[t];
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        along_.push_back(static_cast<unsigned char>(st.edges[p].along));
-        d.polygons.push_back({t, st.cell[p], static_cast<int>(d.vertices.size()), st.offset[p + 1] - st.offset[p]});
-        d.vertices.insert(d.vertices.end(), st.verts.begin() + st.offset[p], st.verts.begin() + st.offset[p + 1]);
+      int begin = 0;
+      for (const TrianglePolygon& poly : st.polygons) {
+        along_.push_back(poly.along);
+        d.polygons.push_back({t, poly.cell, static_cast<int>(d.vertices.size()) + begin, poly.end - begin});
+        begin = poly.end;
       }
+      d.vertices.insert(d.vertices.end(), st.verts.begin(), st.verts.end());
       d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
     }
     return d;
