@@ -50,9 +50,11 @@ constexpr std::uint32_t kMaxEpoch = 1u << 30;
 
 }  // namespace
 
-SymbolicVertex CellClipper::to_symbolic(const LocalVertex& q) const {
+// Written in place: a vertex assembled field by field on the stack and copied right away stalls
+// the copy (the wide loads cannot take the narrow stores' data).
+void CellClipper::append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const {
   const std::array<int, 3>& tri = *triangle_;
-  SymbolicVertex out;  // as mesh_vertex, on_edge and in_triangle build it
+  SymbolicVertex& out = verts.emplace_back();  // as mesh_vertex, on_edge and in_triangle build it
   out.type = q.type;
   switch (q.type) {
     case SymbolicVertex::Type::A:
@@ -71,7 +73,6 @@ SymbolicVertex CellClipper::to_symbolic(const LocalVertex& q) const {
       out.label = {labels_[q.label[0]], labels_[q.label[1]], labels_[q.label[2]]};
       break;
   }
-  return out;
 }
 
 // side(q; k, l) of a corner, by side1, stored for (k, l) and (l, k).
@@ -116,11 +117,12 @@ inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l) {
 }
 
 // intersect() on local vertices: type B on the mesh edge u and w share, else type C with the
-// label they share besides k.
-CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, const LocalVertex& w, int k, int l) const {
-  LocalVertex q;
+// label they share besides k. Appended to `out` in place (see append_symbolic).
+void CellClipper::append_intersection(const LocalVertex& u, const LocalVertex& w, int k, int l,
+                                      std::vector<LocalVertex>& out) const {
   if (const unsigned common = u.mask & w.mask) {
     const int e = common & 1u ? 0 : (common & 2u ? 1 : 2);
+    LocalVertex& q = out.emplace_back();
     q.type = SymbolicVertex::Type::B;
     q.mask = static_cast<std::uint8_t>(1u << e);
     q.where = static_cast<std::uint8_t>(e);
@@ -128,7 +130,7 @@ CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, cons
     q.label[1] = static_cast<std::uint8_t>(std::max(k, l));
     q.label[2] = kNoLabel;
     q.key = (e * m_ + q.label[0]) * m_ + q.label[1];
-    return q;
+    return;
   }
   for (std::uint8_t x : u.label) {
     if (x == kNoLabel || x == k) continue;
@@ -137,6 +139,7 @@ CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, cons
     if (a > b) std::swap(a, b);
     if (b > c) std::swap(b, c);
     if (a > b) std::swap(a, b);
+    LocalVertex& q = out.emplace_back();
     q.type = SymbolicVertex::Type::C;
     q.mask = 0;
     q.where = 0;
@@ -144,7 +147,7 @@ CellClipper::LocalVertex CellClipper::intersect_local(const LocalVertex& u, cons
     q.label[1] = static_cast<std::uint8_t>(b);
     q.label[2] = static_cast<std::uint8_t>(c);
     q.key = (a * m_ + b) * m_ + c;
-    return q;
+    return;
   }
   throw std::logic_error("intersect: polygon edge is on no mesh edge and its ends share no bisector");
 }
@@ -183,17 +186,12 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
   if (edge_sign_.size() < 3 * m2 * m) edge_sign_.resize(3 * m2 * m, 0);
   if (inner_sign_.size() < m2 * m2) inner_sign_.resize(m2 * m2, 0);
 
+  // The triangle's corners, built once (see append_symbolic).
+  static const LocalVertex corners[3] = {{SymbolicVertex::Type::A, 0b101, 0, {kNoLabel, kNoLabel, kNoLabel}, -1},
+                                         {SymbolicVertex::Type::A, 0b011, 1, {kNoLabel, kNoLabel, kNoLabel}, -1},
+                                         {SymbolicVertex::Type::A, 0b110, 2, {kNoLabel, kNoLabel, kNoLabel}, -1}};
   for (int k = 0; k < m; ++k) {
-    polygon_.clear();
-    for (int c = 0; c < 3; ++c) {
-      LocalVertex q;
-      q.type = SymbolicVertex::Type::A;
-      q.mask = static_cast<std::uint8_t>((1u << c) | (1u << (c == 0 ? 2 : c - 1)));
-      q.where = static_cast<std::uint8_t>(c);
-      q.label[0] = q.label[1] = q.label[2] = kNoLabel;
-      q.key = -1;
-      polygon_.push_back(q);
-    }
+    polygon_.assign(corners, corners + 3);
     // Sutherland-Hodgman, as clip_by_bisector.
     for (int l = 0; l < m && !polygon_.empty(); ++l) {
       if (l == k) continue;
@@ -208,7 +206,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
         const Sign sw = a + 1 == n ? first : side_of(w, k, l);
         if (sw == Sign::Zero) throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
         if (su == Sign::Positive) scratch_.push_back(u);
-        if (su != sw) scratch_.push_back(intersect_local(u, w, k, l));
+        if (su != sw) append_intersection(u, w, k, l, scratch_);
         su = sw;
       }
       polygon_.swap(scratch_);
@@ -220,7 +218,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
       pe.reach |= q.mask;
       pe.along |= previous & q.mask;
       previous = q.mask;
-      verts.push_back(to_symbolic(q));
+      append_symbolic(q, verts);
     }
     polygons.push_back({labels[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(pe.reach),
                         static_cast<std::uint8_t>(pe.along)});

@@ -93,8 +93,9 @@ class CellClipper {
   Sign side_of(const LocalVertex& q, int k, int l);
   Sign evaluate_corner(const LocalVertex& q, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
-  LocalVertex intersect_local(const LocalVertex& u, const LocalVertex& w, int k, int l) const;
-  SymbolicVertex to_symbolic(const LocalVertex& q) const;
+  void append_intersection(const LocalVertex& u, const LocalVertex& w, int k, int l,
+                           std::vector<LocalVertex>& out) const;
+  void append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const;
 
   // The triangle being clipped.
   const std::array<int, 3>* triangle_ = nullptr;
