@@ -23,6 +23,8 @@ namespace {
 
 // Fewer out-of-date triangles than this are left to the sequential pass.
 constexpr int kParallelClips = 256;
+// How many triangles ahead the passes over the triangles prefetch their polygon lists.
+constexpr int kPrefetchDistance = 4;
 
 bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
 bool insert_sorted(std::vector<int>& sorted, int x) {
@@ -189,6 +191,14 @@ class LrvdBuilder {
     clipped_[t] = 1;
   }
 
+  // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
+  // triangles outgrow the caches, and the passes over them would wait on each.
+  void prefetch_polygons(int t) const {
+    const TrianglePolygons& st = state_[t];
+    __builtin_prefetch(st.polygons.data());
+    __builtin_prefetch(st.verts.data());
+  }
+
   // Labels change only through these two, which mark the triangle's polygons out of date (and
   // note that labels can disappear, which ends the shortcut in propagate()).
   bool add_label(int t, int k) {
@@ -225,6 +235,7 @@ class LrvdBuilder {
       const int t = queue_.front();
       queue_.pop_front();
       queued_[t] = 0;
+      if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
       if (!clipped_[t]) {
         clip(t);
         ++stats_.clipped_triangles;
@@ -377,6 +388,7 @@ class LrvdBuilder {
     d.vertices.reserve(vertices);
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const TrianglePolygons& st = state_[t];
       int begin = 0;
       for (const TrianglePolygon& poly : st.polygons) {
