@@ -2,6 +2,7 @@
 // list of candidate cells, by Sutherland-Hodgman on symbolic vertices with exact side tests.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "predicates/symbolic_vertex.h"
@@ -57,5 +58,58 @@ inline PolygonEdges polygon_edges(const SymbolicVertex* v, int count, const std:
 //! Clips an existing polygon of cell k in triangle t by bisector(k, l), in place.
 void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
                       std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch);
+
+//! One cell's polygon among the polygons of a triangle: the cell, the end of its vertices in the
+//! triangle's vertex list (the previous polygon's end, or 0, is their start) and its edges.
+struct TrianglePolygon {
+  int cell = -1;
+  int end = 0;
+  std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon
+};
+
+//! The polygons of all candidate cells of one triangle, with storage reused from call to call
+//! (one clipper per thread). Cell k's polygon is the one clip_triangle gives with the whole list
+//! as `others`, vertex for vertex; but a vertex that several cells' polygons share (a mesh
+//! corner, a point on a mesh edge or inside the triangle) is tested against a bisector once, and
+//! each later test reuses the sign: side() does not depend on which of the vertex's labels asks
+//! (a corner's answer for (l, k) is the negation of its answer for (k, l)).
+class CellClipper {
+ public:
+  //! Appends, for each cell k of `labels` (sorted, distinct) in order whose polygon in triangle t
+  //! is not empty, its vertices to `verts` and the polygon to `polygons`.
+  void clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
+            std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts);
+
+ private:
+  // A polygon vertex during clipping: labels as indices into the triangle's label list.
+  struct LocalVertex {
+    SymbolicVertex::Type type;
+    std::uint8_t mask;      // edge_mask bits
+    std::uint8_t where;     // type A: corner; type B: edge (corner where, corner where + 1)
+    std::uint8_t label[3];  // types B and C: local labels, increasing; unused ones 0xff
+    int key;                // type B: (where m + a) m + b; type C: (a m + b) m + c
+  };
+
+  Sign side_of(const LocalVertex& q, int k, int l);
+  Sign evaluate_corner(const LocalVertex& q, int k, int l);
+  Sign evaluate_vertex(const LocalVertex& q, int k, int l);
+  void append_intersection(const LocalVertex& u, const LocalVertex& w, int k, int l,
+                           std::vector<LocalVertex>& out) const;
+  void append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const;
+
+  // The triangle being clipped.
+  const std::array<int, 3>* triangle_ = nullptr;
+  const int* labels_ = nullptr;
+  int m_ = 0;
+  SymbolicContext ctx_;
+  // Memo of the side tests: corner c for cells (k, l) at corner_sign_[(c m + k) m + l] (0 while
+  // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key m + l], valid when
+  // the entry's high bits hold the current epoch_ (low two bits: sign + 1).
+  std::vector<std::int8_t> corner_sign_;
+  std::vector<std::uint32_t> edge_sign_, inner_sign_;
+  std::uint32_t epoch_ = 0;
+  std::vector<LocalVertex> polygon_, scratch_;
+  std::vector<SymbolicVertex> fallback_polygon_, fallback_scratch_;
+};
 
 }  // namespace lrvd

@@ -62,7 +62,10 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
       const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
       points.clear();
       const SymbolicVertex* verts = diagram.polygon_vertices(poly);
-      for (int a = 0; a < poly.vertex_count; ++a) points.push_back(position(verts[a], ctx) - x);
+      for (int a = 0; a < poly.vertex_count; ++a) {
+        const SymbolicVertex& q = verts[a];  // a mesh vertex's position is the vertex's own
+        points.push_back((q.type == SymbolicVertex::Type::A ? ctx.vertices[q.v[0]] : position(q, ctx)) - x);
+      }
       // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
       PolygonIntegrals& out = part[p];
       for (int a = 1; a + 1 < poly.vertex_count; ++a) {
@@ -100,9 +103,7 @@ int find_root(std::vector<int>& parent, int x) {
 
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
   const int np = static_cast<int>(diagram.polygons.size());
-  std::vector<int> parent(np);
-  std::iota(parent.begin(), parent.end(), 0);
-  // The edges each polygon runs along (in parallel), then the joins (in order).
+  // The edges each polygon runs along (in parallel), then the joins.
   std::vector<unsigned char> along_edges(np);
   tbb::parallel_for(tbb::blocked_range<int>(0, np, 1024), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p != range.end(); ++p) {
@@ -111,6 +112,13 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) 
           polygon_edges(diagram.polygon_vertices(poly), poly.vertex_count, mesh.triangle(poly.triangle)).along);
     }
   });
+  return cell_components(diagram, mesh, along_edges);
+}
+
+CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along_edges) {
+  const int np = static_cast<int>(diagram.polygons.size());
+  std::vector<int> parent(np);
+  std::iota(parent.begin(), parent.end(), 0);
   for (int p = 0; p < np; ++p) {
     const CellPolygon& poly = diagram.polygons[p];
     const unsigned along = along_edges[p];

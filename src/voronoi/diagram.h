@@ -79,5 +79,8 @@ struct CellComponents {
   std::vector<int> count;  //!< per cell; 0 for a cell with no polygon
 };
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh);
+//! The same, given the edges each polygon runs along (`along[p]`: polygon_edges(...).along of
+//! polygon p, as the clipping that made it knows them).
+CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along);
 
 }  // namespace lrvd

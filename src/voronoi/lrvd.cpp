@@ -23,6 +23,8 @@ namespace {
 
 // Fewer out-of-date triangles than this are left to the sequential pass.
 constexpr int kParallelClips = 256;
+// How many triangles ahead the passes over the triangles prefetch their polygon lists.
+constexpr int kPrefetchDistance = 4;
 
 bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
 bool insert_sorted(std::vector<int>& sorted, int x) {
@@ -53,9 +55,7 @@ struct TrianglePolygons {
   std::vector<int> labels;     // candidate cells L(t), sorted
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
-  std::vector<int> cell;       // cell of each polygon
-  std::vector<int> offset{0};  // polygon p: verts[offset[p], offset[p + 1])
-  std::vector<unsigned> reach; // polygon p: the edges of the triangle it reaches (edge_mask bits)
+  std::vector<TrianglePolygon> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
   std::vector<SymbolicVertex> verts;
 
   //! Empties every list but keeps its storage for the next diagram.
@@ -63,9 +63,7 @@ struct TrianglePolygons {
     labels.clear();
     forbidden.clear();
     pinned.clear();
-    cell.clear();
-    offset.assign(1, 0);
-    reach.clear();
+    polygons.clear();
     verts.clear();
   }
 };
@@ -80,10 +78,10 @@ struct LrvdWorkspace {
   std::vector<int> vertex_label, home, conflicts, best_sample, stuck;
   std::vector<double> best;
   std::vector<VertexEntry> heap;
+  std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);
-    for (int t = 0; t < triangle_count; ++t) state[t].reset();
+    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
@@ -96,7 +94,7 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
@@ -155,8 +153,19 @@ class LrvdBuilder {
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
-    for (int t = 0; t < mesh_.triangle_count(); ++t)
-      for (int v : mesh_.triangle(t)) add_label(t, vertex_label_[v]);
+    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      // The corners' labels, sorted and distinct, as add_label() would leave them.
+      TrianglePolygons& st = state_[t];
+      st.reset();
+      const Triangle& tri = mesh_.triangle(t);
+      int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
+      if (a > b) std::swap(a, b);
+      if (b > c) std::swap(b, c);
+      if (a > b) std::swap(a, b);
+      st.labels.push_back(a);
+      if (b != a) st.labels.push_back(b);
+      if (c != b) st.labels.push_back(c);
+    }
     home_.resize(samples_.size());
     for (int i = 0; i < samples_.size(); ++i) {
       home_[i] = samples_.triangles[i];
@@ -174,21 +183,20 @@ class LrvdBuilder {
   // Clips triangle t by its candidates into its polygons. Reads only t's labels and writes only
   // t's polygons (the buffers belong to the thread), so triangles can be clipped in parallel.
   void clip(int t) const {
-    thread_local std::vector<SymbolicVertex> polygon, scratch;
+    thread_local CellClipper clipper;
     TrianglePolygons& st = state_[t];
-    st.cell.clear();
-    st.offset.assign(1, 0);
-    st.reach.clear();
+    st.polygons.clear();
     st.verts.clear();
-    for (int k : st.labels) {
-      clip_triangle(mesh_, t, k, st.labels.data(), static_cast<int>(st.labels.size()), ctx_, polygon, scratch);
-      if (polygon.empty()) continue;
-      st.cell.push_back(k);
-      st.reach.push_back(polygon_edges(polygon.data(), static_cast<int>(polygon.size()), mesh_.triangle(t)).reach);
-      st.verts.insert(st.verts.end(), polygon.begin(), polygon.end());
-      st.offset.push_back(static_cast<int>(st.verts.size()));
-    }
+    clipper.clip(mesh_, t, st.labels, ctx_, st.polygons, st.verts);
     clipped_[t] = 1;
+  }
+
+  // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
+  // triangles outgrow the caches, and the passes over them would wait on each.
+  void prefetch_polygons(int t) const {
+    const TrianglePolygons& st = state_[t];
+    __builtin_prefetch(st.polygons.data());
+    __builtin_prefetch(st.verts.data());
   }
 
   // Labels change only through these two, which mark the triangle's polygons out of date (and
@@ -227,6 +235,7 @@ class LrvdBuilder {
       const int t = queue_.front();
       queue_.pop_front();
       queued_[t] = 0;
+      if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
       if (!clipped_[t]) {
         clip(t);
         ++stats_.clipped_triangles;
@@ -234,11 +243,11 @@ class LrvdBuilder {
       const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
       conflicts_.clear();
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        const int k = st.cell[p];
+      for (const TrianglePolygon& poly : st.polygons) {
+        const int k = poly.cell;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          if (across < 0 || !(poly.reach & (1u << e))) continue;
           // The triangle across holds the labels of the edge's end points from the start, and
           // keeps them until a label is first taken away.
           if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
@@ -286,12 +295,12 @@ class LrvdBuilder {
     int best_k = -1, best_t = -1;
     for (int t : stuck_) {
       const TrianglePolygons& st = state_[t];
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        const int k = st.cell[p];
+      for (const TrianglePolygon& poly : st.polygons) {
+        const int k = poly.cell;
         if (removable(t, k)) continue;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(st.reach[p] & (1u << e))) continue;
+          if (across < 0 || !(poly.reach & (1u << e))) continue;
           const TrianglePolygons& sa = state_[across];
           if (contains(sa.labels, k) || !contains(sa.forbidden, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
@@ -314,7 +323,7 @@ class LrvdBuilder {
   // Removes each cell from the triangles of its pieces that do not hold its sample. Returns
   // whether anything was removed.
   bool forbid_stray_pieces(const Diagram& diagram) {
-    const CellComponents comps = cell_components(diagram, mesh_);
+    const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
@@ -362,7 +371,8 @@ class LrvdBuilder {
     }
   }
 
-  Diagram flatten() const {
+  // The Diagram of the current polygons; along_ gets each polygon's along edges.
+  Diagram flatten() {
     Diagram d;
     d.kind = options_.weighted ? DiagramKind::Lrpd : DiagramKind::Lrvd;
     d.sample_count = samples_.size();
@@ -371,17 +381,22 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      polygons += state_[t].cell.size();
+      polygons += state_[t].polygons.size();
       vertices += state_[t].verts.size();
     }
     d.polygons.reserve(polygons);
     d.vertices.reserve(vertices);
+    along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const TrianglePolygons& st = state_[t];
-      for (size_t p = 0; p < st.cell.size(); ++p) {
-        d.polygons.push_back({t, st.cell[p], static_cast<int>(d.vertices.size()), st.offset[p + 1] - st.offset[p]});
-        d.vertices.insert(d.vertices.end(), st.verts.begin() + st.offset[p], st.verts.begin() + st.offset[p + 1]);
+      int begin = 0;
+      for (const TrianglePolygon& poly : st.polygons) {
+        along_.push_back(poly.along);
+        d.polygons.push_back({t, poly.cell, static_cast<int>(d.vertices.size()) + begin, poly.end - begin});
+        begin = poly.end;
       }
+      d.vertices.insert(d.vertices.end(), st.verts.begin(), st.verts.end());
       d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
     }
     return d;
@@ -402,6 +417,7 @@ class LrvdBuilder {
   std::vector<double>& best_;  // region growing: the least entry queued per vertex
   std::vector<int>& best_sample_;
   std::vector<VertexEntry>& heap_;
+  std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };
