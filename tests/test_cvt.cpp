@@ -37,6 +37,15 @@ Remeshed remesh(const SurfaceMesh& input, int n, int seed = 1) {
   return r;
 }
 
+// Every triangle of `moved` (the same triangles as `before`) keeps its orientation.
+void require_none_turned_over(const DualMesh& before, const DualMesh& moved) {
+  REQUIRE(moved.triangles == before.triangles);
+  auto normal = [](const DualMesh& m, const Triangle& f) {
+    return cross(m.positions[f[1]] - m.positions[f[0]], m.positions[f[2]] - m.positions[f[0]]);
+  };
+  for (const Triangle& f : moved.triangles) REQUIRE(dot(normal(before, f), normal(moved, f)) > 0);
+}
+
 }  // namespace
 
 TEST_CASE("The CVT gradient 2 m_i (x_i - c_i) matches finite differences", "[cvt]") {
@@ -166,12 +175,7 @@ TEST_CASE("Fitting the vertices to their cells' planes lowers the distance and k
   CHECK(after.hausdorff_pct < 0.6 * before.hausdorff_pct);  // measured: 2.39 % -> 1.22 %
   CHECK(after.rms_pct < 0.6 * before.rms_pct);
   CHECK(after.q_avg >= 0.96 * before.q_avg);  // measured 0.903 -> 0.874; balancing keeps 0.95 of each Q
-  for (size_t t = 0; t < fitted.triangles.size(); ++t) {
-    const Triangle& f = fitted.triangles[t];
-    const Vec3 n0 = cross(cvt.dual.positions[f[1]] - cvt.dual.positions[f[0]], cvt.dual.positions[f[2]] - cvt.dual.positions[f[0]]);
-    const Vec3 n1 = cross(fitted.positions[f[1]] - fitted.positions[f[0]], fitted.positions[f[2]] - fitted.positions[f[0]]);
-    REQUIRE(dot(n0, n1) > 0);
-  }
+  require_none_turned_over(cvt.dual, fitted);
   const RemeshVerification check = verify_remesh(input, fitted.positions, fitted.triangles, 516);
   INFO(check.summary());
   REQUIRE(check.passed);
@@ -221,11 +225,7 @@ TEST_CASE("Balancing the two-sided distance beats the quadric fit on a sphere an
   CHECK(after.q_min >= before.q_min);
   CHECK(after.theta_min >= std::min(30.0, before.theta_min));
   CHECK(balanced.triangles == cvt.dual.triangles);
-  for (const Triangle& f : balanced.triangles) {
-    const Vec3 n0 = cross(cvt.dual.positions[f[1]] - cvt.dual.positions[f[0]], cvt.dual.positions[f[2]] - cvt.dual.positions[f[0]]);
-    const Vec3 n1 = cross(balanced.positions[f[1]] - balanced.positions[f[0]], balanced.positions[f[2]] - balanced.positions[f[0]]);
-    REQUIRE(dot(n0, n1) > 0);
-  }
+  require_none_turned_over(cvt.dual, balanced);
   const RemeshVerification check = verify_remesh(sphere, balanced.positions, balanced.triangles, 200);
   INFO(check.summary());
   REQUIRE(check.passed);
