@@ -89,6 +89,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["untangle"] = {{"crossings_before", remeshed.untangle.crossings_before},
                         {"crossings_after", remeshed.untangle.crossings_after},
                         {"moved", remeshed.untangle.moved},
+                        {"flipped", remeshed.untangle.flipped},
                         {"max_displacement_pct",
                          100.0 * remeshed.untangle.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
   report["energy"] = result.energy;

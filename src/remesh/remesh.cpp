@@ -167,6 +167,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   auto settle = [&](RemeshResult& r, DualDefects& d) {
     if (!options.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
     if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options);
+    r.untangled_from = r.dual;
     r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options);
     r.fitted = true;
     std::set<int> left;
@@ -204,9 +205,24 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   result = std::move(best);
   if (!result.fitted) {
     if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
-    if (options.untangle)
+    if (options.untangle) {
+      result.untangled_from = result.dual;
       result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options);
+    }
   }
+  // Crossings left in the state kept: the vertices may go further.
+  for (double reach : options.final_max_moves) {
+    if (!options.untangle || result.untangle.remaining.empty()) break;
+    UntangleOptions further = options.untangle_options;
+    further.max_move = reach;
+    DualMesh dual = result.untangled_from;
+    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further);
+    if (untangled.crossings_after < result.untangle.crossings_after) {
+      result.dual = std::move(dual);
+      result.untangle = std::move(untangled);
+    }
+  }
+  result.untangled_from = {};
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -23,6 +23,10 @@ struct RemeshOptions {
   //! deciding whether to raise the density; the crossings left are where it is raised
   bool untangle = true;
   UntangleOptions untangle_options;
+  //! when the state the loop keeps has crossings left, it is untangled again from its fitted
+  //! vertices with each of these reaches (UntangleOptions::max_move) in turn, the fewest crossings
+  //! kept: vertices move further only where the repair rounds could not do without it
+  std::vector<double> final_max_moves = {0.75, 1.0};
 };
 
 struct RemeshResult {
@@ -34,6 +38,7 @@ struct RemeshResult {
   FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
   UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
   bool fitted = false;      //!< `dual` is fitted and untangled already
+  DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
   double time_s = 0;
 };
 
@@ -72,8 +77,11 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! After the first CVT, while the dual has defects (a thin part wrapped by too few cells, sheets
 //! that cut through each other), the density is multiplied by `repair_factor` over the defect
 //! cells and their neighbours and the CVT runs again, which moves samples from elsewhere into the
-//! thin part; the result is the state with the fewest defects (the caller verifies it). Last, unless switched off, the vertices are fitted to the
-//! surface under the CVT's quality floor (fit_to_surface).
+//! thin part; a state whose only defect is crossings is fitted and untangled first, and the loop
+//! stops when that leaves none. The result is the state with the fewest defects (the caller
+//! verifies it), fitted to the surface under the CVT's quality floor (fit_to_surface) unless
+//! switched off; if crossings are left in it, it is untangled again from its fitted vertices with
+//! the longer reaches of `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
 
