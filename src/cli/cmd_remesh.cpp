@@ -78,20 +78,20 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = remeshed.diagram_evaluations;
   report["line_search_stopped"] = result.line_search_stopped;
+  // Lengths in % of the input's bounding-box diagonal, as the distances are.
+  const double diagonal = input.loaded.mesh.bounding_box().diagonal();
+  auto percent = [diagonal](double length) { return 100.0 * length / diagonal; };
   report["fit"] = {{"enabled", remesh.fit},
                    {"moved", remeshed.fit.moved},
                    {"reverted", remeshed.fit.reverted},
-                   {"max_displacement_pct", 100.0 * remeshed.fit.max_displacement / input.loaded.mesh.bounding_box().diagonal()},
-                   {"balanced_distance_pct_before",
-                    100.0 * remeshed.fit.offsets.max_before / input.loaded.mesh.bounding_box().diagonal()},
-                   {"balanced_distance_pct_after",
-                    100.0 * remeshed.fit.offsets.max_after / input.loaded.mesh.bounding_box().diagonal()}};
+                   {"max_displacement_pct", percent(remeshed.fit.max_displacement)},
+                   {"balanced_distance_pct_before", percent(remeshed.fit.offsets.max_before)},
+                   {"balanced_distance_pct_after", percent(remeshed.fit.offsets.max_after)}};
   report["untangle"] = {{"crossings_before", remeshed.untangle.crossings_before},
                         {"crossings_after", remeshed.untangle.crossings_after},
                         {"moved", remeshed.untangle.moved},
                         {"flipped", remeshed.untangle.flipped},
-                        {"max_displacement_pct",
-                         100.0 * remeshed.untangle.max_displacement / input.loaded.mesh.bounding_box().diagonal()}};
+                        {"max_displacement_pct", percent(remeshed.untangle.max_displacement)}};
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;

@@ -280,7 +280,7 @@ UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& sample
     // Two or three vertices together: a crossing triangle, or one of its edges, translated along
     // the normal of the triangle it crosses, its own normal or the axes.
     if (options.group_moves)
-      for (const auto& [s, t] : crossing_pairs()) {
+      for (const auto& [s, t] : pairs) {  // the state the single moves left: group moves keep the triangles
         for (const auto& [g, h] : {std::pair{s, t}, std::pair{t, s}}) {
           const Triangle& f = tris[g];
           double r = reach[f[0]];
