@@ -157,6 +157,7 @@ class LrvdBuilder {
       // The corners' labels, sorted and distinct, as add_label() would leave them.
       TrianglePolygons& st = state_[t];
       st.reset();
+      st.labels.reserve(4);  // one allocation on a fresh workspace instead of one per growth step
       const Triangle& tri = mesh_.triangle(t);
       int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
       if (a > b) std::swap(a, b);
@@ -187,6 +188,11 @@ class LrvdBuilder {
     TrianglePolygons& st = state_[t];
     st.polygons.clear();
     st.verts.clear();
+    // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow these
+    // lists step by step, triangle by triangle: most of its allocations.
+    const std::size_t m = st.labels.size();
+    st.polygons.reserve(m);
+    st.verts.reserve(m == 1 ? 3 : 4 * m + 4);
     clipper.clip(mesh_, t, st.labels, ctx_, st.polygons, st.verts);
     clipped_[t] = 1;
   }
