@@ -110,6 +110,24 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
       for (int e = 0; e < 3; ++e) REQUIRE(fine.neighbor(t, e) == checked.neighbor(t, e));
     for (int v = 0; v < fine.vertex_count(); ++v) REQUIRE(fine.vertex_neighbors(v) == checked.vertex_neighbors(v));
   }
+  // Each input triangle's pieces are consecutive, in the input's order (the octahedron's faces are
+  // its octants), and the input's vertices keep their indices.
+  {
+    const SurfaceMesh fine = refine_long_edges(mesh, 0.11);
+    auto octant = [](const Vec3& c) { return (c.x > 0 ? 4 : 0) + (c.y > 0 ? 2 : 0) + (c.z > 0 ? 1 : 0); };
+    auto centroid = [](const SurfaceMesh& m, int t) {
+      return (m.position(m.triangle(t)[0]) + m.position(m.triangle(t)[1]) + m.position(m.triangle(t)[2])) / 3.0;
+    };
+    std::vector<int> face_of_octant(8, -1);
+    for (int t = 0; t < mesh.triangle_count(); ++t) face_of_octant[octant(centroid(mesh, t))] = t;
+    int previous = 0;
+    for (int t = 0; t < fine.triangle_count(); ++t) {
+      const int face = face_of_octant[octant(centroid(fine, t))];
+      REQUIRE(face >= previous);
+      previous = face;
+    }
+    for (int v = 0; v < mesh.vertex_count(); ++v) REQUIRE(fine.position(v) == mesh.position(v));
+  }
   // An open sheet keeps its boundary length and single loop.
   const SurfaceMesh sheet = refine_long_edges(test::grid(2, 2), 0.2);
   REQUIRE(sheet.max_edge_length() <= 0.2);

@@ -2,6 +2,7 @@
 // midpoint, longest first, until none is left, so that each triangle can hold at most one sample.
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <queue>
 #include <array>
 #include <cstdint>
@@ -119,6 +120,8 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     EdgeTable::Users& slot = *edge_triangles.find(edge_key(a, b));
     (slot[0] == old_t ? slot[0] : slot[1]) = new_t;
   };
+  std::vector<int> origin(triangles.size());  // the input triangle each triangle is a piece of
+  std::iota(origin.begin(), origin.end(), 0);
   std::priority_queue<LongEdge> queue;
   auto push_if_long = [&](int a, int b) {
     const double len = distance(positions[a], positions[b]);
@@ -151,6 +154,7 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
       const int t_new = static_cast<int>(triangles.size());
       triangles[t] = {u, m, w};
       triangles.push_back({m, v, w});
+      origin.push_back(origin[t]);
       replace(v, w, t, t_new);
       attach(u, m, t);
       attach(m, v, t_new);
@@ -161,15 +165,47 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     push_if_long(edge.a, m);
     push_if_long(m, edge.b);
   }
+  // Each input triangle's pieces become consecutive, in the input's order, and the new vertices
+  // follow in the order those triangles first use them (the input's vertices keep their indices).
+  // Pieces were appended at the end as they were split off: passes over a large refined mesh
+  // (MPS's LRPD and darts) jumped across memory. Feline at r = 0.005 (405k triangles): its LRPD
+  // takes about 20 % less time with the same instructions.
+  const int nt = static_cast<int>(triangles.size());
+  std::vector<int> new_triangle(nt), first_piece(mesh.triangle_count() + 1, 0);
+  for (int t = 0; t < nt; ++t) ++first_piece[origin[t] + 1];
+  std::partial_sum(first_piece.begin(), first_piece.end(), first_piece.begin());
+  for (int t = 0; t < nt; ++t) new_triangle[t] = first_piece[origin[t]]++;
+  std::vector<int> old_triangle(nt);
+  for (int t = 0; t < nt; ++t) old_triangle[new_triangle[t]] = t;
+  const int nv_input = mesh.vertex_count();
+  std::vector<int> new_vertex(positions.size(), -1);
+  std::iota(new_vertex.begin(), new_vertex.begin() + nv_input, 0);
+  int next_vertex = nv_input;
+  for (int t : old_triangle)
+    for (int v : triangles[t])
+      if (new_vertex[v] < 0) new_vertex[v] = next_vertex++;
+  std::vector<Vec3> ordered_positions(positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) ordered_positions[new_vertex[v]] = positions[v];
+  if (vertex_values) {
+    std::vector<double>& values = *vertex_values;
+    std::vector<double> ordered(values.size());
+    for (size_t v = 0; v < values.size(); ++v) ordered[new_vertex[v]] = values[v];
+    values.swap(ordered);
+  }
   // The adjacency is in the edge table: the refinement of a valid mesh is valid by construction
   // (only its rounded midpoints' triangles get the zero-area check again).
-  std::vector<std::array<int, 3>> neighbors(triangles.size());
-  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+  std::vector<Triangle> ordered_triangles(nt);
+  std::vector<std::array<int, 3>> neighbors(nt);
+  for (int t = 0; t < nt; ++t) {
+    const Triangle& tri = triangles[old_triangle[t]];
     for (int e = 0; e < 3; ++e) {
-      const EdgeTable::Users& users = *edge_triangles.find(edge_key(triangles[t][e], triangles[t][(e + 1) % 3]));
-      neighbors[t][e] = users[0] == t ? users[1] : users[0];
+      ordered_triangles[t][e] = new_vertex[tri[e]];
+      const EdgeTable::Users& users = *edge_triangles.find(edge_key(tri[e], tri[(e + 1) % 3]));
+      const int across = users[0] == old_triangle[t] ? users[1] : users[0];
+      neighbors[t][e] = across < 0 ? -1 : new_triangle[across];
     }
-  return SurfaceMesh(std::move(positions), std::move(triangles), std::move(neighbors),
+  }
+  return SurfaceMesh(std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
                      static_cast<int>(edge_triangles.size()));
 }
 
