@@ -216,6 +216,12 @@ class LrvdBuilder {
     if (!erase_sorted(state_[t].labels, k)) return false;
     clipped_[t] = 0;
     labels_removed_ = true;
+    // A neighbour's polygon of k may reach the edge to t: it has to see k gone (forbidden) here,
+    // else that edge is split differently from both sides.
+    for (int e = 0; e < 3; ++e) {
+      const int across = mesh_.neighbor(t, e);
+      if (across >= 0 && contains(state_[across].labels, k)) activate(across);
+    }
     return true;
   }
 
