@@ -22,14 +22,15 @@ namespace lrvd {
 namespace {
 
 // Records the closest triangle of every point; with `onto_surface`, also moves the point there.
+// The samples' triangles before the move are the search hints (the points move little).
 void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples,
              bool onto_surface = true) {
   samples.positions.resize(points.size());
-  samples.triangles.resize(points.size());
+  samples.triangles.resize(points.size(), -1);
   samples.barycentric.resize(points.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
-      const ClosestPoint c = index.query(points[i]);
+      const ClosestPoint c = index.query(points[i], samples.triangles[i]);
       samples.positions[i] = onto_surface ? c.point : points[i];
       samples.triangles[i] = c.triangle;
       samples.barycentric[i] = c.barycentric;
