@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Core>
 #include <LBFGS.h>
@@ -89,11 +90,13 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
 }
 
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
-                       const Diagram* diagram_of_initial) {
+                       const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
   const auto start = std::chrono::steady_clock::now();
   const int n = initial.size();
-  const ClosestPointIndex index(mesh);
+  std::optional<ClosestPointIndex> own_index;
+  if (!shared_index) own_index.emplace(mesh);
+  const ClosestPointIndex& index = shared_index ? *shared_index : *own_index;
   std::vector<double> density_storage;
   const std::vector<double>* density = nullptr;
   if (!options.triangle_density.empty()) {
