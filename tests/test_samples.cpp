@@ -130,6 +130,28 @@ TEST_CASE("Points are located on the mesh by closest point") {
   }
 }
 
+TEST_CASE("A hinted closest-point query gives the unhinted answer") {
+  // Points near and far from the surface, each with a hint nearby (its own triangle, a moved
+  // point's old triangle) and one far away: the triangle and the point must not change, ties
+  // between triangles at an edge or a vertex included.
+  const SurfaceMesh mesh = test::icosphere(3);
+  const ClosestPointIndex index(mesh);
+  const Samples truth = sample_uniform(mesh, 300, 5);
+  for (int i = 0; i < truth.size(); ++i)
+    for (double scale : {1.0, 1.01, 0.97, 1.5}) {
+      const Vec3 p = truth.positions[i] * scale;
+      const Vec3 corner = mesh.position(mesh.triangle(truth.triangles[i])[0]) * scale;
+      for (const Vec3& q : {p, corner}) {
+        const ClosestPoint plain = index.query(q);
+        for (int hint : {truth.triangles[i], truth.triangles[(i + 1) % truth.size()], mesh.triangle_count() - 1}) {
+          const ClosestPoint hinted = index.query(q, hint);
+          REQUIRE(hinted.triangle == plain.triangle);
+          REQUIRE(hinted.point == plain.point);
+        }
+      }
+    }
+}
+
 TEST_CASE("Bad sample points are refused with a clear message") {
   const SurfaceMesh mesh = test::icosphere(2);
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1.5}}), Catch::Contains("point 0") && Catch::Contains("1%"));

@@ -161,13 +161,22 @@ ClosestPointIndex::~ClosestPointIndex() {
   if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
-ClosestPoint ClosestPointIndex::query(const Vec3& p) const {
+ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const {
   RTCPointQuery q;
   q.x = static_cast<float>(p.x), q.y = static_cast<float>(p.y), q.z = static_cast<float>(p.z);
   const Vec3 rounded{q.x, q.y, q.z};
   QueryState state{impl_.get(), p, distance(p, rounded), {}};
   q.time = 0;
   q.radius = std::numeric_limits<float>::infinity();
+  if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size())) {
+    // Only the radius is set: the hint is visited again in the traversal like any triangle, so
+    // among triangles at the same distance the first one the traversal meets still wins, as
+    // without a hint. The radius is the one visit_triangle would set after meeting the hint.
+    const auto& tri = impl_->triangles[hint];
+    const auto& pos = impl_->positions;
+    const double d = closest_point_on_triangle(p, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
+    q.radius = round_up((d + state.query_offset) * (1 + 1e-12));
+  }
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);

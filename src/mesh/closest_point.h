@@ -33,8 +33,12 @@ class ClosestPointIndex {
   ClosestPointIndex(const ClosestPointIndex&) = delete;
   ClosestPointIndex& operator=(const ClosestPointIndex&) = delete;
 
-  //! Closest point of the whole mesh to p (thread-safe).
-  ClosestPoint query(const Vec3& p) const;
+  //! Closest point of the whole mesh to p (thread-safe). `hint`, if not -1, is a triangle
+  //! expected near the answer (the point's triangle before it moved a little): the search starts
+  //! with its distance as the radius, which prunes most of the tree. The traversal visits the
+  //! same nodes in the same order, only fewer, so the answer is the same, ties between triangles
+  //! at one distance included (tested at mesh vertices).
+  ClosestPoint query(const Vec3& p, int hint = -1) const;
 
   struct Impl;  // public name so the Embree callbacks can see it; its definition stays private
 

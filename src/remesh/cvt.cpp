@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Core>
 #include <LBFGS.h>
@@ -22,14 +23,15 @@ namespace lrvd {
 namespace {
 
 // Records the closest triangle of every point; with `onto_surface`, also moves the point there.
+// The samples' triangles before the move are the search hints (the points move little).
 void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples,
              bool onto_surface = true) {
   samples.positions.resize(points.size());
-  samples.triangles.resize(points.size());
+  samples.triangles.resize(points.size(), -1);
   samples.barycentric.resize(points.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
-      const ClosestPoint c = index.query(points[i]);
+      const ClosestPoint c = index.query(points[i], samples.triangles[i]);
       samples.positions[i] = onto_surface ? c.point : points[i];
       samples.triangles[i] = c.triangle;
       samples.barycentric[i] = c.barycentric;
@@ -88,11 +90,13 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
 }
 
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
-                       const Diagram* diagram_of_initial) {
+                       const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
   const auto start = std::chrono::steady_clock::now();
   const int n = initial.size();
-  const ClosestPointIndex index(mesh);
+  std::optional<ClosestPointIndex> own_index;
+  if (!shared_index) own_index.emplace(mesh);
+  const ClosestPointIndex& index = shared_index ? *shared_index : *own_index;
   std::vector<double> density_storage;
   const std::vector<double>* density = nullptr;
   if (!options.triangle_density.empty()) {

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 #include "voronoi/diagram.h"
 
@@ -57,9 +58,10 @@ CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, Diagram di
 
 //! Moves the samples towards a CVT of the surface. `diagram_of_initial`, when the caller has it
 //! (a previous CVT's result), is the diagram of `initial` of the kind `options.diagram`: it is used
-//! instead of computing the same diagram again.
+//! instead of computing the same diagram again. `index`, when the caller runs several CVTs on the
+//! same mesh, is a closest-point index of `mesh`, used instead of building one per call.
 //! \throw InputError on an empty sample set.
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options = {},
-                       const Diagram* diagram_of_initial = nullptr);
+                       const Diagram* diagram_of_initial = nullptr, const ClosestPointIndex* index = nullptr);
 
 }  // namespace lrvd

@@ -151,7 +151,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   const auto start = std::chrono::steady_clock::now();
   const bool components_cross = components_intersect(reference);
   RemeshResult result;
-  result.cvt = optimize_cvt(mesh, initial, options.cvt);
+  const ClosestPointIndex index(mesh);  // one for the first CVT and every repair round
+  result.cvt = optimize_cvt(mesh, initial, options.cvt, nullptr, &index);
   result.total_iterations = result.cvt.iterations;
   result.diagram_evaluations = result.cvt.diagram_evaluations;
   result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
@@ -185,7 +186,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
     ++result.repair_rounds;
     // The diagram of the samples is the last one computed: the density changed, the diagram not.
-    result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram);
+    result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram, &index);
     result.total_iterations += result.cvt.iterations;
     result.diagram_evaluations += result.cvt.diagram_evaluations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
