@@ -556,8 +556,8 @@ OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std:
     const std::function<bool(int)> focus_acceptable = focus_floor();
     balancer.set_quality_budget(options.focus_quality_budget * static_cast<double>(dual.triangles.size()));
     if (options.refine_level > 0) {
-      balancer.refine_input(options.active_fraction * best_max, options.refine_level);
-      balancer.refine_remesh(options.active_fraction * best_max, 2 * options.refine_level);
+      balancer.refine_input(options.focus_fraction * best_max, options.refine_level);
+      balancer.refine_remesh(options.focus_fraction * best_max, 2 * options.refine_level);
     }
     best_max = balancer.measure();
     for (int round = 0; round < options.focus_rounds; ++round) {

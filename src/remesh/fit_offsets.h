@@ -37,7 +37,7 @@ struct OffsetOptions {
   //! down to the caller's looser floor (`focus_floor`), alone or with their ring (0: none)
   int focus_rounds = 4;
   double focus_fraction = 0.8;  //!< the focus rounds' vertices: a sample at this × the largest |d|
-  //! before the focus rounds, input triangles near active_fraction × the largest |d| get a lattice at
+  //! before the focus rounds, input triangles near focus_fraction × the largest |d| get a lattice at
   //! this level, remesh triangles one at twice it
   int refine_level = 4;
   //! The focus rounds' group steps: the one-ring moves by this share of the vertex's step (1: the
