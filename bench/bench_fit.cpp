@@ -1,7 +1,8 @@
 // Vertex fitting alone (remesh/fit.h): the CVT of each (model, N) once without fitting, then the
 // fitting, timed (CPU seconds, minimum over --runs), with the shape and two-sided distance before and after.
-// Usage: bench_fit [--models elk,knot,...] [--counts 516,1000,...] [--runs R] [--focus-rounds K]
-//                  [--focus-fraction F] [--ring-share S] [--no-balance]
+// Usage: bench_fit [--models elk,knot,...] [--counts 516,1000,...] [--runs R] [--seed S] [--focus-rounds K]
+//                  [--focus-fraction F] [--ring-share S] [--samples-per-edge S]
+//                  [--input-samples-per-edge S] [--no-balance]
 #include <algorithm>
 #include <ctime>
 #include <cstdio>
@@ -41,7 +42,7 @@ double cpu_seconds() {
 int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "armadillo"};
   std::vector<int> counts = {516, 1000, 4000};
-  int runs = 1;
+  int runs = 1, seed = 1;
   FitOptions fit_options;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--models") && a + 1 < argc) {
@@ -57,10 +58,17 @@ int main(int argc, char** argv) {
       fit_options.offsets.focus_fraction = std::stod(argv[++a]);
     } else if (!std::strcmp(argv[a], "--ring-share") && a + 1 < argc) {
       fit_options.offsets.ring_share = std::stod(argv[++a]);
+    } else if (!std::strcmp(argv[a], "--samples-per-edge") && a + 1 < argc) {
+      fit_options.offsets.samples_per_edge = std::stod(argv[++a]);
+    } else if (!std::strcmp(argv[a], "--input-samples-per-edge") && a + 1 < argc) {
+      fit_options.offsets.input_samples_per_edge = std::stod(argv[++a]);
+    } else if (!std::strcmp(argv[a], "--seed") && a + 1 < argc) {
+      seed = std::stoi(argv[++a]);
     } else if (!std::strcmp(argv[a], "--no-balance")) {
       fit_options.balance = false;
     } else {
-      std::fprintf(stderr, "usage: %s [--models a,b] [--counts n1,n2] [--runs R] [--focus-rounds K] [--focus-fraction F] [--ring-share S] [--no-balance]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--models a,b] [--counts n1,n2] [--runs R] [--seed S] [--focus-rounds K] [--focus-fraction F] [--ring-share S]\n"
+                   "       [--samples-per-edge S] [--input-samples-per-edge S] [--no-balance]\n", argv[0]);
       return 2;
     }
   }
@@ -76,7 +84,7 @@ int main(int argc, char** argv) {
       RemeshOptions options;
       options.fit = false;
       options.untangle = false;
-      const RemeshResult cvt = remesh_cvt(input, mesh, sample_uniform(mesh, n, 1), options);
+      const RemeshResult cvt = remesh_cvt(input, mesh, sample_uniform(mesh, n, seed), options);
       DualMesh fitted;
       FitResult fit;
       double best = 1e30;
