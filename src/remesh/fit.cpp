@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <set>
 
 #include <Eigen/Dense>
@@ -184,8 +185,20 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
         if (!fitted_floor.holds(t, dual.positions)) return false;
       return true;
     };
-    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets);
-    result.reverted += settle(dual, quadric_fitted, fitted_floor, allowed, incident);
+    // The focus rounds' floor: the worst Q of the state they start from (or a triangle's own Q, if
+    // lower), so they never lower the worst triangle of the rounds before them either.
+    std::unique_ptr<QualityFloor> focus_floor;
+    auto make_focus_floor = [&]() -> std::function<bool(int)> {
+      focus_floor = std::make_unique<QualityFloor>(dual, options.max_angle_floor, true);
+      return [&](int v) {
+        for (int t : incident[v])
+          if (!focus_floor->holds(t, dual.positions)) return false;
+        return true;
+      };
+    };
+    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor);
+    // The floor that settling keeps: the focus rounds' where they ran (step 1's result meets it).
+    result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident);
   }
   for (int v = 0; v < n; ++v)
     if (dual.positions[v] != original[v]) {

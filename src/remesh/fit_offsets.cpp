@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "mesh/closest_point.h"
+#include "metrics/quality.h"
 #include "metrics/self_intersections.h"
 
 namespace lrvd {
@@ -234,12 +235,13 @@ class OffsetBalancer {
     }
     // Input samples: the vertices, then the lattices.
     input_points_ = mesh_.positions();
+    input_source_.assign(input_points_.size(), -1);
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       const Triangle& f = mesh_.triangle(t);
       const std::vector<Vec3>& p = mesh_.positions();
       bary.clear();
       lattice(f, lattice_level(p[f[0]], p[f[1]], p[f[2]], mean_edge / options_.input_samples_per_edge, 1), bary);
-      for (const Vec3& b : bary) input_points_.push_back(at(p, f, b));
+      for (const Vec3& b : bary) input_points_.push_back(at(p, f, b)), input_source_.push_back(t);
     }
     input_.resize(input_points_.size());
   }
@@ -329,17 +331,212 @@ class OffsetBalancer {
   const std::vector<char> proper_;
   std::vector<Sample> remesh_, input_;
   std::vector<Vec3> input_points_;
+  std::vector<int> input_source_;    // the input triangle of a lattice point, -1 for the input's vertices
+  std::vector<char> input_refined_;  // input triangles sampled at the finer level already
   std::vector<int> first_;
   std::vector<char> moved_;  // vertices moved since the last measure
   std::vector<Entry> entries_;
   std::vector<double> coefficient_, local_d_, local_w_;
   std::vector<Vec3> local_g_;
+  double quality_budget_ = 0;  // the Q the focus rounds' relaxed steps may still take, summed over triangles
+  std::vector<double> combined_;  // group_sweep: per sample, the weight of the group's moving corners
+ public:
+  // Coordinate descent on groups, for the focus rounds: each vertex whose samples reach `floor`,
+  // largest |d| first, moves alone (ring_share = 0) or with its one-ring, the ring by `ring_share` of
+  // the vertex's step (1: the triangles at the vertex keep their shape and the ring's outer
+  // triangles deform instead; where the vertex alone is stopped by a triangle at the floor, the
+  // group can still move). A step is taken under `relaxed` (the worst-Q floor) when that beats the
+  // best step under `strict` (the rounds' floor) and the Q it takes from the group's triangles fits
+  // in what is left of the budget; otherwise under `strict`.
+  void group_sweep(double floor, const std::function<bool(int)>& strict, const std::function<bool(int)>& relaxed,
+                   double ring_share) {
+    const int n = static_cast<int>(dual_.positions.size());
+    combined_.assign(remesh_.size() + input_.size(), 0);
+    std::vector<int> touched, group;
+    std::vector<Vec3> from;
+    // The vertices at the largest distances first: they spend the quality budget first.
+    std::vector<std::pair<double, int>> order;
+    for (int v = 0; v < n; ++v) {
+      if (incident_[v].empty() || first_[v] == first_[v + 1]) continue;
+      double scale = 0;
+      for (int k = first_[v]; k < first_[v + 1]; ++k) scale = std::max(scale, std::abs(sample(entries_[k].sample).d));
+      if (scale > 0 && scale >= floor) order.push_back({-scale, v});
+    }
+    std::sort(order.begin(), order.end());
+    std::vector<int> around;
+    for (const auto& [negative_scale, v] : order) {
+      group.assign(1, v);
+      if (ring_share > 0)
+        for (int t : incident_[v])
+          for (int u : dual_.triangles[t])
+            if (std::find(group.begin(), group.end(), u) == group.end()) group.push_back(u);
+      Vec3 normal{0, 0, 0};
+      double shortest = INFINITY;
+      for (int t : incident_[v]) {
+        const Triangle& f = dual_.triangles[t];
+        normal += cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
+        for (int e = 0; e < 3; ++e) shortest = std::min(shortest, distance(dual_.positions[f[e]], dual_.positions[f[(e + 1) % 3]]));
+      }
+      if (!(norm(normal) > 0) || !(shortest > 0)) continue;
+      normal = normal / norm(normal);
+      // The group's samples, each with the weight of its moving corners (the ring's scaled by its share).
+      touched.clear();
+      for (size_t g = 0; g < group.size(); ++g)
+        for (int k = first_[group[g]]; k < first_[group[g] + 1]; ++k) {
+          const int i = entries_[k].sample;
+          if (combined_[i] == 0) touched.push_back(i);
+          combined_[i] += (g == 0 ? 1.0 : ring_share) * entries_[k].weight;
+        }
+      double group_scale = 0;
+      for (int i : touched) group_scale = std::max(group_scale, std::abs(sample(i).d));
+      local_d_.clear(), local_w_.clear(), local_g_.clear();
+      Vec3 descent{0, 0, 0};
+      for (int i : touched) {
+        const Sample& s = sample(i);
+        local_d_.push_back(s.d / group_scale);
+        local_w_.push_back(combined_[i]);
+        local_g_.push_back(s.direction);
+        descent -= (power(s.d / group_scale, options_.power - 1) * combined_[i]) * s.direction;
+      }
+      from.resize(group.size());
+      for (size_t g = 0; g < group.size(); ++g) from[g] = dual_.positions[group[g]];
+      auto place = [&](const Vec3& move) {
+        for (size_t g = 0; g < group.size(); ++g) dual_.positions[group[g]] = from[g] + (g == 0 ? 1.0 : ring_share) * move;
+      };
+      auto holds = [&](const std::function<bool(int)>& accept) {
+        for (int u : group)
+          if (!accept(u)) return false;
+        return true;
+      };
+      const double limit = options_.trust * shortest;
+      const double start = objective(0);
+      Vec3 strict_move{0, 0, 0}, relaxed_move{0, 0, 0};
+      double strict_value = start, relaxed_value = start;
+      const Vec3 unit = norm(descent) > 0 ? descent / norm(descent) : Vec3{0, 0, 0};
+      const Vec3 along = unit - dot(unit, normal) * normal;
+      const Vec3 candidates[3] = {normal, unit, norm(along) > 1e-3 ? along / norm(along) : Vec3{0, 0, 0}};
+      for (const Vec3& direction : candidates) {
+        if (!(norm(direction) > 0)) continue;
+        set_coefficients(direction, group_scale);
+        const double t = best_offset(limit);
+        for (int which = 0; which < (relaxed ? 2 : 1); ++which)
+          for (double step : {1.0, 0.875, 0.75, 0.625, 0.5, 0.375, 0.25, 0.125}) {
+            place((step * t) * direction);
+            const bool ok = holds(which == 0 ? strict : relaxed);
+            place({0, 0, 0});
+            if (!ok) continue;
+            const double value = objective(step * t);
+            double& best = which == 0 ? strict_value : relaxed_value;
+            if (value < best) best = value, (which == 0 ? strict_move : relaxed_move) = (step * t) * direction;
+            break;
+          }
+      }
+      // The Q the relaxed step takes from the triangles around the group, against the budget.
+      double spent = 0;
+      if (relaxed_value < strict_value) {
+        around.clear();
+        for (int u : group)
+          for (int t : incident_[u])
+            if (std::find(around.begin(), around.end(), t) == around.end()) around.push_back(t);
+        auto q_sum = [&] {
+          double sum = 0;
+          for (int t : around) {
+            const Triangle& f = dual_.triangles[t];
+            sum += triangle_quality(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
+          }
+          return sum;
+        };
+        const double before = q_sum();
+        place(relaxed_move);
+        spent = before - q_sum();
+        place({0, 0, 0});
+      }
+      Vec3 move{0, 0, 0};
+      if (relaxed_value < strict_value && spent <= quality_budget_) {
+        move = relaxed_move;
+        quality_budget_ -= std::max(0.0, spent);
+      } else if (strict_value < start) {
+        move = strict_move;
+      }
+      if (norm(move) > 0) {
+        place(move);
+        for (int u : group) moved_[u] = 1;
+        for (int i : touched) {
+          Sample& s = sample(i);
+          s.d += combined_[i] * dot(move, s.direction);
+        }
+      }
+      for (int i : touched) combined_[i] = 0;
+    }
+  }
+
+  // Adds a finer lattice (level `level`, all points) on the input triangles around the input samples
+  // whose |d| reaches `threshold`: there the distance between the input's vertices may exceed theirs
+  // (a tine's side is farther from the chords than its tip). Returns the samples added.
+  int refine_input(double threshold, int level) {
+    const int nv = static_cast<int>(mesh_.positions().size());
+    input_refined_.resize(mesh_.triangle_count(), 0);
+    std::vector<int> triangles;
+    for (size_t i = 0; i < input_.size(); ++i) {
+      if (!(std::abs(input_[i].d) >= threshold)) continue;
+      if (static_cast<int>(i) < nv) {
+        for (const int* t = mesh_.vertex_triangles_begin(static_cast<int>(i)); t != mesh_.vertex_triangles_end(static_cast<int>(i)); ++t)
+          triangles.push_back(*t);
+      } else {
+        triangles.push_back(input_source_[i]);
+      }
+    }
+    const size_t before = input_points_.size();
+    const std::vector<Vec3>& p = mesh_.positions();
+    for (int t : triangles) {
+      if (input_refined_[t]) continue;
+      input_refined_[t] = 1;
+      const Triangle& f = mesh_.triangle(t);
+      for (int i = 0; i <= level; ++i)
+        for (int j = 0; i + j <= level; ++j) {
+          const int l = level - i - j;
+          if ((i == 0) + (j == 0) + (l == 0) >= 2) continue;
+          input_points_.push_back(at(p, f, {i / double(level), j / double(level), l / double(level)}));
+          input_source_.push_back(t);
+        }
+    }
+    input_.resize(input_points_.size());
+    return static_cast<int>(input_points_.size() - before);
+  }
+  void set_quality_budget(double budget) { quality_budget_ = budget; }
+
+  // The same on the remesh: its triangles with a sample whose |d| reaches `threshold` get a lattice
+  // at `level` (their corners are samples already), measured at the next measure().
+  int refine_remesh(double threshold, int level) {
+    std::vector<char> refine(dual_.triangles.size(), 0);
+    for (const Sample& s : remesh_)
+      if (std::abs(s.d) >= threshold) refine[s.triangle] = 1;
+    const size_t before = remesh_.size();
+    for (int t = 0; t < static_cast<int>(refine.size()); ++t) {
+      if (!refine[t]) continue;
+      for (int i = 0; i <= level; ++i)
+        for (int j = 0; i + j <= level; ++j) {
+          const int l = level - i - j;
+          if ((i == 0) + (j == 0) + (l == 0) >= 2) continue;
+          remesh_.push_back({t, {i / double(level), j / double(level), l / double(level)}, 0, {}});
+        }
+      for (int v : dual_.triangles[t]) moved_[v] = 1;
+    }
+    return static_cast<int>(remesh_.size() - before);
+  }
+  // Sets the positions, marking the vertices that differ as moved.
+  void reset(const std::vector<Vec3>& positions) {
+    for (size_t v = 0; v < positions.size(); ++v)
+      if (positions[v] != dual_.positions[v]) moved_[v] = 1;
+    dual_.positions = positions;
+  }
 };
 
 }  // namespace
 
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
-                             const std::function<bool(int)>& acceptable, const OffsetOptions& options) {
+                             const std::function<bool(int)>& acceptable, const OffsetOptions& options,
+                             const std::function<std::function<bool(int)>()>& focus_floor) {
   OffsetResult result;
   OffsetBalancer balancer(mesh, dual, incident, acceptable, options);
   std::vector<Vec3> best = dual.positions;
@@ -352,6 +549,26 @@ OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std:
     if (largest < best_max) {
       best_max = largest;
       best = dual.positions;
+    }
+  }
+  if (focus_floor && options.focus_rounds > 0) {
+    balancer.reset(best);
+    const std::function<bool(int)> focus_acceptable = focus_floor();
+    balancer.set_quality_budget(options.focus_quality_budget * static_cast<double>(dual.triangles.size()));
+    if (options.refine_level > 0) {
+      balancer.refine_input(options.focus_fraction * best_max, options.refine_level);
+      balancer.refine_remesh(options.focus_fraction * best_max, 2 * options.refine_level);
+    }
+    best_max = balancer.measure();
+    for (int round = 0; round < options.focus_rounds; ++round) {
+      const double active = options.focus_fraction * best_max;
+      balancer.group_sweep(active, acceptable, focus_acceptable, 0);
+      if (options.ring_share > 0) balancer.group_sweep(active, acceptable, focus_acceptable, options.ring_share);
+      const double largest = balancer.measure(options.requery_fraction * best_max);
+      if (largest < best_max) {
+        best_max = largest;
+        best = dual.positions;
+      }
     }
   }
   dual.positions = best;

@@ -33,6 +33,19 @@ struct OffsetOptions {
   double input_samples_per_edge = 2;  //!< the same on the input (its vertices are samples too)
   double active_fraction = 0.5;     //!< after round 1, only vertices with a sample at this × the largest |d|
   double requery_fraction = 0.25;   //!< after round 1, only samples at this × the largest |d| are re-measured
+  //! Rounds after the others, on the vertices near the largest |d| only, whose triangles may then go
+  //! down to the caller's looser floor (`focus_floor`), alone or with their ring (0: none)
+  int focus_rounds = 4;
+  double focus_fraction = 0.8;  //!< the focus rounds' vertices: a sample at this × the largest |d|
+  //! before the focus rounds, input triangles near focus_fraction × the largest |d| get a lattice at
+  //! this level, remesh triangles one at twice it
+  int refine_level = 4;
+  //! The focus rounds' group steps: the one-ring moves by this share of the vertex's step (1: the
+  //! vertex's triangles keep their shape; 0: no group steps)
+  double ring_share = 1.0;
+  //! The focus rounds' steps below the rounds' floor may lower Qavg by this much in all, the
+  //! vertices at the largest |d| first (a thin tip needs them; a smooth bend would spend it all)
+  double focus_quality_budget = 0.005;
   bool sideways = true;             //!< also try the steepest descent and its tangential part, not only the normal
 };
 
@@ -45,7 +58,15 @@ struct OffsetResult {
 //! moved (the caller's quality floor); `incident[v]` are the triangles of vertex v. Of the states
 //! after each round, the one with the smallest sampled maximum is kept (the given positions when
 //! no round improves on them).
+//!
+//! Then, with `focus_floor` given, the focus rounds: the input and remesh triangles near the largest
+//! distances get finer lattices (the distance between an input's vertices, on a tine's side, can
+//! exceed theirs), and only the vertices near the largest |d| move, alone and then with their
+//! one-ring, under the floor `focus_floor()` returns (called once, with `dual` at the state the
+//! focus rounds start from) where that beats the rounds' floor, within a Qavg budget. `max_after`
+//! is then measured on the finer samples.
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
-                             const std::function<bool(int)>& acceptable, const OffsetOptions& options = {});
+                             const std::function<bool(int)>& acceptable, const OffsetOptions& options = {},
+                             const std::function<std::function<bool(int)>()>& focus_floor = {});
 
 }  // namespace lrvd
