@@ -265,6 +265,10 @@ Side3Terms<NT> side3_terms(const Site& i, const Site& j, const Site& k, const Si
   side2_num_den<Fpf>(i, j, l, q1, q2, num, den);
   return -(certain_sign(num) * certain_sign(den));
 }
+[[gnu::flatten]] bool cross_certainly_nonzero_fpf(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const V3<Fpf> n = cross(sub<Fpf>(b, a), sub<Fpf>(c, a));
+  return certain_sign(n.x) != Sign::Zero || certain_sign(n.y) != Sign::Zero || certain_sign(n.z) != Sign::Zero;
+}
 [[gnu::flatten]] Sign side3_fpf(const Site& i, const Site& j, const Site& k, const Site& l,
                                 const Vec3& p1, const Vec3& p2, const Vec3& p3) {
   const Side3Terms<Fpf> t = side3_terms<Fpf>(i, j, k, l, p1, p2, p3);
@@ -398,6 +402,8 @@ Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,
 bool collinear(const Vec3& a, const Vec3& b, const Vec3& c) {
   ThreadCounters& cnt = local_counters();
   bump(cnt, kOther, kCalls);
+  // The double filter first: every triangle of a refined mesh is checked, almost none is flat.
+  if (in_range(a) && in_range(b) && in_range(c) && cross_certainly_nonzero_fpf(a, b, c)) return false;
   if (in_range(a, 0x1p400) && in_range(b, 0x1p400) && in_range(c, 0x1p400)) {
     bool nonzero;
     {
