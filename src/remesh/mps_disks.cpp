@@ -10,16 +10,7 @@
 
 namespace lrvd::mps_detail {
 
-bool inside_disk(const Vec3& p, const Vec3& c, double w) {
-  const double d = squared_distance(p, c);
-  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
-  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
-  // d is so small that the squares may have underflowed.
-  if (d >= 1e-250) {
-    const double margin = 1e-15 * (d + w);
-    if (d - w > margin) return false;
-    if (w - d > margin) return true;
-  }
+bool inside_disk_exact(const Vec3& p, const Vec3& c, double w) {
   return CGAL::sign(exact_power_distance(to_exact(p), Site{c, w, 0})) == CGAL::NEGATIVE;
 }
 
@@ -71,11 +62,15 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
   }
 }
 
-bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
+inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   // Far outside the triangle's bounding sphere (with room for rounding): no closest point needed.
   const double reach = r + bounds_[t].radius;
   if (squared_distance(p, bounds_[t].center) > reach * reach * (1 + 1e-9)) return false;
-  return ball_meets_triangle(mesh_, t, p, w);
+  // ball_meets_triangle, its corner test inlined (it decides most calls).
+  const Triangle& tri = mesh_.triangle(t);
+  for (int c = 0; c < 3; ++c)
+    if (squared_distance(p, mesh_.position(tri[c])) < w) return true;
+  return triangle_squared_distance(mesh_, t, p) < w;
 }
 
 bool DiskIndex::in_some_disk(const Vec3& p, int t) const {

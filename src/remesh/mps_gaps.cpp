@@ -60,10 +60,9 @@ double triangle_disk_area(const P2& a, const P2& b, double r2) {
   return area;
 }
 
-// Area of polygon q (convex, in the plane with unit normal n) outside the ball (x, w), and the
-// polygon's area.
-double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double& area) {
-  area = polygon_area(q);
+// Area of polygon q (convex, in the plane with unit normal n, of area `area` = polygon_area(q))
+// outside the ball (x, w).
+double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
   const double h = dot(x - q[0], n);
   const double r2 = w - h * h;
   if (!(r2 > 0)) return area;
@@ -77,6 +76,36 @@ double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, 
     inside += triangle_disk_area({dot(a, u), dot(a, v)}, {dot(b, u), dot(b, v)}, r2);
   }
   return std::max(0.0, area - std::min(std::abs(inside), area));
+}
+
+// A lower bound of the area of polygon q (convex, in the plane with unit normal n, of area `area`)
+// outside the ball (x, w), without the sector formula: where the centre o of the circle (the ball
+// in the plane) lies beyond the line of an edge of q, at distance d from it on the side away from
+// q, q ∩ ball is within the circular segment on q's side, itself within a rectangle of its chord
+// 2√(r² − d²) by its height r − d; d >= r: q misses the ball. The least such bound over the edges
+// is taken (πr² when none applies).
+double uncovered_area_lower_bound(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
+  const double h = dot(x - q[0], n);
+  const double r2 = w - h * h;
+  if (!(r2 > 0)) return area;
+  const double r = std::sqrt(r2);
+  const Vec3 o = x - h * n;
+  Vec3 c{};
+  for (const Vec3& y : q) c += y;
+  c = c / static_cast<double>(q.size());
+  double inside = M_PI * r2;
+  for (size_t k = 0; k < q.size(); ++k) {
+    const Vec3& a = q[k];
+    const Vec3 m = cross(q[(k + 1) % q.size()] - a, n);  // in the plane, across edge k, |m| = its length
+    const double sc = dot(c - a, m), so = dot(o - a, m);
+    if (sc > 0 ? so >= 0 : so <= 0) continue;  // o on q's side of the edge's line (or on it)
+    const double m2 = dot(m, m);
+    if (!(sc * sc > 1e-12 * r2 * m2)) continue;  // the centroid too close to the line to tell q's side
+    const double d = std::abs(so) / std::sqrt(m2);  // o beyond the edge's line, away from q
+    if (d >= r) return area;
+    inside = std::min(inside, 2 * std::sqrt(r2 - d * d) * (r - d));
+  }
+  return area - inside;
 }
 
 // Keeps the part of convex polygon `in` where h <= 0, h affine (given at the vertices).
@@ -100,6 +129,14 @@ void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
 bool ball_meets_polygon(const Vec3* q, int count, const Vec3& x, double w) {
   for (int k = 0; k < count; ++k)
     if (squared_distance(x, q[k]) < w) return true;  // a corner inside: no closest point needed
+  // Far outside the polygon's bounding sphere (with room for rounding): no closest point needed.
+  Vec3 c{};
+  for (int k = 0; k < count; ++k) c += q[k];
+  c = c / static_cast<double>(count);
+  double radius2 = 0;
+  for (int k = 0; k < count; ++k) radius2 = std::max(radius2, squared_distance(c, q[k]));
+  const double reach = std::sqrt(w) + std::sqrt(radius2);
+  if (squared_distance(x, c) > reach * reach * (1 + 1e-9)) return false;
   for (int k = 1; k + 1 < count; ++k)
     if (squared_distance(x, closest_point_on_triangle(x, q[0], q[k], q[k + 1]).point) < w) return true;
   return false;
@@ -222,12 +259,41 @@ void GapSet::update_after_insert(int sample, const std::vector<int>& region) {
 
 void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
   if (polygon.size() < 3) return;
-  const Vec3 n = mesh_.triangle_normal(t);
+  const Vec3& n = disks_.normal(t);
+  auto keep = [&](const std::vector<Vec3>& q, double area) {
+    Piece piece;
+    piece.triangle = t;
+    piece.owner = owner;
+    piece.first = static_cast<int>(points_.size());
+    piece.count = static_cast<int>(q.size());
+    piece.area = area;
+    piece.alive = true;
+    piece.next_in_triangle = head_[t];
+    points_.insert(points_.end(), q.begin(), q.end());
+    const int index = static_cast<int>(pieces_.size());
+    pieces_.push_back(piece);
+    head_[t] = index;
+    ++alive_;
+    ++created_;
+    total_ += area;
+    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
+  };
   // One piece: bounded by q, gap = q minus the owner's disk; halved while its polygon is loose.
   auto add_piece = [&](const std::vector<Vec3>& q, auto&& self, int depth) -> void {
-    double area = 0;
-    const double gap = owner < 0 ? polygon_area(q) : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
-    if (owner < 0) area = gap;
+    const double area = polygon_area(q);
+    // Whether the piece is kept as it is (neither rounding noise nor loose) is decided by the
+    // exact area outside the owner's disk (sector formula), unless a lower bound of it, less a
+    // margin far above the formula's rounding error (~1e-14·r²), already decides: then the piece is
+    // kept as the formula would keep it, without it (GapSet::gap_area() computes it when asked).
+    if (owner >= 0) {
+      const double lower = uncovered_area_lower_bound(q, n, disks_.center(owner), disks_.weight(owner), area) -
+                           1e-7 * disks_.weight(owner);
+      if (lower > drop_area_ && lower > kNoiseRatio * area && (lower >= kLooseRatio * area || depth >= kMaxBisections)) {
+        keep(q, area);
+        return;
+      }
+    }
+    const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
     if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
       if (gap > 0) ++dropped_;
       return;
@@ -247,23 +313,7 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
       if (!half.empty()) self(half, self, depth + 1);
       return;
     }
-    Piece piece;
-    piece.triangle = t;
-    piece.owner = owner;
-    piece.first = static_cast<int>(points_.size());
-    piece.count = static_cast<int>(q.size());
-    piece.area = area;
-    piece.gap_area = gap;
-    piece.alive = true;
-    piece.next_in_triangle = head_[t];
-    points_.insert(points_.end(), q.begin(), q.end());
-    const int index = static_cast<int>(pieces_.size());
-    pieces_.push_back(piece);
-    head_[t] = index;
-    ++alive_;
-    ++created_;
-    total_ += area;
-    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
+    keep(q, area);
   };
 
   if (owner < 0) {
@@ -441,8 +491,16 @@ bool GapSet::draw(Random& random, Vec3& point, int& triangle, int& piece) {
 
 double GapSet::gap_area() const {
   double sum = 0;
-  for (const Piece& p : pieces_)
-    if (p.alive) sum += p.gap_area;
+  std::vector<Vec3> q;
+  for (const Piece& p : pieces_) {
+    if (!p.alive) continue;
+    if (p.owner < 0) {
+      sum += p.area;
+      continue;
+    }
+    q.assign(points_.begin() + p.first, points_.begin() + p.first + p.count);
+    sum += uncovered_area(q, disks_.normal(p.triangle), disks_.center(p.owner), disks_.weight(p.owner), p.area);
+  }
   return sum;
 }
 

@@ -15,9 +15,23 @@ namespace lrvd::mps_detail {
 //! Two triangles "face alike" when the cosine of the angle between their normals exceeds this.
 constexpr double kFacingCosine = 0.0;
 
+//! inside_disk decided with rational arithmetic (its slow path).
+bool inside_disk_exact(const Vec3& p, const Vec3& c, double w);
+
 //! |p - c|² < w, decided exactly: doubles when the rounding error cannot change the answer,
-//! rational arithmetic otherwise.
-bool inside_disk(const Vec3& p, const Vec3& c, double w);
+//! rational arithmetic otherwise. Inline: the double test decides almost every call.
+inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
+  const double d = squared_distance(p, c);
+  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
+  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
+  // d is so small that the squares may have underflowed.
+  if (d >= 1e-250) {
+    const double margin = 1e-15 * (d + w);
+    if (d - w > margin) return false;
+    if (w - d > margin) return true;
+  }
+  return inside_disk_exact(p, c, w);
+}
 
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
 //! ball B(x, r) around a point of triangle t: the triangles that the ball meets and that face the
@@ -48,6 +62,8 @@ class DiskIndex {
   const std::vector<int>& met(const Vec3& p, int t, double w);
   //! Triangles s and t face the same way (normals at less than 90°).
   bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > kFacingCosine; }
+  //! Unit normal of triangle t (mesh.triangle_normal(t)).
+  const Vec3& normal(int t) const { return normals_[t]; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
   //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
@@ -157,7 +173,6 @@ class GapSet {
     int owner = -1;
     int first = 0, count = 0;  // vertices in points_
     double area = 0;           // area of Q: the draw weight
-    double gap_area = 0;
     int next_in_triangle = -1;
     int refused = 0;
     bool alive = false;
