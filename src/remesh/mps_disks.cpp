@@ -50,6 +50,8 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
       stamp_(mesh.triangle_count(), 0),
+      vertex_stamp_(mesh.vertex_count(), 0),
+      vertex_inside_(mesh.vertex_count(), 0),
       normals_(mesh.triangle_count()),
       bounds_(mesh.triangle_count()) {
   for (int t = 0; t < mesh.triangle_count(); ++t) {
@@ -136,10 +138,21 @@ int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, c
   triangles_.push_back(t);
   center_next_.push_back(center_head_[t]);
   center_head_[t] = i;
+  if (++vertex_stamp_value_ == 0) {  // wrapped: forget every old test
+    std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+    vertex_stamp_value_ = 1;
+  }
   for (int s : region) {
     const Triangle& tri = mesh_.triangle(s);
     bool covers = true;  // the ball is convex: it holds the triangle iff it holds its corners
-    for (int c = 0; c < 3 && covers; ++c) covers = inside_disk(mesh_.position(tri[c]), p, w);
+    for (int c = 0; c < 3 && covers; ++c) {
+      const int v = tri[c];  // each corner tested once: the region's triangles share them
+      if (vertex_stamp_[v] != vertex_stamp_value_) {
+        vertex_stamp_[v] = vertex_stamp_value_;
+        vertex_inside_[v] = inside_disk(mesh_.position(v), p, w);
+      }
+      covers = vertex_inside_[v];
+    }
     int& head = covers ? covered_head_[s] : partial_head_[s];
     links_.push_back({i, head});
     head = static_cast<int>(links_.size()) - 1;

@@ -170,13 +170,13 @@ void GapSet::extract(const Diagram& lrpd) {
     // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
     if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
-    polygon.clear();
+    polygon.resize(cp.vertex_count);
     bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
     for (int k = 0; k < cp.vertex_count; ++k) {
       const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
-      polygon.push_back(position(q, ctx));
+      polygon[k] = position(q, ctx);
       if (!covered) continue;
-      const double d = squared_distance(polygon.back(), site.p) - site.w;
+      const double d = squared_distance(polygon[k], site.p) - site.w;
       if (std::abs(d) <= kVertexMargin * site.w)
         covered = CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) != CGAL::POSITIVE;
       else
@@ -269,7 +269,7 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     piece.area = area;
     piece.alive = true;
     piece.next_in_triangle = head_[t];
-    points_.insert(points_.end(), q.begin(), q.end());
+    for (const Vec3& y : q) points_.push_back(y);
     const int index = static_cast<int>(pieces_.size());
     pieces_.push_back(piece);
     head_[t] = index;

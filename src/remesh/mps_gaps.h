@@ -105,6 +105,9 @@ class DiskIndex {
   std::vector<Link> links_;
   std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
   std::uint32_t stamp_value_ = 0;
+  std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
+  std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
+  std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_;
   std::vector<Vec3> normals_;  // unit normal per triangle
   std::vector<Sphere> bounds_;  // per triangle: centroid and the distance to its farthest corner
