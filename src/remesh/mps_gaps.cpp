@@ -336,12 +336,13 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     const Vec3& a = polygon[k];
     const Vec3& b = polygon[(k + 1) % m];
     events.push_back({a, out[k] ? 1 : 0});
+    const bool oa = out[k], ob = out[(k + 1) % m];
+    if (!oa && !ob) continue;  // both ends inside: the edge is (the disk is convex)
     const Vec3 d = b - a, ax = a - x;
     const double A = dot(d, d), B = dot(ax, d), C = dot(ax, ax) - w;
-    if (!(A > 0)) continue;
+    if (!(A > 0) || (oa && ob && !(B * B - A * C > 0))) continue;  // outside, not crossing the circle
     const double sq = std::sqrt(std::max(0.0, B * B - A * C));
     const double s1 = std::clamp((-B - sq) / A, 0.0, 1.0), s2 = std::clamp((-B + sq) / A, 0.0, 1.0);
-    const bool oa = out[k], ob = out[(k + 1) % m];
     if (oa && !ob) {
       events.push_back({a + s1 * d, 2});
     } else if (!oa && ob) {
