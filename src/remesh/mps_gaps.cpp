@@ -223,7 +223,18 @@ void GapSet::extract(const Diagram& lrpd) {
 int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner) {
   const size_t first = pieces_.size();
   add_outside(polygon, t, owner);
+  if (pieces_.size() == first) return 0;
+  // The pieces lie in the polygon (up to rounding): a ball far outside its bounding sphere (with
+  // room for rounding) meets none of them, and split() would leave them alone.
+  Vec3 c{};
+  for (const Vec3& y : polygon) c += y;
+  c = c / static_cast<double>(polygon.size());
+  double radius2 = 0;
+  for (const Vec3& y : polygon) radius2 = std::max(radius2, squared_distance(c, y));
+  const double radius = std::sqrt(radius2);
   disks_.for_each_disk(t, [&](int j) {
+    const double reach = radius + std::sqrt(disks_.weight(j));
+    if (j == owner || squared_distance(disks_.center(j), c) > reach * reach * (1 + 1e-9)) return;
     fresh_.clear();
     for (size_t p = first; p < pieces_.size(); ++p)
       if (pieces_[p].alive) fresh_.push_back(static_cast<int>(p));
