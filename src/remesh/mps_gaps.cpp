@@ -163,6 +163,9 @@ void GapSet::extract(const Diagram& lrpd) {
   remote_claims_ = 0;
   given_up_ = 0;
   required_pieces_ = 0;
+  deferred_.clear();
+  deferred_points_.clear();
+  extract_disks_ = disks_.size();
   const SymbolicContext ctx = lrpd.context(mesh_);
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
@@ -208,19 +211,45 @@ void GapSet::extract(const Diagram& lrpd) {
       // Local updates, a polygon of a remote ball that does not cover it: as for a remote claim
       // the darts go to the whole polygon minus the disks reaching t, so that this side gets its
       // own samples where it can; what must close is the part outside the ball.
-      const int created = created_, dropped = dropped_;
-      const size_t first = pieces_.size();
-      required_pieces_ += add_split(polygon, t, i);
-      for (size_t p = first; p < pieces_.size(); ++p) kill(static_cast<int>(p));
-      created_ = created;
-      dropped_ = dropped;
+      // Its required pieces are counted only if asked (required_pieces()).
+      deferred_.push_back({t, i, static_cast<int>(deferred_points_.size()), static_cast<int>(polygon.size())});
+      deferred_points_.insert(deferred_points_.end(), polygon.begin(), polygon.end());
       add_split(polygon, t, -1);
     }
   }
   rebuild();
 }
 
-int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner) {
+int GapSet::required_pieces() {
+  if (deferred_.empty()) return required_pieces_;
+  // Count as extract() would have: the pieces of (polygon minus the cell's ball), split by the
+  // disks reaching t then; then put everything back as it was (pieces, lists, Fenwick tree, counts).
+  const size_t pieces = pieces_.size(), points = points_.size();
+  const double total = total_;
+  const int alive = alive_, created = created_, dropped = dropped_, dead = dead_since_rebuild_;
+  std::vector<double> fenwick;
+  fenwick.swap(fenwick_);  // no Fenwick updates meanwhile
+  std::vector<Vec3> polygon;
+  for (const Deferred& d : deferred_) {
+    const int head = head_[d.triangle];
+    polygon.assign(deferred_points_.begin() + d.first, deferred_points_.begin() + d.first + d.count);
+    required_pieces_ += add_split(polygon, d.triangle, d.cell, extract_disks_);
+    head_[d.triangle] = head;
+    pieces_.resize(pieces);
+    points_.resize(points);
+  }
+  fenwick.swap(fenwick_);
+  total_ = total;
+  alive_ = alive;
+  created_ = created;
+  dropped_ = dropped;
+  dead_since_rebuild_ = dead;
+  deferred_.clear();
+  deferred_points_.clear();
+  return required_pieces_;
+}
+
+int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit) {
   const size_t first = pieces_.size();
   add_outside(polygon, t, owner);
   if (pieces_.size() == first) return 0;
@@ -234,7 +263,7 @@ int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner) {
   const double radius = std::sqrt(radius2);
   disks_.for_each_disk(t, [&](int j) {
     const double reach = radius + std::sqrt(disks_.weight(j));
-    if (j == owner || squared_distance(disks_.center(j), c) > reach * reach * (1 + 1e-9)) return;
+    if (j == owner || j >= disk_limit || squared_distance(disks_.center(j), c) > reach * reach * (1 + 1e-9)) return;
     fresh_.clear();
     for (size_t p = first; p < pieces_.size(); ++p)
       if (pieces_[p].alive) fresh_.push_back(static_cast<int>(p));

@@ -159,8 +159,11 @@ class GapSet {
   int given_up() const { return given_up_; }
   //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
-  //! cell or in a disk reaching it, which is what verify_mps calls maximal.
-  int required_pieces() const { return required_pieces_; }
+  //! cell or in a disk reaching it, which is what verify_mps calls maximal. Those of polygons of
+  //! remote balls (local updates) are counted on the first call after extract() (the sampler asks
+  //! only when a round placed no sample), against the disks of extract()'s time, leaving the
+  //! pieces as they are.
+  int required_pieces();
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -184,8 +187,9 @@ class GapSet {
   void clear();
   //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
   void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
-  //! add_outside, then splits the new pieces by every disk reaching t; returns how many live.
-  int add_split(const std::vector<Vec3>& polygon, int t, int owner);
+  //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
+  //! `disk_limit`); returns how many live.
+  int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
@@ -203,6 +207,14 @@ class GapSet {
   double total_ = 0;
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
+  // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
+  // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.
+  struct Deferred {
+    int triangle, cell, first, count;
+  };
+  std::vector<Deferred> deferred_;
+  std::vector<Vec3> deferred_points_;
+  int extract_disks_ = 0;
   double drop_area_ = 0;
   // Scratch, kept to avoid an allocation per piece. add_outside uses events_, outside_, run_ (its
   // polygon argument may be split_cell_, never one of those); split uses split_polygon_, split_cell_.
