@@ -464,13 +464,15 @@ void GapSet::rebuild() {
   // of two with room to grow).
   std::vector<Piece> pieces;
   std::vector<Vec3> points;
+  pieces.reserve(alive_);
+  points.reserve(points_.size());
   for (const Piece& p : pieces_) head_[p.triangle] = -1;
   total_ = 0;
   for (const Piece& p : pieces_) {
     if (!p.alive) continue;
     Piece q = p;
     q.first = static_cast<int>(points.size());
-    points.insert(points.end(), points_.begin() + p.first, points_.begin() + p.first + p.count);
+    for (int k = 0; k < p.count; ++k) points.push_back(points_[p.first + k]);
     q.next_in_triangle = head_[q.triangle];
     head_[q.triangle] = static_cast<int>(pieces.size());
     pieces.push_back(q);
