@@ -10,16 +10,7 @@
 
 namespace lrvd::mps_detail {
 
-bool inside_disk(const Vec3& p, const Vec3& c, double w) {
-  const double d = squared_distance(p, c);
-  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
-  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
-  // d is so small that the squares may have underflowed.
-  if (d >= 1e-250) {
-    const double margin = 1e-15 * (d + w);
-    if (d - w > margin) return false;
-    if (w - d > margin) return true;
-  }
+bool inside_disk_exact(const Vec3& p, const Vec3& c, double w) {
   return CGAL::sign(exact_power_distance(to_exact(p), Site{c, w, 0})) == CGAL::NEGATIVE;
 }
 
@@ -59,6 +50,8 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
       stamp_(mesh.triangle_count(), 0),
+      vertex_stamp_(mesh.vertex_count(), 0),
+      vertex_inside_(mesh.vertex_count(), 0),
       normals_(mesh.triangle_count()),
       bounds_(mesh.triangle_count()) {
   for (int t = 0; t < mesh.triangle_count(); ++t) {
@@ -71,11 +64,15 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
   }
 }
 
-bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
+inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   // Far outside the triangle's bounding sphere (with room for rounding): no closest point needed.
   const double reach = r + bounds_[t].radius;
   if (squared_distance(p, bounds_[t].center) > reach * reach * (1 + 1e-9)) return false;
-  return ball_meets_triangle(mesh_, t, p, w);
+  // ball_meets_triangle, its corner test inlined (it decides most calls).
+  const Triangle& tri = mesh_.triangle(t);
+  for (int c = 0; c < 3; ++c)
+    if (squared_distance(p, mesh_.position(tri[c])) < w) return true;
+  return triangle_squared_distance(mesh_, t, p) < w;
 }
 
 bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
@@ -141,10 +138,21 @@ int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, c
   triangles_.push_back(t);
   center_next_.push_back(center_head_[t]);
   center_head_[t] = i;
+  if (++vertex_stamp_value_ == 0) {  // wrapped: forget every old test
+    std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
+    vertex_stamp_value_ = 1;
+  }
   for (int s : region) {
     const Triangle& tri = mesh_.triangle(s);
     bool covers = true;  // the ball is convex: it holds the triangle iff it holds its corners
-    for (int c = 0; c < 3 && covers; ++c) covers = inside_disk(mesh_.position(tri[c]), p, w);
+    for (int c = 0; c < 3 && covers; ++c) {
+      const int v = tri[c];  // each corner tested once: the region's triangles share them
+      if (vertex_stamp_[v] != vertex_stamp_value_) {
+        vertex_stamp_[v] = vertex_stamp_value_;
+        vertex_inside_[v] = inside_disk(mesh_.position(v), p, w);
+      }
+      covers = vertex_inside_[v];
+    }
     int& head = covers ? covered_head_[s] : partial_head_[s];
     links_.push_back({i, head});
     head = static_cast<int>(links_.size()) - 1;

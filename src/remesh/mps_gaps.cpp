@@ -60,10 +60,9 @@ double triangle_disk_area(const P2& a, const P2& b, double r2) {
   return area;
 }
 
-// Area of polygon q (convex, in the plane with unit normal n) outside the ball (x, w), and the
-// polygon's area.
-double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double& area) {
-  area = polygon_area(q);
+// Area of polygon q (convex, in the plane with unit normal n, of area `area` = polygon_area(q))
+// outside the ball (x, w).
+double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
   const double h = dot(x - q[0], n);
   const double r2 = w - h * h;
   if (!(r2 > 0)) return area;
@@ -77,6 +76,36 @@ double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, 
     inside += triangle_disk_area({dot(a, u), dot(a, v)}, {dot(b, u), dot(b, v)}, r2);
   }
   return std::max(0.0, area - std::min(std::abs(inside), area));
+}
+
+// A lower bound of the area of polygon q (convex, in the plane with unit normal n, of area `area`)
+// outside the ball (x, w), without the sector formula: where the centre o of the circle (the ball
+// in the plane) lies beyond the line of an edge of q, at distance d from it on the side away from
+// q, q ∩ ball is within the circular segment on q's side, itself within a rectangle of its chord
+// 2√(r² − d²) by its height r − d; d >= r: q misses the ball. The least such bound over the edges
+// is taken (πr² when none applies).
+double uncovered_area_lower_bound(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
+  const double h = dot(x - q[0], n);
+  const double r2 = w - h * h;
+  if (!(r2 > 0)) return area;
+  const double r = std::sqrt(r2);
+  const Vec3 o = x - h * n;
+  Vec3 c{};
+  for (const Vec3& y : q) c += y;
+  c = c / static_cast<double>(q.size());
+  double inside = M_PI * r2;
+  for (size_t k = 0; k < q.size(); ++k) {
+    const Vec3& a = q[k];
+    const Vec3 m = cross(q[(k + 1) % q.size()] - a, n);  // in the plane, across edge k, |m| = its length
+    const double sc = dot(c - a, m), so = dot(o - a, m);
+    if (sc > 0 ? so >= 0 : so <= 0) continue;  // o on q's side of the edge's line (or on it)
+    const double m2 = dot(m, m);
+    if (!(sc * sc > 1e-12 * r2 * m2)) continue;  // the centroid too close to the line to tell q's side
+    const double d = std::abs(so) / std::sqrt(m2);  // o beyond the edge's line, away from q
+    if (d >= r) return area;
+    inside = std::min(inside, 2 * std::sqrt(r2 - d * d) * (r - d));
+  }
+  return area - inside;
 }
 
 // Keeps the part of convex polygon `in` where h <= 0, h affine (given at the vertices).
@@ -100,6 +129,14 @@ void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
 bool ball_meets_polygon(const Vec3* q, int count, const Vec3& x, double w) {
   for (int k = 0; k < count; ++k)
     if (squared_distance(x, q[k]) < w) return true;  // a corner inside: no closest point needed
+  // Far outside the polygon's bounding sphere (with room for rounding): no closest point needed.
+  Vec3 c{};
+  for (int k = 0; k < count; ++k) c += q[k];
+  c = c / static_cast<double>(count);
+  double radius2 = 0;
+  for (int k = 0; k < count; ++k) radius2 = std::max(radius2, squared_distance(c, q[k]));
+  const double reach = std::sqrt(w) + std::sqrt(radius2);
+  if (squared_distance(x, c) > reach * reach * (1 + 1e-9)) return false;
   for (int k = 1; k + 1 < count; ++k)
     if (squared_distance(x, closest_point_on_triangle(x, q[0], q[k], q[k + 1]).point) < w) return true;
   return false;
@@ -126,6 +163,9 @@ void GapSet::extract(const Diagram& lrpd) {
   remote_claims_ = 0;
   given_up_ = 0;
   required_pieces_ = 0;
+  deferred_.clear();
+  deferred_points_.clear();
+  extract_disks_ = disks_.size();
   const SymbolicContext ctx = lrpd.context(mesh_);
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
@@ -133,13 +173,13 @@ void GapSet::extract(const Diagram& lrpd) {
     // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
     if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
-    polygon.clear();
+    polygon.resize(cp.vertex_count);
     bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
     for (int k = 0; k < cp.vertex_count; ++k) {
       const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
-      polygon.push_back(position(q, ctx));
+      polygon[k] = position(q, ctx);
       if (!covered) continue;
-      const double d = squared_distance(polygon.back(), site.p) - site.w;
+      const double d = squared_distance(polygon[k], site.p) - site.w;
       if (std::abs(d) <= kVertexMargin * site.w)
         covered = CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) != CGAL::POSITIVE;
       else
@@ -171,22 +211,59 @@ void GapSet::extract(const Diagram& lrpd) {
       // Local updates, a polygon of a remote ball that does not cover it: as for a remote claim
       // the darts go to the whole polygon minus the disks reaching t, so that this side gets its
       // own samples where it can; what must close is the part outside the ball.
-      const int created = created_, dropped = dropped_;
-      const size_t first = pieces_.size();
-      required_pieces_ += add_split(polygon, t, i);
-      for (size_t p = first; p < pieces_.size(); ++p) kill(static_cast<int>(p));
-      created_ = created;
-      dropped_ = dropped;
+      // Its required pieces are counted only if asked (required_pieces()).
+      deferred_.push_back({t, i, static_cast<int>(deferred_points_.size()), static_cast<int>(polygon.size())});
+      deferred_points_.insert(deferred_points_.end(), polygon.begin(), polygon.end());
       add_split(polygon, t, -1);
     }
   }
   rebuild();
 }
 
-int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner) {
+int GapSet::required_pieces() {
+  if (deferred_.empty()) return required_pieces_;
+  // Count as extract() would have: the pieces of (polygon minus the cell's ball), split by the
+  // disks reaching t then; then put everything back as it was (pieces, lists, Fenwick tree, counts).
+  const size_t pieces = pieces_.size(), points = points_.size();
+  const double total = total_;
+  const int alive = alive_, created = created_, dropped = dropped_, dead = dead_since_rebuild_;
+  std::vector<double> fenwick;
+  fenwick.swap(fenwick_);  // no Fenwick updates meanwhile
+  std::vector<Vec3> polygon;
+  for (const Deferred& d : deferred_) {
+    const int head = head_[d.triangle];
+    polygon.assign(deferred_points_.begin() + d.first, deferred_points_.begin() + d.first + d.count);
+    required_pieces_ += add_split(polygon, d.triangle, d.cell, extract_disks_);
+    head_[d.triangle] = head;
+    pieces_.resize(pieces);
+    points_.resize(points);
+  }
+  fenwick.swap(fenwick_);
+  total_ = total;
+  alive_ = alive;
+  created_ = created;
+  dropped_ = dropped;
+  dead_since_rebuild_ = dead;
+  deferred_.clear();
+  deferred_points_.clear();
+  return required_pieces_;
+}
+
+int GapSet::add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit) {
   const size_t first = pieces_.size();
   add_outside(polygon, t, owner);
+  if (pieces_.size() == first) return 0;
+  // The pieces lie in the polygon (up to rounding): a ball far outside its bounding sphere (with
+  // room for rounding) meets none of them, and split() would leave them alone.
+  Vec3 c{};
+  for (const Vec3& y : polygon) c += y;
+  c = c / static_cast<double>(polygon.size());
+  double radius2 = 0;
+  for (const Vec3& y : polygon) radius2 = std::max(radius2, squared_distance(c, y));
+  const double radius = std::sqrt(radius2);
   disks_.for_each_disk(t, [&](int j) {
+    const double reach = radius + std::sqrt(disks_.weight(j));
+    if (j == owner || j >= disk_limit || squared_distance(disks_.center(j), c) > reach * reach * (1 + 1e-9)) return;
     fresh_.clear();
     for (size_t p = first; p < pieces_.size(); ++p)
       if (pieces_[p].alive) fresh_.push_back(static_cast<int>(p));
@@ -222,12 +299,41 @@ void GapSet::update_after_insert(int sample, const std::vector<int>& region) {
 
 void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
   if (polygon.size() < 3) return;
-  const Vec3 n = mesh_.triangle_normal(t);
+  const Vec3& n = disks_.normal(t);
+  auto keep = [&](const std::vector<Vec3>& q, double area) {
+    Piece piece;
+    piece.triangle = t;
+    piece.owner = owner;
+    piece.first = static_cast<int>(points_.size());
+    piece.count = static_cast<int>(q.size());
+    piece.area = area;
+    piece.alive = true;
+    piece.next_in_triangle = head_[t];
+    for (const Vec3& y : q) points_.push_back(y);
+    const int index = static_cast<int>(pieces_.size());
+    pieces_.push_back(piece);
+    head_[t] = index;
+    ++alive_;
+    ++created_;
+    total_ += area;
+    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
+  };
   // One piece: bounded by q, gap = q minus the owner's disk; halved while its polygon is loose.
   auto add_piece = [&](const std::vector<Vec3>& q, auto&& self, int depth) -> void {
-    double area = 0;
-    const double gap = owner < 0 ? polygon_area(q) : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
-    if (owner < 0) area = gap;
+    const double area = polygon_area(q);
+    // Whether the piece is kept as it is (neither rounding noise nor loose) is decided by the
+    // exact area outside the owner's disk (sector formula), unless a lower bound of it, less a
+    // margin far above the formula's rounding error (~1e-14·r²), already decides: then the piece is
+    // kept as the formula would keep it, without it (GapSet::gap_area() computes it when asked).
+    if (owner >= 0) {
+      const double lower = uncovered_area_lower_bound(q, n, disks_.center(owner), disks_.weight(owner), area) -
+                           1e-7 * disks_.weight(owner);
+      if (lower > drop_area_ && lower > kNoiseRatio * area && (lower >= kLooseRatio * area || depth >= kMaxBisections)) {
+        keep(q, area);
+        return;
+      }
+    }
+    const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
     if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
       if (gap > 0) ++dropped_;
       return;
@@ -247,23 +353,7 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
       if (!half.empty()) self(half, self, depth + 1);
       return;
     }
-    Piece piece;
-    piece.triangle = t;
-    piece.owner = owner;
-    piece.first = static_cast<int>(points_.size());
-    piece.count = static_cast<int>(q.size());
-    piece.area = area;
-    piece.gap_area = gap;
-    piece.alive = true;
-    piece.next_in_triangle = head_[t];
-    points_.insert(points_.end(), q.begin(), q.end());
-    const int index = static_cast<int>(pieces_.size());
-    pieces_.push_back(piece);
-    head_[t] = index;
-    ++alive_;
-    ++created_;
-    total_ += area;
-    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
+    keep(q, area);
   };
 
   if (owner < 0) {
@@ -286,12 +376,13 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     const Vec3& a = polygon[k];
     const Vec3& b = polygon[(k + 1) % m];
     events.push_back({a, out[k] ? 1 : 0});
+    const bool oa = out[k], ob = out[(k + 1) % m];
+    if (!oa && !ob) continue;  // both ends inside: the edge is (the disk is convex)
     const Vec3 d = b - a, ax = a - x;
     const double A = dot(d, d), B = dot(ax, d), C = dot(ax, ax) - w;
-    if (!(A > 0)) continue;
+    if (!(A > 0) || (oa && ob && !(B * B - A * C > 0))) continue;  // outside, not crossing the circle
     const double sq = std::sqrt(std::max(0.0, B * B - A * C));
     const double s1 = std::clamp((-B - sq) / A, 0.0, 1.0), s2 = std::clamp((-B + sq) / A, 0.0, 1.0);
-    const bool oa = out[k], ob = out[(k + 1) % m];
     if (oa && !ob) {
       events.push_back({a + s1 * d, 2});
     } else if (!oa && ob) {
@@ -373,13 +464,15 @@ void GapSet::rebuild() {
   // of two with room to grow).
   std::vector<Piece> pieces;
   std::vector<Vec3> points;
+  pieces.reserve(alive_);
+  points.reserve(points_.size());
   for (const Piece& p : pieces_) head_[p.triangle] = -1;
   total_ = 0;
   for (const Piece& p : pieces_) {
     if (!p.alive) continue;
     Piece q = p;
     q.first = static_cast<int>(points.size());
-    points.insert(points.end(), points_.begin() + p.first, points_.begin() + p.first + p.count);
+    for (int k = 0; k < p.count; ++k) points.push_back(points_[p.first + k]);
     q.next_in_triangle = head_[q.triangle];
     head_[q.triangle] = static_cast<int>(pieces.size());
     pieces.push_back(q);
@@ -441,8 +534,16 @@ bool GapSet::draw(Random& random, Vec3& point, int& triangle, int& piece) {
 
 double GapSet::gap_area() const {
   double sum = 0;
-  for (const Piece& p : pieces_)
-    if (p.alive) sum += p.gap_area;
+  std::vector<Vec3> q;
+  for (const Piece& p : pieces_) {
+    if (!p.alive) continue;
+    if (p.owner < 0) {
+      sum += p.area;
+      continue;
+    }
+    q.assign(points_.begin() + p.first, points_.begin() + p.first + p.count);
+    sum += uncovered_area(q, disks_.normal(p.triangle), disks_.center(p.owner), disks_.weight(p.owner), p.area);
+  }
   return sum;
 }
 

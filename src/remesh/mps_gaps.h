@@ -15,9 +15,23 @@ namespace lrvd::mps_detail {
 //! Two triangles "face alike" when the cosine of the angle between their normals exceeds this.
 constexpr double kFacingCosine = 0.0;
 
+//! inside_disk decided with rational arithmetic (its slow path).
+bool inside_disk_exact(const Vec3& p, const Vec3& c, double w);
+
 //! |p - c|² < w, decided exactly: doubles when the rounding error cannot change the answer,
-//! rational arithmetic otherwise.
-bool inside_disk(const Vec3& p, const Vec3& c, double w);
+//! rational arithmetic otherwise. Inline: the double test decides almost every call.
+inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
+  const double d = squared_distance(p, c);
+  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
+  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
+  // d is so small that the squares may have underflowed.
+  if (d >= 1e-250) {
+    const double margin = 1e-15 * (d + w);
+    if (d - w > margin) return false;
+    if (w - d > margin) return true;
+  }
+  return inside_disk_exact(p, c, w);
+}
 
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
 //! ball B(x, r) around a point of triangle t: the triangles that the ball meets and that face the
@@ -48,6 +62,8 @@ class DiskIndex {
   const std::vector<int>& met(const Vec3& p, int t, double w);
   //! Triangles s and t face the same way (normals at less than 90°).
   bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > kFacingCosine; }
+  //! Unit normal of triangle t (mesh.triangle_normal(t)).
+  const Vec3& normal(int t) const { return normals_[t]; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
   //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
@@ -89,6 +105,9 @@ class DiskIndex {
   std::vector<Link> links_;
   std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
   std::uint32_t stamp_value_ = 0;
+  std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
+  std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
+  std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_;
   std::vector<Vec3> normals_;  // unit normal per triangle
   std::vector<Sphere> bounds_;  // per triangle: centroid and the distance to its farthest corner
@@ -140,8 +159,11 @@ class GapSet {
   int given_up() const { return given_up_; }
   //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
-  //! cell or in a disk reaching it, which is what verify_mps calls maximal.
-  int required_pieces() const { return required_pieces_; }
+  //! cell or in a disk reaching it, which is what verify_mps calls maximal. Those of polygons of
+  //! remote balls (local updates) are counted on the first call after extract() (the sampler asks
+  //! only when a round placed no sample), against the disks of extract()'s time, leaving the
+  //! pieces as they are.
+  int required_pieces();
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -157,7 +179,6 @@ class GapSet {
     int owner = -1;
     int first = 0, count = 0;  // vertices in points_
     double area = 0;           // area of Q: the draw weight
-    double gap_area = 0;
     int next_in_triangle = -1;
     int refused = 0;
     bool alive = false;
@@ -166,8 +187,9 @@ class GapSet {
   void clear();
   //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
   void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
-  //! add_outside, then splits the new pieces by every disk reaching t; returns how many live.
-  int add_split(const std::vector<Vec3>& polygon, int t, int owner);
+  //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
+  //! `disk_limit`); returns how many live.
+  int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
@@ -185,6 +207,14 @@ class GapSet {
   double total_ = 0;
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
+  // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
+  // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.
+  struct Deferred {
+    int triangle, cell, first, count;
+  };
+  std::vector<Deferred> deferred_;
+  std::vector<Vec3> deferred_points_;
+  int extract_disks_ = 0;
   double drop_area_ = 0;
   // Scratch, kept to avoid an allocation per piece. add_outside uses events_, outside_, run_ (its
   // polygon argument may be split_cell_, never one of those); split uses split_polygon_, split_cell_.
