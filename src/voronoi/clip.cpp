@@ -152,18 +152,18 @@ void CellClipper::append_intersection(const LocalVertex& u, const LocalVertex& w
   throw std::logic_error("intersect: polygon edge is on no mesh edge and its ends share no bisector");
 }
 
-void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
+void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
                        std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) {
   const Triangle& tri = mesh.triangle(t);
-  const int m = static_cast<int>(labels.size());
   if (m == 1) {  // the whole triangle
     for (int c = 0; c < 3; ++c) verts.push_back(SymbolicVertex::mesh_vertex(tri[c]));
     polygons.push_back({labels[0], static_cast<int>(verts.size()), 7, 7});
     return;
   }
   if (m > kMaxMemoLabels) {
-    for (int k : labels) {
-      clip_triangle(mesh, t, k, labels.data(), m, ctx, fallback_polygon_, fallback_scratch_);
+    for (int a = 0; a < m; ++a) {
+      const int k = labels[a];
+      clip_triangle(mesh, t, k, labels, m, ctx, fallback_polygon_, fallback_scratch_);
       if (fallback_polygon_.empty()) continue;
       const PolygonEdges pe = polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri);
       verts.insert(verts.end(), fallback_polygon_.begin(), fallback_polygon_.end());
@@ -173,7 +173,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const std::vector<int>& l
     return;
   }
   triangle_ = &tri;
-  labels_ = labels.data();
+  labels_ = labels;
   m_ = m;
   ctx_ = ctx;
   if (++epoch_ == kMaxEpoch) {  // the stamps would wrap around: forget them all

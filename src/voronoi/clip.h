@@ -75,9 +75,9 @@ struct TrianglePolygon {
 //! (a corner's answer for (l, k) is the negation of its answer for (k, l)).
 class CellClipper {
  public:
-  //! Appends, for each cell k of `labels` (sorted, distinct) in order whose polygon in triangle t
-  //! is not empty, its vertices to `verts` and the polygon to `polygons`.
-  void clip(const SurfaceMesh& mesh, int t, const std::vector<int>& labels, const SymbolicContext& ctx,
+  //! Appends, for each cell k of `labels` (m of them, sorted, distinct) in order whose polygon in
+  //! triangle t is not empty, its vertices to `verts` and the polygon to `polygons`.
+  void clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
             std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts);
 
  private:

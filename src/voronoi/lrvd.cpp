@@ -9,6 +9,7 @@
 #include <limits>
 #include <tuple>
 
+#include <boost/container/small_vector.hpp>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -26,14 +27,19 @@ constexpr int kParallelClips = 256;
 // How many triangles ahead the passes over the triangles prefetch their polygon lists.
 constexpr int kPrefetchDistance = 4;
 
-bool contains(const std::vector<int>& sorted, int x) { return std::binary_search(sorted.begin(), sorted.end(), x); }
-bool insert_sorted(std::vector<int>& sorted, int x) {
+template <class Sorted>
+bool contains(const Sorted& sorted, int x) {
+  return std::binary_search(sorted.begin(), sorted.end(), x);
+}
+template <class Sorted>
+bool insert_sorted(Sorted& sorted, int x) {
   auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
   if (it != sorted.end() && *it == x) return false;
   sorted.insert(it, x);
   return true;
 }
-bool erase_sorted(std::vector<int>& sorted, int x) {
+template <class Sorted>
+bool erase_sorted(Sorted& sorted, int x) {
   auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
   if (it == sorted.end() || *it != x) return false;
   sorted.erase(it);
@@ -50,12 +56,14 @@ struct VertexEntry {
   }
 };
 
-// Polygons of one triangle during propagation.
+// Polygons of one triangle during propagation. Most triangles have at most four candidates: their
+// labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
+// as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there).
 struct TrianglePolygons {
-  std::vector<int> labels;     // candidate cells L(t), sorted
+  boost::container::small_vector<int, 4> labels;  // candidate cells L(t), sorted
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
-  std::vector<TrianglePolygon> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
+  boost::container::small_vector<TrianglePolygon, 4> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
   std::vector<SymbolicVertex> verts;
 
   //! Empties every list but keeps its storage for the next diagram.
@@ -157,7 +165,6 @@ class LrvdBuilder {
       // The corners' labels, sorted and distinct, as add_label() would leave them.
       TrianglePolygons& st = state_[t];
       st.reset();
-      st.labels.reserve(4);  // one allocation on a fresh workspace instead of one per growth step
       const Triangle& tri = mesh_.triangle(t);
       int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
       if (a > b) std::swap(a, b);
@@ -185,15 +192,16 @@ class LrvdBuilder {
   // t's polygons (the buffers belong to the thread), so triangles can be clipped in parallel.
   void clip(int t) const {
     thread_local CellClipper clipper;
+    thread_local std::vector<TrianglePolygon> polygons;
     TrianglePolygons& st = state_[t];
-    st.polygons.clear();
     st.verts.clear();
-    // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow these
-    // lists step by step, triangle by triangle: most of its allocations.
-    const std::size_t m = st.labels.size();
-    st.polygons.reserve(m);
+    // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
+    // vertex list step by step, triangle by triangle.
+    const int m = static_cast<int>(st.labels.size());
     st.verts.reserve(m == 1 ? 3 : 4 * m + 4);
-    clipper.clip(mesh_, t, st.labels, ctx_, st.polygons, st.verts);
+    polygons.clear();
+    clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts);
+    st.polygons.assign(polygons.begin(), polygons.end());
     clipped_[t] = 1;
   }
 
