@@ -170,9 +170,10 @@ class LrvdBuilder {
       if (a > b) std::swap(a, b);
       if (b > c) std::swap(b, c);
       if (a > b) std::swap(a, b);
-      st.labels.push_back(a);
-      if (b != a) st.labels.push_back(b);
-      if (c != b) st.labels.push_back(c);
+      int distinct[3] = {a, 0, 0}, n = 1;
+      if (b != a) distinct[n++] = b;
+      if (c != b) distinct[n++] = c;
+      st.labels.assign(distinct, distinct + n);
     }
     home_.resize(samples_.size());
     for (int i = 0; i < samples_.size(); ++i) {
