@@ -106,14 +106,38 @@ TEST_CASE("A CVT given the diagram of its start computes no diagram twice and en
   REQUIRE(reused.samples.positions == fresh.samples.positions);
 }
 
+TEST_CASE("A CVT that keeps samples to their sheets does not drain one side of a thin wall", "[cvt]") {
+  // folded_sheet: a U of a 0.005-thick sheet whose walls face each other 0.02 apart. The cells of the
+  // outer side wrap the bend; their centroids lie in the gap, closest to the inner side: projected
+  // there, the outer side near the bend loses its samples (the dual's chords then cross).
+  const SurfaceMesh input = make_stress_mesh("folded_sheet", 0.5);
+  const SurfaceMesh mesh = for_samples(input, 300);
+  const Samples initial = sample_uniform(mesh, 300, 1);
+  auto near_bend = [](const Samples& s) {
+    std::pair<int, int> outer_inner{0, 0};
+    for (const Vec3& p : s.positions)
+      if (p[0] > 0.4 && p[0] <= 0.5) ++(std::abs(p[1]) > 0.0125 ? outer_inner.first : outer_inner.second);
+    return outer_inner;
+  };
+  CvtOptions options;
+  const auto [outer, inner] = near_bend(optimize_cvt(mesh, initial, options).samples);
+  options.keep_to_sheets = true;
+  const auto [kept_outer, kept_inner] = near_bend(optimize_cvt(mesh, initial, options).samples);
+  INFO("outer/inner near the bend: " << outer << "/" << inner << ", kept to sheets " << kept_outer << "/" << kept_inner);
+  REQUIRE(2 * outer < inner);
+  REQUIRE(3 * kept_outer >= 2 * kept_inner);
+}
+
 TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's topology at low N", "[cvt][remesh]") {
-  // The stress meshes where the remesh is valid today; folded_sheet (n = 300 at this resolution)
-  // and comb (n = 100) are open problems, listed in docs/results.md ("Stress meshes").
+  // The stress meshes where the remesh is valid today; comb (n = 100: too few samples for three
+  // cells around every finger) is an open problem, listed in docs/results.md ("Stress meshes").
+  // folded_sheet 300 is valid through the second run that keeps samples on their own sheets
+  // (RemeshOptions::keep_to_sheets_retry).
   const std::pair<const char*, int> cases[] = {{"thin_plate", 100},     {"thin_plate", 300}, {"open_cup", 100},
                                                {"open_cup", 300},       {"open_cup", 1000},
                                                {"flat_ellipsoid", 100}, {"flat_ellipsoid", 300}, {"knot_tube", 100},
                                                {"knot_tube", 300},      {"comb", 300},       {"thin_tube", 100},
-                                               {"thin_tube", 300},      {"folded_sheet", 100},
+                                               {"thin_tube", 300},      {"folded_sheet", 100}, {"folded_sheet", 300},
                                                {"interpenetrating_spheres", 100}, {"interpenetrating_spheres", 300}};
   for (const auto& [name, n] : cases) {
     const SurfaceMesh input = make_stress_mesh(name, 0.5);

@@ -22,16 +22,49 @@ namespace lrvd {
 
 namespace {
 
+// The mesh triangles of each sample's cell in a diagram: where a sample may be projected when the
+// closest point of the whole mesh lies on a sheet facing the other way (see `project`).
+using CellTriangles = std::vector<std::vector<int>>;
+CellTriangles cell_triangles(const Diagram& diagram) {
+  CellTriangles tris(diagram.sample_count);
+  for (const CellPolygon& poly : diagram.polygons)
+    if (tris[poly.cell].empty() || tris[poly.cell].back() != poly.triangle) tris[poly.cell].push_back(poly.triangle);
+  for (std::vector<int>& t : tris) {
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+  }
+  return tris;
+}
+
 // Records the closest triangle of every point; with `onto_surface`, also moves the point there.
 // The samples' triangles before the move are the search hints (the points move little).
+// With `cells` (the triangles of each sample's cell), a point whose closest triangle is outside
+// its cell and faces the other way than the closest triangle of its cell (the other side of a
+// thin wall or of a narrow gap: the centroid of a cell wrapping a thin part lies inside it) is
+// projected into its cell instead: a sample does not jump to another sheet.
 void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Samples& samples,
-             bool onto_surface = true) {
+             bool onto_surface = true, const SurfaceMesh* mesh = nullptr, const CellTriangles* cells = nullptr) {
   samples.positions.resize(points.size());
   samples.triangles.resize(points.size(), -1);
   samples.barycentric.resize(points.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
-      const ClosestPoint c = index.query(points[i], samples.triangles[i]);
+      ClosestPoint c = index.query(points[i], samples.triangles[i]);
+      if (cells && c.triangle >= 0 && i < cells->size() && !(*cells)[i].empty() &&
+          !std::binary_search((*cells)[i].begin(), (*cells)[i].end(), c.triangle)) {
+        ClosestPoint own;
+        own.distance = std::numeric_limits<double>::infinity();
+        for (int t : (*cells)[i]) {
+          const Triangle& tri = mesh->triangle(t);
+          ClosestPoint q = closest_point_on_triangle(points[i], mesh->position(tri[0]), mesh->position(tri[1]),
+                                                     mesh->position(tri[2]));
+          if (q.distance < own.distance) {
+            own = q;
+            own.triangle = t;
+          }
+        }
+        if (own.triangle >= 0 && dot(mesh->triangle_normal(own.triangle), mesh->triangle_normal(c.triangle)) < 0) c = own;
+      }
       samples.positions[i] = onto_surface ? c.point : points[i];
       samples.triangles[i] = c.triangle;
       samples.barycentric[i] = c.barycentric;
@@ -126,7 +159,8 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
                                                                    : std::min(options.lloyd_warmup, options.iterations);
   for (int step = 0; step < lloyd_steps; ++step) {
     const double before = current.energy;
-    project(index, current.cells.centroid, samples);
+    const CellTriangles cells = options.keep_to_sheets ? cell_triangles(current.diagram) : CellTriangles();
+    project(index, current.cells.centroid, samples, true, &mesh, &cells);
     current = cvt_energy(mesh, samples, options.diagram, density);
     ++result.diagram_evaluations;
     ++iteration;
@@ -145,11 +179,13 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     int lbfgs_evaluations = 0;
     // The solver's first call is at the starting point, whose energy and gradient are `current`.
     const std::vector<Vec3> start_points = samples.positions;
+    // The sites keep to the sheets of their cells at the start of the run.
+    const CellTriangles cells = options.keep_to_sheets ? cell_triangles(current.diagram) : CellTriangles();
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
       ++lbfgs_evaluations;
       const std::vector<Vec3> points = to_points(x);
       const bool at_start = lbfgs_evaluations == 1 && points == start_points;
-      project(index, points, samples, false);
+      project(index, points, samples, false, &mesh, &cells);
       const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh, samples, options.diagram, density);
       const CvtEnergy& e = at_start ? current : evaluated;
       if (!at_start) ++result.diagram_evaluations;
@@ -185,7 +221,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
       lbfgs_iterations = lbfgs_evaluations;
     }
     iteration += lbfgs_iterations;
-    project(index, best.positions, samples);
+    project(index, best.positions, samples, true, &mesh, &cells);
     current = cvt_energy(mesh, samples, options.diagram, density);
     ++result.diagram_evaluations;
     report(current.energy);

@@ -23,6 +23,11 @@ struct CvtOptions {
   double relative_energy_change = 1e-9;         //!< stop when F changes less than this, relatively
   CvtDensity density = CvtDensity::Uniform;
   std::vector<double> triangle_density;         //!< if not empty: ρ per mesh triangle, overrides `density`
+  //! When a sample's new position (a centroid, or an L-BFGS site) is closest to a triangle outside
+  //! its cell that faces the other way than its cell there (across a thin wall or a narrow gap),
+  //! the sample goes to the closest point of its own cell instead (remesh/remesh.h: the repair
+  //! rounds).
+  bool keep_to_sheets = false;
   //! Called after every iteration with (iteration, energy); for progress output.
   std::function<void(int, double)> on_iteration;
 };

@@ -150,19 +150,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                         const RemeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const bool components_cross = components_intersect(reference);
-  RemeshResult result;
-  const ClosestPointIndex index(mesh);  // one for the first CVT and every repair round
-  result.cvt = optimize_cvt(mesh, initial, options.cvt, nullptr, &index);
-  result.total_iterations = result.cvt.iterations;
-  result.diagram_evaluations = result.cvt.diagram_evaluations;
-  result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-  CvtOptions again = options.cvt;
-  again.iterations = options.repair_iterations;
-  again.lloyd_warmup = 1;
-  if (again.triangle_density.empty())
-    again.triangle_density = options.cvt.density == CvtDensity::Curvature
-                                 ? curvature_density(mesh, initial.size())
-                                 : std::vector<double>(mesh.triangle_count(), 1.0);
+  const ClosestPointIndex index(mesh);  // one for every CVT and repair round
   // A dual whose only defect is crossings is fitted and untangled; the crossings left, if any, are
   // the ones to act on.
   auto settle = [&](RemeshResult& r, DualDefects& d) {
@@ -176,34 +164,71 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       for (int u : {s, t}) left.insert(r.dual.triangles[u].begin(), r.dual.triangles[u].end());
     d.crossing.assign(left.begin(), left.end());
   };
-  // Each round raises the density where the worst kind of defect is (topology first, crossings
-  // next); the state with the fewest defects is the result.
-  DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
-  settle(result, defects);
-  RemeshResult best = result;
-  DualDefects best_defects = defects;
-  for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
-    raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
-    ++result.repair_rounds;
-    // The diagram of the samples is the last one computed: the density changed, the diagram not.
-    result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram, &index);
-    result.total_iterations += result.cvt.iterations;
-    result.diagram_evaluations += result.cvt.diagram_evaluations;
+  // The first CVT, then rounds that raise the density where the worst kind of defect is (topology
+  // first, crossings next); the state with the fewest defects is the result, with the counters of
+  // the whole run.
+  auto optimise_and_repair = [&](bool keep_to_sheets, DualDefects& best_defects) {
+    CvtOptions first = options.cvt;
+    first.keep_to_sheets = keep_to_sheets;
+    RemeshResult result;
+    result.cvt = optimize_cvt(mesh, initial, first, nullptr, &index);
+    result.total_iterations = result.cvt.iterations;
+    result.diagram_evaluations = result.cvt.diagram_evaluations;
     result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-    defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
-    result.fitted = false;
-    result.fit = {};
-    result.untangle = {};
+    CvtOptions again = first;
+    again.iterations = options.repair_iterations;
+    again.lloyd_warmup = 1;
+    if (again.triangle_density.empty())
+      again.triangle_density = options.cvt.density == CvtDensity::Curvature
+                                   ? curvature_density(mesh, initial.size())
+                                   : std::vector<double>(mesh.triangle_count(), 1.0);
+    DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
     settle(result, defects);
-    if (defects.fewer_than(best_defects)) {
-      best_defects = defects;
-      best = result;
+    RemeshResult best = result;
+    best_defects = defects;
+    for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
+      raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
+      ++result.repair_rounds;
+      // The diagram of the samples is the last one computed: the density changed, the diagram not.
+      result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram, &index);
+      result.total_iterations += result.cvt.iterations;
+      result.diagram_evaluations += result.cvt.diagram_evaluations;
+      result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
+      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+      result.fitted = false;
+      result.fit = {};
+      result.untangle = {};
+      settle(result, defects);
+      if (defects.fewer_than(best_defects)) {
+        best_defects = defects;
+        best = result;
+      }
+    }
+    best.repair_rounds = result.repair_rounds;
+    best.total_iterations = result.total_iterations;
+    best.diagram_evaluations = result.diagram_evaluations;
+    return best;
+  };
+  DualDefects defects;
+  RemeshResult result = optimise_and_repair(false, defects);
+  // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
+  // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
+  // surface to it is often on the other side: samples drain from one side to the other there).
+  if (!defects.empty() && options.keep_to_sheets_retry) {
+    DualDefects again_defects;
+    RemeshResult again = optimise_and_repair(true, again_defects);
+    again.repair_rounds += result.repair_rounds;
+    again.total_iterations += result.total_iterations;
+    again.diagram_evaluations += result.diagram_evaluations;
+    again.kept_to_sheets = true;
+    if (again_defects.fewer_than(defects)) {
+      result = std::move(again);
+    } else {
+      result.repair_rounds = again.repair_rounds;
+      result.total_iterations = again.total_iterations;
+      result.diagram_evaluations = again.diagram_evaluations;
     }
   }
-  best.repair_rounds = result.repair_rounds;
-  best.total_iterations = result.total_iterations;
-  best.diagram_evaluations = result.diagram_evaluations;
-  result = std::move(best);
   if (!result.fitted) {
     if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
     if (options.untangle) {

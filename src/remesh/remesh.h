@@ -27,6 +27,9 @@ struct RemeshOptions {
   //! vertices with each of these reaches (UntangleOptions::max_move) in turn, the fewest crossings
   //! kept: vertices move further only where the repair rounds could not do without it
   std::vector<double> final_max_moves = {0.75, 1.0};
+  //! when the run (first CVT and repair rounds) ends with defects, run it again from the same
+  //! samples with CvtOptions::keep_to_sheets, and keep the run with fewer defects
+  bool keep_to_sheets_retry = true;
 };
 
 struct RemeshResult {
@@ -39,6 +42,7 @@ struct RemeshResult {
   UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
   bool fitted = false;      //!< `dual` is fitted and untangled already
   DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
+  bool kept_to_sheets = false;  //!< the result is the second run's (RemeshOptions::keep_to_sheets_retry)
   double time_s = 0;
 };
 
@@ -79,7 +83,10 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! cells and their neighbours and the CVT runs again, which moves samples from elsewhere into the
 //! thin part; a state whose only defect is crossings is fitted and untangled first, and the loop
 //! stops when that leaves none. The result is the state with the fewest defects (the caller
-//! verifies it), fitted to the surface under the CVT's quality floor (fit_to_surface) unless
+//! verifies it). If it still has defects, the whole run is repeated with every sample kept to its
+//! own sheet (CvtOptions::keep_to_sheets: the centroid of a cell wrapping a thin wall must not send
+//! its sample across the wall or a narrow gap) and the run with fewer defects is kept; the counters
+//! cover both runs. The result is fitted to the surface under the CVT's quality floor (fit_to_surface) unless
 //! switched off; if crossings are left in it, it is untangled again from its fitted vertices with
 //! the longer reaches of `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
