@@ -97,6 +97,7 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
     REQUIRE(j["quality"].contains(key));
   REQUIRE(j["verification"]["passed"] == true);
   for (const char* key : {"iterations", "energy", "time_s"}) REQUIRE(j.contains(key));
+  REQUIRE(j["kept_to_sheets"] == false);  // valid at the first run: no second run with samples kept to sheets
   // The quality command measures the written file on its own.
   const std::string quality = kOut + "quality.json";
   REQUIRE(run("quality " + kData + "/ellipsoid.off " + out + " --report " + quality).status == 0);
@@ -111,6 +112,7 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   REQUIRE(r.status == 3);
   const json j = read_json(report);
   REQUIRE(j["verification"]["passed"] == false);
+  REQUIRE(j["kept_to_sheets"].is_boolean());  // both runs failed; the one with fewer defects is written
   std::ifstream written(out);
   REQUIRE(written.good());
 }

@@ -77,6 +77,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["iterations"] = remeshed.total_iterations;
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = remeshed.diagram_evaluations;
+  // The repair ended with defects and the second run, samples kept to their own sheets, did better.
+  report["kept_to_sheets"] = remeshed.kept_to_sheets;
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.
   const double diagonal = input.loaded.mesh.bounding_box().diagonal();
