@@ -127,6 +127,21 @@ class OffsetBalancer {
     return largest;
   }
 
+  // The unit normal of vertex v (its triangles' area-weighted normals) and the shortest edge of
+  // its triangles; false when either is degenerate.
+  bool vertex_frame(int v, Vec3& normal, double& shortest) const {
+    normal = Vec3{0, 0, 0};
+    shortest = INFINITY;
+    for (int t : incident_[v]) {
+      const Triangle& f = dual_.triangles[t];
+      normal += cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
+      for (int e = 0; e < 3; ++e) shortest = std::min(shortest, distance(dual_.positions[f[e]], dual_.positions[f[(e + 1) % 3]]));
+    }
+    if (!(norm(normal) > 0) || !(shortest > 0)) return false;
+    normal = normal / norm(normal);
+    return true;
+  }
+
   // One sweep of coordinate descent on the linearised distances: each vertex tries a few directions
   // (its normal; the steepest descent of its samples' Σ|d|^p, which leaves the normal at a tip the
   // vertex must reach sideways; that descent's tangential part) and keeps the best accepted step.
@@ -134,15 +149,9 @@ class OffsetBalancer {
     const int n = static_cast<int>(dual_.positions.size());
     for (int v = 0; v < n; ++v) {
       if (incident_[v].empty() || first_[v] == first_[v + 1]) continue;
-      Vec3 normal{0, 0, 0};
-      double shortest = INFINITY;
-      for (int t : incident_[v]) {
-        const Triangle& f = dual_.triangles[t];
-        normal += cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
-        for (int e = 0; e < 3; ++e) shortest = std::min(shortest, distance(dual_.positions[f[e]], dual_.positions[f[(e + 1) % 3]]));
-      }
-      if (!(norm(normal) > 0) || !(shortest > 0)) continue;
-      normal = normal / norm(normal);
+      Vec3 normal;
+      double shortest;
+      if (!vertex_frame(v, normal, shortest)) continue;
       double scale = 0;
       for (int k = first_[v]; k < first_[v + 1]; ++k) scale = std::max(scale, std::abs(sample(entries_[k].sample).d));
       if (!(scale > 0) || scale < floor) continue;
@@ -370,15 +379,9 @@ class OffsetBalancer {
         for (int t : incident_[v])
           for (int u : dual_.triangles[t])
             if (std::find(group.begin(), group.end(), u) == group.end()) group.push_back(u);
-      Vec3 normal{0, 0, 0};
-      double shortest = INFINITY;
-      for (int t : incident_[v]) {
-        const Triangle& f = dual_.triangles[t];
-        normal += cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
-        for (int e = 0; e < 3; ++e) shortest = std::min(shortest, distance(dual_.positions[f[e]], dual_.positions[f[(e + 1) % 3]]));
-      }
-      if (!(norm(normal) > 0) || !(shortest > 0)) continue;
-      normal = normal / norm(normal);
+      Vec3 normal;
+      double shortest;
+      if (!vertex_frame(v, normal, shortest)) continue;
       // The group's samples, each with the weight of its moving corners (the ring's scaled by its share).
       touched.clear();
       for (size_t g = 0; g < group.size(); ++g)
