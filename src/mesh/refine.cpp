@@ -5,6 +5,7 @@
 #include <numeric>
 #include <queue>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -25,7 +26,9 @@ uint64_t edge_key(int a, int b) {
 
 // Undirected edge -> the one or two triangles using it: open addressing with linear probing (the
 // refinement of a large mesh makes millions of look-ups, and a node per edge would dominate).
-// Erased slots become tombstones; the table doubles when live + dead slots pass half of it.
+// A slot holds the key and its users together: a look-up in a table far larger than the cache
+// is then one miss, not two. Erased slots become tombstones; the table doubles when live + dead
+// slots pass half of it.
 class EdgeTable {
  public:
   using Users = std::array<int, 2>;
@@ -34,28 +37,27 @@ class EdgeTable {
   //! The users of the edge, nullptr if it is not in the table.
   Users* find(uint64_t key) {
     for (size_t i = slot(key);; i = (i + 1) & mask_) {
-      if (keys_[i] == key) return &users_[i];
-      if (keys_[i] == kEmpty) return nullptr;
+      if (slots_[i].key == key) return &slots_[i].users;
+      if (slots_[i].key == kEmpty) return nullptr;
     }
   }
   //! The users of the edge, inserted as {t, -1} if it was not there (then `fresh` is true).
   Users& emplace(uint64_t key, int t, bool& fresh) {
-    if (2 * (live_ + dead_ + 1) > keys_.size()) rehash(keys_.size() * (live_ + 1 > keys_.size() / 4 ? 2 : 1));
+    if (2 * (live_ + dead_ + 1) > slots_.size()) rehash(slots_.size() * (live_ + 1 > slots_.size() / 4 ? 2 : 1));
     size_t tomb = SIZE_MAX;
     for (size_t i = slot(key);; i = (i + 1) & mask_) {
-      if (keys_[i] == key) {
+      if (slots_[i].key == key) {
         fresh = false;
-        return users_[i];
+        return slots_[i].users;
       }
-      if (keys_[i] == kDead && tomb == SIZE_MAX) tomb = i;
-      if (keys_[i] == kEmpty) {
+      if (slots_[i].key == kDead && tomb == SIZE_MAX) tomb = i;
+      if (slots_[i].key == kEmpty) {
         const size_t at = tomb != SIZE_MAX ? tomb : i;
         if (at == tomb) --dead_;
-        keys_[at] = key;
-        users_[at] = {t, -1};
+        slots_[at] = {key, {t, -1}};
         ++live_;
         fresh = true;
-        return users_[at];
+        return slots_[at].users;
       }
     }
   }
@@ -63,40 +65,39 @@ class EdgeTable {
   //! f(a, b, users) for every edge (a, b), a < b, in the table's order.
   template <class F>
   void for_each(F&& f) const {
-    for (size_t i = 0; i < keys_.size(); ++i)
-      if (keys_[i] != kEmpty && keys_[i] != kDead)
-        f(static_cast<int>(keys_[i] >> 32), static_cast<int>(keys_[i] & 0xffffffffu), users_[i]);
+    for (const Slot& s : slots_)
+      if (s.key != kEmpty && s.key != kDead)
+        f(static_cast<int>(s.key >> 32), static_cast<int>(s.key & 0xffffffffu), s.users);
   }
   //! Removes the edge whose users `found` (from find) points at.
   void erase(Users* found) {
-    const size_t i = static_cast<size_t>(found - users_.data());
-    keys_[i] = kDead;
+    reinterpret_cast<Slot*>(reinterpret_cast<char*>(found) - offsetof(Slot, users))->key = kDead;
     --live_;
     ++dead_;
   }
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t{0}, kDead = kEmpty - 1;  // no edge (a < b) has these keys
+  struct Slot {
+    uint64_t key;
+    Users users;
+  };
   size_t slot(uint64_t key) const { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
   void rehash(size_t capacity) {
     size_t size = 64;
     while (size < capacity) size *= 2;
-    std::vector<uint64_t> keys(size, kEmpty);
-    std::vector<Users> users(size);
+    std::vector<Slot> slots(size, Slot{kEmpty, {-1, -1}});
     mask_ = size - 1;
-    for (size_t i = 0; i < keys_.size(); ++i) {
-      if (keys_[i] == kEmpty || keys_[i] == kDead) continue;
-      size_t j = slot(keys_[i]);
-      while (keys[j] != kEmpty) j = (j + 1) & mask_;
-      keys[j] = keys_[i];
-      users[j] = users_[i];
+    for (const Slot& s : slots_) {
+      if (s.key == kEmpty || s.key == kDead) continue;
+      size_t j = slot(s.key);
+      while (slots[j].key != kEmpty) j = (j + 1) & mask_;
+      slots[j] = s;
     }
-    keys_.swap(keys);
-    users_.swap(users);
+    slots_.swap(slots);
     dead_ = 0;
   }
-  std::vector<uint64_t> keys_;
-  std::vector<Users> users_;
+  std::vector<Slot> slots_;
   size_t mask_ = 0, live_ = 0, dead_ = 0;
 };
 
