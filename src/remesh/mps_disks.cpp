@@ -79,7 +79,7 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
   if (covered_head_[t] >= 0) return true;
   for (int k = partial_head_[t]; k >= 0; k = links_[k].next) {
     const int j = links_[k].item;
-    if (inside_disk(p, centers_[j], weights_[j])) return true;
+    if (inside_disk(p, disk_records_[j].center, disk_records_[j].weight)) return true;
   }
   return false;
 }
@@ -134,9 +134,8 @@ bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
 
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {
   const int i = size();
-  centers_.push_back(p);
+  disk_records_.push_back({p, w});
   barycentric_.push_back(barycentric);
-  weights_.push_back(w);
   triangles_.push_back(t);
   center_next_.push_back(center_head_[t]);
   center_head_[t] = i;
@@ -164,8 +163,12 @@ int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, c
 
 Samples DiskIndex::samples() const {
   Samples s;
-  s.positions = centers_;
-  s.weights = weights_;
+  s.positions.reserve(disk_records_.size());
+  s.weights.reserve(disk_records_.size());
+  for (const Disk& d : disk_records_) {
+    s.positions.push_back(d.center);
+    s.weights.push_back(d.weight);
+  }
   s.triangles = triangles_;
   s.barycentric = barycentric_;
   return s;

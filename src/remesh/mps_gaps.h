@@ -44,9 +44,9 @@ class DiskIndex {
  public:
   explicit DiskIndex(const SurfaceMesh& mesh);
 
-  int size() const { return static_cast<int>(centers_.size()); }
-  const Vec3& center(int i) const { return centers_[i]; }
-  double weight(int i) const { return weights_[i]; }
+  int size() const { return static_cast<int>(disk_records_.size()); }
+  const Vec3& center(int i) const { return disk_records_[i].center; }
+  double weight(int i) const { return disk_records_[i].weight; }
   int triangle(int i) const { return triangles_[i]; }
   const Vec3& barycentric(int i) const { return barycentric_[i]; }
 
@@ -102,8 +102,13 @@ class DiskIndex {
   //! ball_meets_triangle(t, p, w), r = √w, rejecting balls far from t's bounding sphere at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
-  std::vector<Vec3> centers_, barycentric_;
-  std::vector<double> weights_;
+  //! A disk's centre and weight together: the disk tests read both.
+  struct Disk {
+    Vec3 center;
+    double weight;
+  };
+  std::vector<Disk> disk_records_;
+  std::vector<Vec3> barycentric_;
   std::vector<int> triangles_, center_next_;
   std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
   std::vector<Link> links_;
