@@ -49,25 +49,25 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       covered_head_(mesh.triangle_count(), -1),
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
-      stamp_(mesh.triangle_count(), 0),
       vertex_stamp_(mesh.vertex_count(), 0),
       vertex_inside_(mesh.vertex_count(), 0),
-      normals_(mesh.triangle_count()),
-      bounds_(mesh.triangle_count()) {
+      triangles_info_(mesh.triangle_count()) {
   for (int t = 0; t < mesh.triangle_count(); ++t) {
-    normals_[t] = mesh.triangle_normal(t);
+    triangles_info_[t].normal = mesh.triangle_normal(t);
     const Triangle& tri = mesh.triangle(t);
     const Vec3 c = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
     double r2 = 0;
     for (int k = 0; k < 3; ++k) r2 = std::max(r2, squared_distance(c, mesh.position(tri[k])));
-    bounds_[t] = {c, std::sqrt(r2)};
+    triangles_info_[t].center = c;
+    triangles_info_[t].radius = std::sqrt(r2);
   }
 }
 
 inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   // Far outside the triangle's bounding sphere (with room for rounding): no closest point needed.
-  const double reach = r + bounds_[t].radius;
-  if (squared_distance(p, bounds_[t].center) > reach * reach * (1 + 1e-9)) return false;
+  const TriangleInfo& info = triangles_info_[t];
+  const double reach = r + info.radius;
+  if (squared_distance(p, info.center) > reach * reach * (1 + 1e-9)) return false;
   // ball_meets_triangle, its corner test inlined (it decides most calls).
   const Triangle& tri = mesh_.triangle(t);
   for (int c = 0; c < 3; ++c)
@@ -79,7 +79,7 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
   if (covered_head_[t] >= 0) return true;
   for (int k = partial_head_[t]; k >= 0; k = links_[k].next) {
     const int j = links_[k].item;
-    if (inside_disk(p, centers_[j], weights_[j])) return true;
+    if (inside_disk(p, disk_records_[j].center, disk_records_[j].weight)) return true;
   }
   return false;
 }
@@ -87,23 +87,25 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
 template <class F>
 bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+    for (TriangleInfo& info : triangles_info_) info.stamp = 0;
     stamp_value_ = 1;
   }
   // Breadth-first over the triangles the ball meets (only through those facing like t when
   // facing_only); f sees those facing like t.
   queue_.assign(1, t);
-  stamp_[t] = stamp_value_;
+  triangles_info_[t].stamp = stamp_value_;
   if (f(t)) return true;
-  const Vec3 facing = normals_[t];
+  const Vec3 facing = triangles_info_[t].normal;
   const double r = std::sqrt(w);
   for (size_t k = 0; k < queue_.size(); ++k) {
     const int s = queue_[k];
     for (int e = 0; e < 3; ++e) {
       const int n = mesh_.neighbor(s, e);
-      if (n < 0 || stamp_[n] == stamp_value_) continue;
-      stamp_[n] = stamp_value_;
-      const bool faces = dot(normals_[n], facing) > kFacingCosine;
+      if (n < 0) continue;
+      TriangleInfo& info = triangles_info_[n];
+      if (info.stamp == stamp_value_) continue;
+      info.stamp = stamp_value_;
+      const bool faces = dot(info.normal, facing) > kFacingCosine;
       if ((facing_only && !faces) || !meets(n, p, w, r)) continue;
       queue_.push_back(n);
       if (faces && f(n)) return true;
@@ -132,9 +134,8 @@ bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
 
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {
   const int i = size();
-  centers_.push_back(p);
+  disk_records_.push_back({p, w});
   barycentric_.push_back(barycentric);
-  weights_.push_back(w);
   triangles_.push_back(t);
   center_next_.push_back(center_head_[t]);
   center_head_[t] = i;
@@ -162,8 +163,12 @@ int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, c
 
 Samples DiskIndex::samples() const {
   Samples s;
-  s.positions = centers_;
-  s.weights = weights_;
+  s.positions.reserve(disk_records_.size());
+  s.weights.reserve(disk_records_.size());
+  for (const Disk& d : disk_records_) {
+    s.positions.push_back(d.center);
+    s.weights.push_back(d.weight);
+  }
   s.triangles = triangles_;
   s.barycentric = barycentric_;
   return s;

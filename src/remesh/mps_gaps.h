@@ -44,9 +44,9 @@ class DiskIndex {
  public:
   explicit DiskIndex(const SurfaceMesh& mesh);
 
-  int size() const { return static_cast<int>(centers_.size()); }
-  const Vec3& center(int i) const { return centers_[i]; }
-  double weight(int i) const { return weights_[i]; }
+  int size() const { return static_cast<int>(disk_records_.size()); }
+  const Vec3& center(int i) const { return disk_records_[i].center; }
+  double weight(int i) const { return disk_records_[i].weight; }
   int triangle(int i) const { return triangles_[i]; }
   const Vec3& barycentric(int i) const { return barycentric_[i]; }
 
@@ -61,9 +61,9 @@ class DiskIndex {
   //! way they face. Valid until the next call.
   const std::vector<int>& met(const Vec3& p, int t, double w);
   //! Triangles s and t face the same way (normals at less than 90°).
-  bool faces_like(int s, int t) const { return dot(normals_[s], normals_[t]) > kFacingCosine; }
+  bool faces_like(int s, int t) const { return dot(triangles_info_[s].normal, triangles_info_[t].normal) > kFacingCosine; }
   //! Unit normal of triangle t (mesh.triangle_normal(t)).
-  const Vec3& normal(int t) const { return normals_[t]; }
+  const Vec3& normal(int t) const { return triangles_info_[t].normal; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
   //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
@@ -89,28 +89,35 @@ class DiskIndex {
   struct Link {
     int item, next;
   };
-  struct Sphere {
+  //! What region growing reads of a triangle, in one cache line: the unit normal, the bounding
+  //! sphere (centroid, distance to the farthest corner) and the last growth that visited it.
+  struct alignas(64) TriangleInfo {
+    Vec3 normal;
     Vec3 center;
-    double radius;
+    double radius = 0;
+    std::uint32_t stamp = 0;
   };
   template <class F>
   bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
   //! ball_meets_triangle(t, p, w), r = √w, rejecting balls far from t's bounding sphere at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
-  std::vector<Vec3> centers_, barycentric_;
-  std::vector<double> weights_;
+  //! A disk's centre and weight together: the disk tests read both.
+  struct Disk {
+    Vec3 center;
+    double weight;
+  };
+  std::vector<Disk> disk_records_;
+  std::vector<Vec3> barycentric_;
   std::vector<int> triangles_, center_next_;
   std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
   std::vector<Link> links_;
-  std::vector<std::uint32_t> stamp_;  // per triangle: last growth that visited it
-  std::uint32_t stamp_value_ = 0;
+  std::uint32_t stamp_value_ = 0;  // of the current growth (TriangleInfo::stamp)
   std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
   std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_;
-  std::vector<Vec3> normals_;  // unit normal per triangle
-  std::vector<Sphere> bounds_;  // per triangle: centroid and the distance to its farthest corner
+  std::vector<TriangleInfo> triangles_info_;  // per triangle
 };
 
 //! Squared distance from p to triangle t of the mesh.
