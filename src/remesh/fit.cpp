@@ -134,7 +134,8 @@ int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor
 
 }  // namespace
 
-FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options) {
+FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options,
+                         const ClosestPointIndex* mesh_index) {
   FitResult result;
   const int n = static_cast<int>(dual.positions.size());
   const int nt = static_cast<int>(dual.triangles.size());
@@ -196,7 +197,7 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
         return true;
       };
     };
-    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor);
+    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor, mesh_index);
     // The floor that settling keeps: the focus rounds' where they ran (step 1's result meets it).
     result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident);
   }

@@ -46,8 +46,9 @@ struct FitResult {
 //! minimisers under the quality floor, then (options.balance) balances the two-sided distance under
 //! the floor of that result. After each step the vertices of any triangle that crosses another one
 //! and did not before are put back, with those of any triangle that falls below the floor then.
-//! Triangles and their orientation are unchanged.
+//! Triangles and their orientation are unchanged. `mesh_index`, if given, is a ClosestPointIndex of
+//! `mesh` (the CVT's), used instead of building another.
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual,
-                         const FitOptions& options = {});
+                         const FitOptions& options = {}, const ClosestPointIndex* mesh_index = nullptr);
 
 }  // namespace lrvd

@@ -155,7 +155,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // the ones to act on.
   auto settle = [&](RemeshResult& r, DualDefects& d) {
     if (!options.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
-    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options);
+    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options, &index);
     r.untangled_from = r.dual;
     r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options);
     r.fitted = true;
@@ -230,7 +230,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   if (!result.fitted) {
-    if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
+    if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index);
     if (options.untangle) {
       result.untangled_from = result.dual;
       result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options);
