@@ -2,6 +2,7 @@
 #include "remesh/fit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <set>
@@ -84,20 +85,42 @@ class QualityFloor {
       angle_floor = std::min(angle_floor, angle_[t]);
     }
     if (per_triangle_angle) angle_floor = max_angle;
-    for (int t = 0; t < nt; ++t)
+    cos_.resize(nt), sin_.resize(nt);
+    for (int t = 0; t < nt; ++t) {
       q_[t] = std::max(std::min(q_[t], q_floor), keep_quality * q_[t]), angle_[t] = std::min(angle_[t], angle_floor);
+      cos_[t] = std::cos(angle_[t] * kRadiansPerDegree), sin_[t] = std::sin(angle_[t] * kRadiansPerDegree);
+    }
   }
 
   bool holds(int t, const std::vector<Vec3>& positions) const {
     const Triangle& f = triangles_[t];
     const Vec3 &a = positions[f[0]], &b = positions[f[1]], &c = positions[f[2]];
-    return !(triangle_quality(a, b, c) < q_[t]) && !(triangle_min_angle(a, b, c) < angle_[t]) &&
-           dot(cross(b - a, c - a), normal_[t]) > 0;
+    return !(triangle_quality(a, b, c) < q_[t]) && !angle_below(t, a, b, c) && dot(cross(b - a, c - a), normal_[t]) > 0;
   }
 
  private:
+  static constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180;
+
+  // triangle_min_angle(a, b, c) < angle_[t], decided without the arc tangents where the answer is
+  // clear: a corner angle atan2(y, x), y = |u × v|, x = u · v (as corner_angle computes them) is
+  // below φ exactly when y cos φ - x sin φ < 0. Only where that is within 1e-9 (|x| + y) of 0 (an
+  // angle within about 1e-9 radians of φ: far more than the rounding of either way) do the degree
+  // values decide, so the answer is always that of comparing them.
+  bool angle_below(int t, const Vec3& a, const Vec3& b, const Vec3& c) const {
+    bool clear = true;
+    auto corner = [&](const Vec3& u, const Vec3& v) {
+      const double x = dot(u, v), y = norm(cross(u, v));
+      const double side = y * cos_[t] - x * sin_[t], margin = 1e-9 * (std::abs(x) + y);
+      if (!(side > margin)) clear = false;  // below, too close to tell, or not finite
+      return side < -margin;                // clearly below
+    };
+    if (corner(b - a, c - a) || corner(c - b, a - b) || corner(a - c, b - c)) return true;
+    return clear ? false : triangle_min_angle(a, b, c) < angle_[t];
+  }
+
   const std::vector<Triangle>& triangles_;
   std::vector<double> q_, angle_;
+  std::vector<double> cos_, sin_;  // of angle_
   std::vector<Vec3> normal_;
 };
 
