@@ -126,13 +126,16 @@ class QualityFloor {
 
 // Puts vertices back to `fallback` (a state that meets `floor` and has no crossing outside
 // `allowed`) until the same holds for `dual`: the corners of every new crossing, then the moved
-// corners of every triangle below the floor next to a vertex put back. Returns the vertices put back.
+// corners of every triangle below the floor next to a vertex put back. Returns the vertices put back;
+// `crossings` are then the crossing pairs of `dual`.
 int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor& floor,
-           const std::set<std::pair<int, int>>& allowed, const std::vector<std::vector<int>>& incident) {
+           const std::set<std::pair<int, int>>& allowed, const std::vector<std::vector<int>>& incident,
+           std::set<std::pair<int, int>>& crossings) {
   int reverted = 0;
   for (int round = 0; round < 32; ++round) {
     std::vector<int> back;
-    for (const auto& pair : crossing_pairs(dual))
+    crossings = crossing_pairs(dual);
+    for (const auto& pair : crossings)
       if (!allowed.count(pair))
         for (int t : {pair.first, pair.second})
           for (int v : dual.triangles[t])
@@ -146,19 +149,19 @@ int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor
     reverted += static_cast<int>(back.size());
   }
   // Not settled after eight rounds: the fallback state, unless the last round settled it.
-  for (const auto& pair : crossing_pairs(dual))
-    if (!allowed.count(pair)) {
-      for (size_t v = 0; v < fallback.size(); ++v) reverted += dual.positions[v] != fallback[v];
-      dual.positions = fallback;
-      break;
-    }
+  crossings = crossing_pairs(dual);
+  if (std::any_of(crossings.begin(), crossings.end(), [&](const auto& pair) { return !allowed.count(pair); })) {
+    for (size_t v = 0; v < fallback.size(); ++v) reverted += dual.positions[v] != fallback[v];
+    dual.positions = fallback;
+    crossings = crossing_pairs(dual);
+  }
   return reverted;
 }
 
 }  // namespace
 
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options,
-                         const ClosestPointIndex* mesh_index) {
+                         const ClosestPointIndex* mesh_index, const std::vector<std::pair<int, int>>* crossings) {
   FitResult result;
   const int n = static_cast<int>(dual.positions.size());
   const int nt = static_cast<int>(dual.triangles.size());
@@ -167,7 +170,9 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   std::vector<std::vector<int>> incident(n);
   for (int t = 0; t < nt; ++t)
     for (int v : dual.triangles[t]) incident[v].push_back(t);
-  const std::set<std::pair<int, int>> allowed = crossing_pairs(dual);
+  const std::set<std::pair<int, int>> allowed =
+      crossings ? std::set<std::pair<int, int>>(crossings->begin(), crossings->end()) : crossing_pairs(dual);
+  std::set<std::pair<int, int>> crossings_now;
 
   // Step 1, the quadric fit under the CVT's floor.
   const QualityFloor cvt_floor(dual, options.max_angle_floor, false);
@@ -196,7 +201,7 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
       }
     }
   // Moving vertices must not make triangles cross.
-  result.reverted = settle(dual, original, cvt_floor, allowed, incident);
+  result.reverted = settle(dual, original, cvt_floor, allowed, incident, crossings_now);
 
   // Step 2, balancing the two-sided distance under the floor of step 1's result (so the worst
   // triangle stays what step 1 made it), with the angle floor per triangle: its sideways steps
@@ -222,8 +227,9 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
     };
     result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor, mesh_index);
     // The floor that settling keeps: the focus rounds' where they ran (step 1's result meets it).
-    result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident);
+    result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident, crossings_now);
   }
+  result.crossings.assign(crossings_now.begin(), crossings_now.end());
   for (int v = 0; v < n; ++v)
     if (dual.positions[v] != original[v]) {
       ++result.moved;

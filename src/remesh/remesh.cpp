@@ -121,6 +121,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.crossing.assign(crossing.begin(), crossing.end());
   out.cell_topology.assign(hints.begin(), hints.end());
   out.euler_ok = euler_ok;
+  out.crossing_pairs = pairs;
   return out;
 }
 
@@ -155,9 +156,11 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // the ones to act on.
   auto settle = [&](RemeshResult& r, DualDefects& d) {
     if (!options.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
-    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options, &index);
+    // The crossings found in `d` (and then by the fitting) are not searched for again.
+    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options, &index, &d.crossing_pairs);
     r.untangled_from = r.dual;
-    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options);
+    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options,
+                                    options.fit ? &r.fit.crossings : &d.crossing_pairs);
     r.fitted = true;
     std::set<int> left;
     for (const auto& [s, t] : r.untangle.remaining)
@@ -223,6 +226,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     again.kept_to_sheets = true;
     if (again_defects.fewer_than(defects)) {
       result = std::move(again);
+      defects = std::move(again_defects);
     } else {
       result.repair_rounds = again.repair_rounds;
       result.total_iterations = again.total_iterations;
@@ -230,10 +234,13 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   if (!result.fitted) {
-    if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index);
+    // `defects` are those of result.dual (found before the fitting, which is not done yet).
+    if (options.fit)
+      result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, &defects.crossing_pairs);
     if (options.untangle) {
       result.untangled_from = result.dual;
-      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options);
+      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options,
+                                           options.fit ? &result.fit.crossings : &defects.crossing_pairs);
     }
   }
   // Crossings left in the state kept: the vertices may go further.
@@ -242,7 +249,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     UntangleOptions further = options.untangle_options;
     further.max_move = reach;
     DualMesh dual = result.untangled_from;
-    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further);
+    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further,
+                                                  options.fit ? &result.fit.crossings : nullptr);
     if (untangled.crossings_after < result.untangle.crossings_after) {
       result.dual = std::move(dual);
       result.untangle = std::move(untangled);
