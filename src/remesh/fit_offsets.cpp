@@ -63,13 +63,19 @@ double power(double x, int p) {
 }
 
 // The same for a p known when compiling (the default p = 16 of the hot loops): the same products
-// in the same order, so the same value, without the loop.
+// in the same order, so the same value, unrolled (the compiler keeps the loop otherwise).
+template <int P>
+double power_by_squaring(double result, double x) {
+  if constexpr (P == 0) {
+    return result;
+  } else {
+    if constexpr ((P & 1) != 0) result *= x;
+    return power_by_squaring<(P >> 1)>(result, x * x);
+  }
+}
 template <int P>
 double power(double x) {
-  double result = 1;
-  for (int p = P; p > 0; p >>= 1, x *= x)
-    if (p & 1) result *= x;
-  return result;
+  return power_by_squaring<P>(1.0, x);
 }
 
 Vec3 at(const std::vector<Vec3>& positions, const Triangle& f, const Vec3& b) {
