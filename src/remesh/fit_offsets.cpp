@@ -110,7 +110,6 @@ class OffsetBalancer {
   // others keep the linearised value: far below the largest, they only matter for the mean);
   // returns the largest |d|.
   double measure(double floor = 0) {
-    const ClosestPointIndex remesh_index(dual_.positions, proper_triangles_);
     const int nr = static_cast<int>(remesh_.size()), ni = static_cast<int>(input_points_.size());
     // Only the samples on triangles with a moved corner can have changed (an input sample's
     // distance to its old triangle is unchanged then, so its stale value is an upper bound).
@@ -119,20 +118,25 @@ class OffsetBalancer {
       const Triangle& f = dual_.triangles[s.triangle];
       return (moved_[f[0]] || moved_[f[1]] || moved_[f[2]]) && std::abs(s.d) >= floor;
     };
+    // The remesh's index only when an input sample is measured.
+    std::optional<ClosestPointIndex> remesh_index;
+    if (std::any_of(input_.begin(), input_.end(), moved)) remesh_index.emplace(dual_.positions, proper_triangles_);
     tbb::parallel_for(tbb::blocked_range<int>(0, nr + ni, 1024), [&](const tbb::blocked_range<int>& range) {
+      // A sample's last answer, or else the answer of the sample before it (samples come in the
+      // order of their triangles), starts the search: hints only prune it, the answer is the same.
+      int last_on_mesh = -1, last_on_remesh = -1;
       for (int i = range.begin(); i < range.end(); ++i) {
         if (!moved(sample(i))) continue;
         if (i < nr) {
           Sample& s = remesh_[i];
-          // The hints (the last answers) only prune the search: the answers are the same.
-          const ClosestPoint c = mesh_index_->query(at(dual_.positions, dual_.triangles[s.triangle], s.barycentric), s.hint);
-          s.hint = c.triangle;
-          signed_offset(at(dual_.positions, dual_.triangles[s.triangle], s.barycentric), c.point,
-                        mesh_.triangle_normal(c.triangle), s.d, s.direction);
+          const Vec3 x = at(dual_.positions, dual_.triangles[s.triangle], s.barycentric);
+          const ClosestPoint c = mesh_index_->query(x, s.hint >= 0 ? s.hint : last_on_mesh);
+          s.hint = last_on_mesh = c.triangle;
+          signed_offset(x, c.point, mesh_.triangle_normal(c.triangle), s.d, s.direction);
         } else {
           Sample& s = input_[i - nr];
-          const ClosestPoint c = remesh_index.query(input_points_[i - nr], s.hint);
-          s.hint = c.triangle;
+          const ClosestPoint c = remesh_index->query(input_points_[i - nr], s.hint >= 0 ? s.hint : last_on_remesh);
+          s.hint = last_on_remesh = c.triangle;
           s.triangle = dual_triangle_[c.triangle];
           s.barycentric = c.barycentric;
           // The input point is outside the remesh when d < 0: the remesh must move out.
