@@ -283,16 +283,18 @@ class OffsetBalancer {
 
   // Per vertex, the samples of its triangles with the vertex's weight there (CSR).
   void index_samples() {
-    const int n = static_cast<int>(dual_.positions.size()), nr = static_cast<int>(remesh_.size());
+    const int n = static_cast<int>(dual_.positions.size());
     first_.assign(n + 1, 0);
     auto each = [&](auto&& visit) {
-      for (int i = 0; i < nr + static_cast<int>(input_.size()); ++i) {
-        const Sample& s = sample(i);
-        const Triangle& f = dual_.triangles[s.triangle];
-        const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
-        for (int k = 0; k < 3; ++k)
-          if (w[k] > 0) visit(f[k], i, w[k]);
-      }
+      int i = 0;  // the sample's index: remesh_ then input_
+      for (const std::vector<Sample>* list : {&remesh_, &input_})
+        for (const Sample& s : *list) {
+          const Triangle& f = dual_.triangles[s.triangle];
+          const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
+          for (int k = 0; k < 3; ++k)
+            if (w[k] > 0) visit(f[k], i, w[k]);
+          ++i;
+        }
     };
     each([&](int v, int, double) { ++first_[v + 1]; });
     for (int v = 0; v < n; ++v) first_[v + 1] += first_[v];
