@@ -51,13 +51,18 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
     int u, w;
     bool operator<(const Link& o) const { return key < o.key; }
   };
-  std::vector<Link> links;
-  links.reserve(pieces.size());
+  // Grouped by cell (a counting sort), then each cell's few pieces sorted by key.
+  std::vector<int> first_of_cell(diagram.sample_count + 1, 0);
+  for (const Piece& p : pieces) ++first_of_cell[p.key.first + 1];
+  for (int c = 0; c < diagram.sample_count; ++c) first_of_cell[c + 1] += first_of_cell[c];
+  std::vector<Link> links(pieces.size());
+  std::vector<int> next(first_of_cell.begin(), first_of_cell.end() - 1);
   for (const Piece& p : pieces) {
     const int u = id_of(p.u);
-    links.push_back({p.key, u, id_of(p.w)});
+    links[next[p.key.first]++] = {p.key, u, id_of(p.w)};
   }
-  std::sort(links.begin(), links.end());
+  for (int c = 0; c < diagram.sample_count; ++c)
+    std::sort(links.begin() + first_of_cell[c], links.begin() + first_of_cell[c + 1]);
   std::vector<int> parent(ids.size(), -1);  // -1: not in the current key's forest
   std::vector<int> touched;
   auto root = [&](int x) {
