@@ -2,6 +2,7 @@
 #include "remesh/fit.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <set>
@@ -84,32 +85,57 @@ class QualityFloor {
       angle_floor = std::min(angle_floor, angle_[t]);
     }
     if (per_triangle_angle) angle_floor = max_angle;
-    for (int t = 0; t < nt; ++t)
+    cos_.resize(nt), sin_.resize(nt);
+    for (int t = 0; t < nt; ++t) {
       q_[t] = std::max(std::min(q_[t], q_floor), keep_quality * q_[t]), angle_[t] = std::min(angle_[t], angle_floor);
+      cos_[t] = std::cos(angle_[t] * kRadiansPerDegree), sin_[t] = std::sin(angle_[t] * kRadiansPerDegree);
+    }
   }
 
   bool holds(int t, const std::vector<Vec3>& positions) const {
     const Triangle& f = triangles_[t];
     const Vec3 &a = positions[f[0]], &b = positions[f[1]], &c = positions[f[2]];
-    return !(triangle_quality(a, b, c) < q_[t]) && !(triangle_min_angle(a, b, c) < angle_[t]) &&
-           dot(cross(b - a, c - a), normal_[t]) > 0;
+    return !(triangle_quality(a, b, c) < q_[t]) && !angle_below(t, a, b, c) && dot(cross(b - a, c - a), normal_[t]) > 0;
   }
 
  private:
+  static constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180;
+
+  // triangle_min_angle(a, b, c) < angle_[t], decided without the arc tangents where the answer is
+  // clear: a corner angle atan2(y, x), y = |u × v|, x = u · v (as corner_angle computes them) is
+  // below φ exactly when y cos φ - x sin φ < 0. Only where that is within 1e-9 (|x| + y) of 0 (an
+  // angle within about 1e-9 radians of φ: far more than the rounding of either way) do the degree
+  // values decide, so the answer is always that of comparing them.
+  bool angle_below(int t, const Vec3& a, const Vec3& b, const Vec3& c) const {
+    bool clear = true;
+    auto corner = [&](const Vec3& u, const Vec3& v) {
+      const double x = dot(u, v), y = norm(cross(u, v));
+      const double side = y * cos_[t] - x * sin_[t], margin = 1e-9 * (std::abs(x) + y);
+      if (!(side > margin)) clear = false;  // below, too close to tell, or not finite
+      return side < -margin;                // clearly below
+    };
+    if (corner(b - a, c - a) || corner(c - b, a - b) || corner(a - c, b - c)) return true;
+    return clear ? false : triangle_min_angle(a, b, c) < angle_[t];
+  }
+
   const std::vector<Triangle>& triangles_;
   std::vector<double> q_, angle_;
+  std::vector<double> cos_, sin_;  // of angle_
   std::vector<Vec3> normal_;
 };
 
 // Puts vertices back to `fallback` (a state that meets `floor` and has no crossing outside
 // `allowed`) until the same holds for `dual`: the corners of every new crossing, then the moved
-// corners of every triangle below the floor next to a vertex put back. Returns the vertices put back.
+// corners of every triangle below the floor next to a vertex put back. Returns the vertices put back;
+// `crossings` are then the crossing pairs of `dual`.
 int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor& floor,
-           const std::set<std::pair<int, int>>& allowed, const std::vector<std::vector<int>>& incident) {
+           const std::set<std::pair<int, int>>& allowed, const std::vector<std::vector<int>>& incident,
+           std::set<std::pair<int, int>>& crossings) {
   int reverted = 0;
   for (int round = 0; round < 32; ++round) {
     std::vector<int> back;
-    for (const auto& pair : crossing_pairs(dual))
+    crossings = crossing_pairs(dual);
+    for (const auto& pair : crossings)
       if (!allowed.count(pair))
         for (int t : {pair.first, pair.second})
           for (int v : dual.triangles[t])
@@ -123,18 +149,19 @@ int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor
     reverted += static_cast<int>(back.size());
   }
   // Not settled after eight rounds: the fallback state, unless the last round settled it.
-  for (const auto& pair : crossing_pairs(dual))
-    if (!allowed.count(pair)) {
-      for (size_t v = 0; v < fallback.size(); ++v) reverted += dual.positions[v] != fallback[v];
-      dual.positions = fallback;
-      break;
-    }
+  crossings = crossing_pairs(dual);
+  if (std::any_of(crossings.begin(), crossings.end(), [&](const auto& pair) { return !allowed.count(pair); })) {
+    for (size_t v = 0; v < fallback.size(); ++v) reverted += dual.positions[v] != fallback[v];
+    dual.positions = fallback;
+    crossings = crossing_pairs(dual);
+  }
   return reverted;
 }
 
 }  // namespace
 
-FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options) {
+FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options,
+                         const ClosestPointIndex* mesh_index, const std::vector<std::pair<int, int>>* crossings) {
   FitResult result;
   const int n = static_cast<int>(dual.positions.size());
   const int nt = static_cast<int>(dual.triangles.size());
@@ -143,7 +170,9 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
   std::vector<std::vector<int>> incident(n);
   for (int t = 0; t < nt; ++t)
     for (int v : dual.triangles[t]) incident[v].push_back(t);
-  const std::set<std::pair<int, int>> allowed = crossing_pairs(dual);
+  const std::set<std::pair<int, int>> allowed =
+      crossings ? std::set<std::pair<int, int>>(crossings->begin(), crossings->end()) : crossing_pairs(dual);
+  std::set<std::pair<int, int>> crossings_now;
 
   // Step 1, the quadric fit under the CVT's floor.
   const QualityFloor cvt_floor(dual, options.max_angle_floor, false);
@@ -172,7 +201,7 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
       }
     }
   // Moving vertices must not make triangles cross.
-  result.reverted = settle(dual, original, cvt_floor, allowed, incident);
+  result.reverted = settle(dual, original, cvt_floor, allowed, incident, crossings_now);
 
   // Step 2, balancing the two-sided distance under the floor of step 1's result (so the worst
   // triangle stays what step 1 made it), with the angle floor per triangle: its sideways steps
@@ -196,10 +225,11 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
         return true;
       };
     };
-    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor);
+    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor, mesh_index);
     // The floor that settling keeps: the focus rounds' where they ran (step 1's result meets it).
-    result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident);
+    result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident, crossings_now);
   }
+  result.crossings.assign(crossings_now.begin(), crossings_now.end());
   for (int v = 0; v < n; ++v)
     if (dual.positions[v] != original[v]) {
       ++result.moved;

@@ -12,6 +12,7 @@
 // the floor of the first step's result, so it never lowers the worst triangle either.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -40,14 +41,19 @@ struct FitResult {
   double max_displacement = 0;  //!< the longest move, in the mesh's units
   int reverted = 0;             //!< vertices put back because their triangles crossed others
   OffsetResult offsets;         //!< the sampled distance before and after balancing
+  //! find_self_intersections of the fitted dual's proper triangles (for untangle_crossings)
+  std::vector<std::pair<int, int>> crossings;
 };
 
 //! Moves the vertices of `dual` (the dual of `diagram` on `mesh`) towards their cells' quadric
 //! minimisers under the quality floor, then (options.balance) balances the two-sided distance under
 //! the floor of that result. After each step the vertices of any triangle that crosses another one
 //! and did not before are put back, with those of any triangle that falls below the floor then.
-//! Triangles and their orientation are unchanged.
+//! Triangles and their orientation are unchanged. `mesh_index`, if given, is a ClosestPointIndex of
+//! `mesh` (the CVT's), used instead of building another; `crossings`, if given, are
+//! find_self_intersections of `dual`'s proper triangles as it is passed (the caller found them).
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual,
-                         const FitOptions& options = {});
+                         const FitOptions& options = {}, const ClosestPointIndex* mesh_index = nullptr,
+                         const std::vector<std::pair<int, int>>* crossings = nullptr);
 
 }  // namespace lrvd

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <tbb/parallel_for.h>
 
@@ -22,6 +23,7 @@ struct Sample {
   Vec3 barycentric;   // in that triangle
   double d = 0;
   Vec3 direction;     // unit, outward
+  int hint = -1;      // the triangle of the last closest point (remesh samples: the input's)
 };
 
 // Barycentric lattice points of a triangle at level k, without its corners, each edge's points
@@ -60,6 +62,22 @@ double power(double x, int p) {
   return result;
 }
 
+// The same for a p known when compiling (the default p = 16 of the hot loops): the same products
+// in the same order, so the same value, unrolled (the compiler keeps the loop otherwise).
+template <int P>
+double power_by_squaring(double result, double x) {
+  if constexpr (P == 0) {
+    return result;
+  } else {
+    if constexpr ((P & 1) != 0) result *= x;
+    return power_by_squaring<(P >> 1)>(result, x * x);
+  }
+}
+template <int P>
+double power(double x) {
+  return power_by_squaring<P>(1.0, x);
+}
+
 Vec3 at(const std::vector<Vec3>& positions, const Triangle& f, const Vec3& b) {
   return b.x * positions[f[0]] + b.y * positions[f[1]] + b.z * positions[f[2]];
 }
@@ -76,9 +94,14 @@ void signed_offset(const Vec3& to, const Vec3& from, const Vec3& normal, double&
 class OffsetBalancer {
  public:
   OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
-                 const std::function<bool(int)>& acceptable, const OffsetOptions& options)
+                 const std::function<bool(int)>& acceptable, const OffsetOptions& options,
+                 const ClosestPointIndex* mesh_index)
       : mesh_(mesh), dual_(dual), incident_(incident), acceptable_(acceptable), options_(options),
-        mesh_index_(mesh), proper_(proper_triangles(dual.positions, dual.triangles)) {
+        proper_(proper_triangles(dual.positions, dual.triangles)) {
+    if (!mesh_index) own_index_.emplace(mesh);
+    mesh_index_ = mesh_index ? mesh_index : &*own_index_;
+    for (int t = 0; t < static_cast<int>(dual_.triangles.size()); ++t)
+      if (proper_[t]) proper_triangles_.push_back(dual_.triangles[t]), dual_triangle_.push_back(t);
     place_samples();
     moved_.assign(dual.positions.size(), 1);
   }
@@ -87,11 +110,6 @@ class OffsetBalancer {
   // others keep the linearised value: far below the largest, they only matter for the mean);
   // returns the largest |d|.
   double measure(double floor = 0) {
-    std::vector<Triangle> triangles;
-    std::vector<int> dual_triangle;
-    for (int t = 0; t < static_cast<int>(dual_.triangles.size()); ++t)
-      if (proper_[t]) triangles.push_back(dual_.triangles[t]), dual_triangle.push_back(t);
-    const ClosestPointIndex remesh_index(dual_.positions, triangles);
     const int nr = static_cast<int>(remesh_.size()), ni = static_cast<int>(input_points_.size());
     // Only the samples on triangles with a moved corner can have changed (an input sample's
     // distance to its old triangle is unchanged then, so its stale value is an upper bound).
@@ -100,18 +118,26 @@ class OffsetBalancer {
       const Triangle& f = dual_.triangles[s.triangle];
       return (moved_[f[0]] || moved_[f[1]] || moved_[f[2]]) && std::abs(s.d) >= floor;
     };
+    // The remesh's index only when an input sample is measured.
+    std::optional<ClosestPointIndex> remesh_index;
+    if (std::any_of(input_.begin(), input_.end(), moved)) remesh_index.emplace(dual_.positions, proper_triangles_);
     tbb::parallel_for(tbb::blocked_range<int>(0, nr + ni, 1024), [&](const tbb::blocked_range<int>& range) {
+      // A sample's last answer, or else the answer of the sample before it (samples come in the
+      // order of their triangles), starts the search: hints only prune it, the answer is the same.
+      int last_on_mesh = -1, last_on_remesh = -1;
       for (int i = range.begin(); i < range.end(); ++i) {
         if (!moved(sample(i))) continue;
         if (i < nr) {
           Sample& s = remesh_[i];
-          const ClosestPoint c = mesh_index_.query(at(dual_.positions, dual_.triangles[s.triangle], s.barycentric));
-          signed_offset(at(dual_.positions, dual_.triangles[s.triangle], s.barycentric), c.point,
-                        mesh_.triangle_normal(c.triangle), s.d, s.direction);
+          const Vec3 x = at(dual_.positions, dual_.triangles[s.triangle], s.barycentric);
+          const ClosestPoint c = mesh_index_->query(x, s.hint >= 0 ? s.hint : last_on_mesh);
+          s.hint = last_on_mesh = c.triangle;
+          signed_offset(x, c.point, mesh_.triangle_normal(c.triangle), s.d, s.direction);
         } else {
           Sample& s = input_[i - nr];
-          const ClosestPoint c = remesh_index.query(input_points_[i - nr]);
-          s.triangle = dual_triangle[c.triangle];
+          const ClosestPoint c = remesh_index->query(input_points_[i - nr], s.hint >= 0 ? s.hint : last_on_remesh);
+          s.hint = last_on_remesh = c.triangle;
+          s.triangle = dual_triangle_[c.triangle];
           s.barycentric = c.barycentric;
           // The input point is outside the remesh when d < 0: the remesh must move out.
           signed_offset(input_points_[i - nr], c.point, triangle_normal(s.triangle), s.d, s.direction);
@@ -257,16 +283,18 @@ class OffsetBalancer {
 
   // Per vertex, the samples of its triangles with the vertex's weight there (CSR).
   void index_samples() {
-    const int n = static_cast<int>(dual_.positions.size()), nr = static_cast<int>(remesh_.size());
+    const int n = static_cast<int>(dual_.positions.size());
     first_.assign(n + 1, 0);
     auto each = [&](auto&& visit) {
-      for (int i = 0; i < nr + static_cast<int>(input_.size()); ++i) {
-        const Sample& s = sample(i);
-        const Triangle& f = dual_.triangles[s.triangle];
-        const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
-        for (int k = 0; k < 3; ++k)
-          if (w[k] > 0) visit(f[k], i, w[k]);
-      }
+      int i = 0;  // the sample's index: remesh_ then input_
+      for (const std::vector<Sample>* list : {&remesh_, &input_})
+        for (const Sample& s : *list) {
+          const Triangle& f = dual_.triangles[s.triangle];
+          const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
+          for (int k = 0; k < 3; ++k)
+            if (w[k] > 0) visit(f[k], i, w[k]);
+          ++i;
+        }
     };
     each([&](int v, int, double) { ++first_[v + 1]; });
     for (int v = 0; v < n; ++v) first_[v + 1] += first_[v];
@@ -292,22 +320,29 @@ class OffsetBalancer {
   }
 
   // Σ |d + c t|^p / scale^p over the gathered samples (c = 0 when t = 0).
-  double objective(double t) const {
+  double objective(double t) const { return options_.power == 16 ? objective_with<16>(t) : objective_with<0>(t); }
+  template <int P>  // P = options_.power, or 0 when that is not one compiled for
+  double objective_with(double t) const {
+    const int p = options_.power;
     double sum = 0;
-    for (size_t k = 0; k < local_d_.size(); ++k)
-      sum += power(local_d_[k] + (t == 0 ? 0 : coefficient_[k] * t), options_.power);
+    for (size_t k = 0; k < local_d_.size(); ++k) {
+      const double e = local_d_[k] + (t == 0 ? 0 : coefficient_[k] * t);
+      sum += P > 0 ? power<P>(e) : power(e, p);
+    }
     return sum;
   }
 
   // The offset t in [-limit, limit] that minimises Σ |d + c t|^p over the gathered samples: the
   // function is convex, so Newton's method on its derivative inside a shrinking bracket.
-  double best_offset(double limit) const {
+  double best_offset(double limit) const { return options_.power == 16 ? best_offset_with<16>(limit) : best_offset_with<0>(limit); }
+  template <int P>  // as in objective_with
+  double best_offset_with(double limit) const {
     const int p = options_.power;
     auto slopes = [&](double t, double& first, double& second) {
       first = second = 0;
       for (size_t k = 0; k < local_d_.size(); ++k) {
         const double c = coefficient_[k], e = local_d_[k] + c * t;
-        const double e2 = power(e, p - 2);
+        const double e2 = P > 0 ? power<(P > 0 ? P - 2 : 0)>(e) : power(e, p - 2);
         first += e2 * e * c;
         second += (p - 1) * e2 * c * c;
       }
@@ -336,8 +371,11 @@ class OffsetBalancer {
   const std::vector<std::vector<int>>& incident_;
   const std::function<bool(int)>& acceptable_;
   const OffsetOptions& options_;
-  const ClosestPointIndex mesh_index_;
+  std::optional<ClosestPointIndex> own_index_;  // when no index of the mesh is given
+  const ClosestPointIndex* mesh_index_ = nullptr;
   const std::vector<char> proper_;
+  std::vector<Triangle> proper_triangles_;  // the remesh triangles the input samples may land on
+  std::vector<int> dual_triangle_;          // their indices in the dual
   std::vector<Sample> remesh_, input_;
   std::vector<Vec3> input_points_;
   std::vector<int> input_source_;    // the input triangle of a lattice point, -1 for the input's vertices
@@ -539,9 +577,10 @@ class OffsetBalancer {
 
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
                              const std::function<bool(int)>& acceptable, const OffsetOptions& options,
-                             const std::function<std::function<bool(int)>()>& focus_floor) {
+                             const std::function<std::function<bool(int)>()>& focus_floor,
+                             const ClosestPointIndex* mesh_index) {
   OffsetResult result;
-  OffsetBalancer balancer(mesh, dual, incident, acceptable, options);
+  OffsetBalancer balancer(mesh, dual, incident, acceptable, options, mesh_index);
   std::vector<Vec3> best = dual.positions;
   double best_max = result.max_before = balancer.measure();
   for (int round = 0; round < options.rounds; ++round) {

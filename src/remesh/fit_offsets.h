@@ -19,6 +19,7 @@
 #include <functional>
 #include <vector>
 
+#include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 #include "voronoi/dual.h"
 
@@ -64,9 +65,11 @@ struct OffsetResult {
 //! exceed theirs), and only the vertices near the largest |d| move, alone and then with their
 //! one-ring, under the floor `focus_floor()` returns (called once, with `dual` at the state the
 //! focus rounds start from) where that beats the rounds' floor, within a Qavg budget. `max_after`
-//! is then measured on the finer samples.
+//! is then measured on the finer samples. `mesh_index`, if given, is a ClosestPointIndex of `mesh`
+//! (the CVT's), used instead of building another.
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
                              const std::function<bool(int)>& acceptable, const OffsetOptions& options = {},
-                             const std::function<std::function<bool(int)>()>& focus_floor = {});
+                             const std::function<std::function<bool(int)>()>& focus_floor = {},
+                             const ClosestPointIndex* mesh_index = nullptr);
 
 }  // namespace lrvd

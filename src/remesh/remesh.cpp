@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <map>
 #include <set>
 #include <tuple>
+#include <unordered_map>
 
 #include "metrics/self_intersections.h"
 
@@ -42,32 +42,50 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
       if (other >= 0 && poly.cell < other) pieces.push_back({{poly.cell, other + 1}, u, w});
     }
   }
-  // Count connected components per key with a union-find over (key, vertex).
-  std::map<Key, std::map<std::tuple<int, std::array<int, 3>, std::array<int, 3>>, int>> ids;
-  std::map<Key, std::vector<int>> parents;
-  auto id_of = [&](const Key& key, const SymbolicVertex& q) {
-    auto& table = ids[key];
-    auto [it, fresh] = table.try_emplace(std::make_tuple(static_cast<int>(q.type), q.v, q.label),
-                                         static_cast<int>(table.size()));
-    if (fresh) parents[key].push_back(it->second);
-    return it->second;
+  // Count connected components per key with a union-find over the key's vertices: the pieces
+  // sorted by key, the vertices numbered once for all keys.
+  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids;
+  auto id_of = [&](const SymbolicVertex& q) { return ids.try_emplace(q, static_cast<int>(ids.size())).first->second; };
+  struct Link {
+    Key key;
+    int u, w;
+    bool operator<(const Link& o) const { return key < o.key; }
   };
-  auto root = [](std::vector<int>& parent, int x) {
+  // Grouped by cell (a counting sort), then each cell's few pieces sorted by key.
+  std::vector<int> first_of_cell(diagram.sample_count + 1, 0);
+  for (const Piece& p : pieces) ++first_of_cell[p.key.first + 1];
+  for (int c = 0; c < diagram.sample_count; ++c) first_of_cell[c + 1] += first_of_cell[c];
+  std::vector<Link> links(pieces.size());
+  std::vector<int> next(first_of_cell.begin(), first_of_cell.end() - 1);
+  for (const Piece& p : pieces) {
+    const int u = id_of(p.u);
+    links[next[p.key.first]++] = {p.key, u, id_of(p.w)};
+  }
+  for (int c = 0; c < diagram.sample_count; ++c)
+    std::sort(links.begin() + first_of_cell[c], links.begin() + first_of_cell[c + 1]);
+  std::vector<int> parent(ids.size(), -1);  // -1: not in the current key's forest
+  std::vector<int> touched;
+  auto root = [&](int x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (const Piece& p : pieces) {
-    const int a = id_of(p.key, p.u), b = id_of(p.key, p.w);
-    std::vector<int>& parent = parents[p.key];
-    const int ra = root(parent, a), rb = root(parent, b);
-    if (ra != rb) parent[ra] = rb;
-  }
-  for (auto& [key, parent] : parents) {
+  for (size_t first = 0; first < links.size();) {
+    size_t last = first;
     int components = 0;
-    for (int x = 0; x < static_cast<int>(parent.size()); ++x) components += root(parent, x) == x;
-    if (components <= 1) continue;
-    defect.insert(key.first);
-    if (key.second > 0) defect.insert(key.second - 1);
+    for (; last < links.size() && links[last].key == links[first].key; ++last)
+      for (int x : {links[last].u, links[last].w})
+        if (parent[x] < 0) parent[x] = x, touched.push_back(x), ++components;
+    for (size_t k = first; k < last; ++k) {
+      const int ra = root(links[k].u), rb = root(links[k].w);
+      if (ra != rb) parent[ra] = rb, --components;
+    }
+    if (components > 1) {
+      defect.insert(links[first].key.first);
+      if (links[first].key.second > 0) defect.insert(links[first].key.second - 1);
+    }
+    for (int x : touched) parent[x] = -1;
+    touched.clear();
+    first = last;
   }
 }
 
@@ -75,25 +93,35 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
 
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
                               bool input_closed, bool input_components_cross) {
-  std::map<std::pair<int, int>, int> edge_count;
-  std::map<Triangle, int> vertex_sets;
+  // Each edge and each vertex triple with its count, as runs of a sorted list.
+  std::vector<std::pair<int, int>> edge_list;
+  std::vector<Triangle> vertex_sets;
+  edge_list.reserve(3 * dual.triangles.size());
+  vertex_sets.reserve(dual.triangles.size());
   for (const Triangle& t : dual.triangles) {
-    for (int e = 0; e < 3; ++e) ++edge_count[{std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])}];
+    for (int e = 0; e < 3; ++e) edge_list.push_back({std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])});
     Triangle sorted = t;
     std::sort(sorted.begin(), sorted.end());
-    ++vertex_sets[sorted];
+    vertex_sets.push_back(sorted);
   }
+  std::sort(edge_list.begin(), edge_list.end());
+  std::sort(vertex_sets.begin(), vertex_sets.end());
   std::set<int> defect;
-  for (const auto& [edge, count] : edge_count)
-    if (count > 2 || (count == 1 && input_closed)) defect.insert({edge.first, edge.second});
-  for (const auto& [tri, count] : vertex_sets)
-    if (count > 1) defect.insert(tri.begin(), tri.end());
+  int edges = 0;
+  for (size_t i = 0, j; i < edge_list.size(); i = j, ++edges) {
+    for (j = i + 1; j < edge_list.size() && edge_list[j] == edge_list[i];) ++j;
+    const size_t count = j - i;
+    if (count > 2 || (count == 1 && input_closed)) defect.insert({edge_list[i].first, edge_list[i].second});
+  }
+  for (size_t i = 0, j; i < vertex_sets.size(); i = j) {
+    for (j = i + 1; j < vertex_sets.size() && vertex_sets[j] == vertex_sets[i];) ++j;
+    if (j - i > 1) defect.insert(vertex_sets[i].begin(), vertex_sets[i].end());
+  }
   for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   std::set<int> hints;
   add_cell_topology_defects(diagram, mesh, hints);
   // The dual's Euler characteristic against the closed mesh's: a closed manifold dual can still have
   // lost a handle (a cell wrapping a tube), which only the cell-topology hints locate.
-  const int edges = static_cast<int>(edge_count.size());
   const bool euler_ok = !input_closed || static_cast<int>(dual.positions.size()) - edges +
                                               static_cast<int>(dual.triangles.size()) ==
                                           mesh.euler_characteristic();
@@ -121,6 +149,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.crossing.assign(crossing.begin(), crossing.end());
   out.cell_topology.assign(hints.begin(), hints.end());
   out.euler_ok = euler_ok;
+  out.crossing_pairs = pairs;
   return out;
 }
 
@@ -155,9 +184,11 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // the ones to act on.
   auto settle = [&](RemeshResult& r, DualDefects& d) {
     if (!options.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
-    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options);
+    // The crossings found in `d` (and then by the fitting) are not searched for again.
+    if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options, &index, &d.crossing_pairs);
     r.untangled_from = r.dual;
-    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options);
+    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options,
+                                    options.fit ? &r.fit.crossings : &d.crossing_pairs);
     r.fitted = true;
     std::set<int> left;
     for (const auto& [s, t] : r.untangle.remaining)
@@ -223,6 +254,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     again.kept_to_sheets = true;
     if (again_defects.fewer_than(defects)) {
       result = std::move(again);
+      defects = std::move(again_defects);
     } else {
       result.repair_rounds = again.repair_rounds;
       result.total_iterations = again.total_iterations;
@@ -230,10 +262,13 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   if (!result.fitted) {
-    if (options.fit) result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options);
+    // `defects` are those of result.dual (found before the fitting, which is not done yet).
+    if (options.fit)
+      result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, &defects.crossing_pairs);
     if (options.untangle) {
       result.untangled_from = result.dual;
-      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options);
+      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options,
+                                           options.fit ? &result.fit.crossings : &defects.crossing_pairs);
     }
   }
   // Crossings left in the state kept: the vertices may go further.
@@ -242,7 +277,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     UntangleOptions further = options.untangle_options;
     further.max_move = reach;
     DualMesh dual = result.untangled_from;
-    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further);
+    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further,
+                                                  options.fit ? &result.fit.crossings : nullptr);
     if (untangled.crossings_after < result.untangle.crossings_after) {
       result.dual = std::move(dual);
       result.untangle = std::move(untangled);

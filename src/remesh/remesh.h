@@ -58,6 +58,8 @@ struct DualDefects {
   std::vector<int> crossing;       //!< samples of triangles that intersect others
   std::vector<int> cell_topology;  //!< cells that are rings, or share two arcs with a neighbour
   bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
+  //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
+  std::vector<std::pair<int, int>> crossing_pairs;
   //! Nothing to repair: no defect of the dual itself, no crossing, and the right Euler
   //! characteristic (cell-topology findings alone are harmless then).
   bool empty() const { return topological.empty() && crossing.empty() && euler_ok; }

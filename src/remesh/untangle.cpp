@@ -41,7 +41,8 @@ Vec3 unit(const Vec3& v) {
 }  // namespace
 
 UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& samples, DualMesh& dual,
-                                  bool ignore_between_components, const UntangleOptions& options) {
+                                  bool ignore_between_components, const UntangleOptions& options,
+                                  const std::vector<std::pair<int, int>>* crossings) {
   UntangleResult result;
   std::vector<Vec3>& p = dual.positions;
   std::vector<Triangle>& tris = dual.triangles;
@@ -49,13 +50,14 @@ UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& sample
   std::vector<char> proper = proper_triangles(p, tris);
   const std::vector<int> component = ignore_between_components ? soup_components(n, tris, proper) : std::vector<int>();
   auto counted = [&](int s, int t) { return component.empty() || component[s] == component[t]; };
-  auto crossing_pairs = [&] {
+  auto counted_only = [&](const std::vector<std::pair<int, int>>& all) {
     std::vector<std::pair<int, int>> out;
-    for (const auto& st : find_self_intersections(p, tris, proper))
+    for (const auto& st : all)
       if (counted(st.first, st.second)) out.push_back(st);
     return out;
   };
-  std::vector<std::pair<int, int>> pairs = crossing_pairs();
+  auto crossing_pairs = [&] { return counted_only(find_self_intersections(p, tris, proper)); };
+  std::vector<std::pair<int, int>> pairs = crossings ? counted_only(*crossings) : crossing_pairs();
   result.crossings_before = result.crossings_after = static_cast<int>(pairs.size());
   result.remaining = pairs;
   if (pairs.empty()) return result;

@@ -54,7 +54,10 @@ struct UntangleResult {
 //! mesh. Pairs between two components are not counted when `ignore_between_components` (an input
 //! that crosses itself). With no crossing nothing changes; an edge without exactly two triangles
 //! oriented consistently is never flipped.
+//! `crossings`, if given, are find_self_intersections of `dual`'s proper triangles as it is passed
+//! (the caller found them already).
 UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& samples, DualMesh& dual,
-                                  bool ignore_between_components, const UntangleOptions& options = {});
+                                  bool ignore_between_components, const UntangleOptions& options = {},
+                                  const std::vector<std::pair<int, int>>* crossings = nullptr);
 
 }  // namespace lrvd
