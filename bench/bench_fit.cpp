@@ -13,6 +13,7 @@
 
 #include <tbb/global_control.h>
 
+#include "bench_util.h"
 #include "mesh/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/fit.h"
@@ -20,24 +21,8 @@
 #include "verification/remesh_check.h"
 
 using namespace lrvd;
-
-namespace {
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
-
-// CPU time of the process: one thread, so the fitting's work whatever the machine's load.
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
+using bench::cpu_seconds;
+using bench::split;
 
 int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "armadillo"};

@@ -15,6 +15,7 @@
 #include <tbb/global_control.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_util.h"
 #include "mesh/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/remesh.h"
@@ -22,24 +23,8 @@
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
-
-namespace {
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
-
-// CPU time of the process (all threads): with --threads 1, a load-independent measure of the work.
-double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-}  // namespace
+using bench::cpu_seconds;
+using bench::split;
 
 int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "knot", "ellipsoid", "armadillo"};
