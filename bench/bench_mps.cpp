@@ -55,7 +55,11 @@ int main(int argc, char** argv) {
     else if (arg == "--json" && a + 1 < argc) json_path = argv[++a];
     else if (arg == "--threads" && a + 1 < argc) threads = std::stoi(argv[++a]);
     else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
-    else meshes.push_back(arg);
+    else if (arg.rfind("--", 0) == 0) {  // an option it does not know (or --help), not a mesh
+      std::fprintf(stderr, "usage: %s [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] "
+                           "[--gap-update local|lrpd] [MESH ...]\n", argv[0]);
+      return arg == "--help" ? 0 : 2;
+    } else meshes.push_back(arg);
   }
   std::unique_ptr<tbb::global_control> thread_limit;
   if (threads > 0)
