@@ -312,10 +312,13 @@ void reset_predicate_stats() {
 
 namespace predicates {
 
-Sign side1(const Site& i, const Site& l, const Vec3& q) {
+bool in_filter_range(const Vec3& v) { return in_range(v); }
+bool in_filter_range(const Site& s) { return in_range(s); }
+
+Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
   ThreadCounters& c = local_counters();
   bump(c, kSide1, kCalls);
-  if (in_range(i) && in_range(l) && in_range(q)) {
+  if (inputs_in_range || (in_range(i) && in_range(l) && in_range(q))) {
     if (Sign s = side1_fpf(i, l, q); s != Sign::Zero) return s;
     Sign s;
     {
@@ -334,10 +337,11 @@ Sign side1(const Site& i, const Site& l, const Vec3& q) {
   return i.id < l.id ? Sign::Positive : Sign::Negative;
 }
 
-Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2) {
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+           bool inputs_in_range) {
   ThreadCounters& c = local_counters();
   bump(c, kSide2, kCalls);
-  if (in_range(i) && in_range(j) && in_range(l) && in_range(q1) && in_range(q2)) {
+  if (inputs_in_range || (in_range(i) && in_range(j) && in_range(l) && in_range(q1) && in_range(q2))) {
     if (Sign s = side2_fpf(i, j, l, q1, q2); s != Sign::Zero) return s;
     Sign s;
     {
@@ -368,11 +372,11 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
 }
 
 Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,
-           const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+           const Vec3& p1, const Vec3& p2, const Vec3& p3, bool inputs_in_range) {
   ThreadCounters& c = local_counters();
   bump(c, kSide3, kCalls);
-  if (in_range(i) && in_range(j) && in_range(k) && in_range(l) && in_range(p1) && in_range(p2) &&
-      in_range(p3)) {
+  if (inputs_in_range || (in_range(i) && in_range(j) && in_range(k) && in_range(l) && in_range(p1) &&
+                          in_range(p2) && in_range(p3))) {
     if (Sign s = side3_fpf(i, j, k, l, p1, p2, p3); s != Sign::Zero) return s;
     Sign s;
     {

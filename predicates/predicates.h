@@ -57,21 +57,30 @@ namespace predicates {
 // returns sign(-f_il(q)) for the perturbed weights w' = w + delta_id, delta_0 >> delta_1 >> ... > 0:
 // Positive when q is strictly closer to i, Negative when strictly closer to l. It returns Zero
 // only if i.id == l.id, or if l repeats a site that defines q (then q lies on bisector(i,l)).
-// Inputs: finite doubles of any magnitude.
+// Inputs: finite doubles of any magnitude. Each call checks that its inputs lie in the range of
+// the filters (in_filter_range) and goes straight to the exact path when one does not; a caller
+// that has checked every input once (a whole mesh and its sites) passes `inputs_in_range` = true
+// and saves the check on every call. The answer is the same either way.
+
+//! Whether a point or a site is in the range where the filters cannot overflow (coordinates up to
+//! 2^100, weights up to 2^200 in magnitude): false for inf and NaN too.
+bool in_filter_range(const Vec3& v);
+bool in_filter_range(const Site& s);
 
 //! Type (a): q is a mesh vertex. Degree 2.
-Sign side1(const Site& i, const Site& l, const Vec3& q);
+Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range = false);
 
 //! Type (b): q is the point of line (q1,q2) on bisector(i,j).
 //! \pre (q1 - q2).(p_j - p_i) != 0 (the vertex exists); otherwise returns Zero.
 //! Degree 4 (numerator) times degree 2 (weight-free denominator).
-Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2);
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+           bool inputs_in_range = false);
 
 //! Type (c): q = plane(p1,p2,p3) ∩ bisector(i,j) ∩ bisector(i,k).
 //! \pre n, p_j - p_i, p_k - p_i are linearly independent, n = (p2-p1)x(p3-p1) (the vertex
 //!      exists); otherwise returns Zero. Degree 6 times degree 4 (weight-free det M).
 Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,
-           const Vec3& p1, const Vec3& p2, const Vec3& p3);
+           const Vec3& p1, const Vec3& p2, const Vec3& p3, bool inputs_in_range = false);
 
 //! Exact: (b - a) x (c - a) == 0 (includes coincident points). No perturbation.
 bool collinear(const Vec3& a, const Vec3& b, const Vec3& c);

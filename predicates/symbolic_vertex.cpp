@@ -43,18 +43,26 @@ bool SymbolicVertex::on_mesh_edge(int a, int b) const {
   return false;
 }
 
+SymbolicContext checked_context(const Vec3* vertices, std::size_t vertex_count, const Site* sites,
+                                std::size_t site_count) {
+  SymbolicContext ctx{vertices, sites, true};
+  for (std::size_t v = 0; v < vertex_count && ctx.in_range; ++v) ctx.in_range = predicates::in_filter_range(vertices[v]);
+  for (std::size_t s = 0; s < site_count && ctx.in_range; ++s) ctx.in_range = predicates::in_filter_range(sites[s]);
+  return ctx;
+}
+
 Sign side(const SymbolicVertex& q, int i, int l, const SymbolicContext& ctx) {
   using Type = SymbolicVertex::Type;
   const Site* s = ctx.sites;
   const Vec3* p = ctx.vertices;
   switch (q.type) {
     case Type::A:
-      return predicates::side1(s[i], s[l], p[q.v[0]]);
+      return predicates::side1(s[i], s[l], p[q.v[0]], ctx.in_range);
     case Type::B: {
       assert(q.has_label(i));
       if (q.has_label(l)) return Sign::Zero;
       const int j = q.label[0] == i ? q.label[1] : q.label[0];
-      return predicates::side2(s[i], s[j], s[l], p[q.v[0]], p[q.v[1]]);
+      return predicates::side2(s[i], s[j], s[l], p[q.v[0]], p[q.v[1]], ctx.in_range);
     }
     case Type::C: {
       assert(q.has_label(i));
@@ -62,7 +70,8 @@ Sign side(const SymbolicVertex& q, int i, int l, const SymbolicContext& ctx) {
       int others[2], n = 0;
       for (int x : q.label)
         if (x != i) others[n++] = x;
-      return predicates::side3(s[i], s[others[0]], s[others[1]], s[l], p[q.v[0]], p[q.v[1]], p[q.v[2]]);
+      return predicates::side3(s[i], s[others[0]], s[others[1]], s[l], p[q.v[0]], p[q.v[1]], p[q.v[2]],
+                                ctx.in_range);
     }
   }
   return Sign::Zero;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 
@@ -50,7 +51,14 @@ inline bool operator!=(const SymbolicVertex& a, const SymbolicVertex& b) { retur
 struct SymbolicContext {
   const Vec3* vertices = nullptr;
   const Site* sites = nullptr;
+  //! Every vertex and site is predicates::in_filter_range (checked_context sets it): the side
+  //! tests then skip the range check on each call.
+  bool in_range = false;
 };
+
+//! The context of `vertex_count` vertices and `site_count` sites, with in_range checked once.
+SymbolicContext checked_context(const Vec3* vertices, std::size_t vertex_count, const Site* sites,
+                                std::size_t site_count);
 
 //! side(q; i, l): Positive when q is strictly closer (perturbed power distance) to site i than to
 //! site l, Negative when closer to l. Never Zero for i != l unless l is one of q's labels (then q

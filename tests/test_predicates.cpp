@@ -279,7 +279,7 @@ struct Gen {
 
 TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
-  int ties = 0;
+  int ties = 0, in_range = 0;
   for (int n = 0; n < 100000; ++n) {
     g.next_mode(n);
     const auto s = g.sites<2>();
@@ -291,13 +291,20 @@ TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition o
     }
     REQUIRE(expected != Sign::Zero);
     REQUIRE(pr::side1(s[0], s[1], q) == expected);
+    // A caller that checked the range once gets the same answer without the per-call check.
+    if (pr::in_filter_range(s[0]) && pr::in_filter_range(s[1]) && pr::in_filter_range(q)) {
+      ++in_range;
+      REQUIRE(pr::side1(s[0], s[1], q, true) == expected);
+    }
   }
   CHECK(ties > 1000);  // the grids must exercise the perturbation
+  CHECK(in_range > 50000);
+  CHECK(in_range < 100000);  // the huge modes are out of the filters' range
 }
 
 TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
-  int ties = 0;
+  int ties = 0, in_range = 0;
   for (int n = 0; n < 100000;) {
     g.next_mode(n);
     const auto s = g.sites<3>();
@@ -311,13 +318,19 @@ TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition o
     }
     REQUIRE(expected != Sign::Zero);
     REQUIRE(pr::side2(s[0], s[1], s[2], q1, q2) == expected);
+    if (pr::in_filter_range(s[0]) && pr::in_filter_range(s[1]) && pr::in_filter_range(s[2]) &&
+        pr::in_filter_range(q1) && pr::in_filter_range(q2)) {
+      ++in_range;
+      REQUIRE(pr::side2(s[0], s[1], s[2], q1, q2, true) == expected);
+    }
   }
   CHECK(ties > 1000);
+  CHECK(in_range > 50000);
 }
 
 TEST_CASE("side3 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
   Gen g;
-  int ties = 0;
+  int ties = 0, in_range = 0;
   for (int n = 0; n < 100000;) {
     g.next_mode(n);
     const auto s = g.sites<4>();
@@ -332,8 +345,14 @@ TEST_CASE("side3 agrees with the Gmpq determinant and the perturbed definition o
     }
     REQUIRE(expected != Sign::Zero);
     REQUIRE(pr::side3(s[0], s[1], s[2], s[3], p1, p2, p3) == expected);
+    if (std::all_of(s.begin(), s.end(), [](const Site& x) { return pr::in_filter_range(x); }) &&
+        pr::in_filter_range(p1) && pr::in_filter_range(p2) && pr::in_filter_range(p3)) {
+      ++in_range;
+      REQUIRE(pr::side3(s[0], s[1], s[2], s[3], p1, p2, p3, true) == expected);
+    }
   }
   CHECK(ties > 500);
+  CHECK(in_range > 50000);
 }
 
 TEST_CASE("The two references agree wherever the determinant is nonzero", "[predicates]") {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <random>
 #include <set>
 #include <type_traits>
@@ -271,4 +272,28 @@ TEST_CASE("position and exact_position of vertices at extreme scales", "[predica
   const Vec3 tri[3] = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}};
   const Site sites[2] = {{{0, 1, 0}, 0, 0}, {{0, -1, 0}, 0, 1}};  // bisector y = 0 holds edge (0, 1)
   CHECK_THROWS_AS(lrvd::exact_position(SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicContext{tri, sites}), std::domain_error);
+}
+
+TEST_CASE("checked_context marks a context in range only when every vertex and site is", "[predicates][symbolic_vertex]") {
+  std::vector<Vec3> tri = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}};
+  std::vector<Site> sites = {{{1, 1, 0}, 0, 0}, {{3, 1, 0}, 0.5, 1}};
+  auto checked = [&] { return lrvd::checked_context(tri.data(), tri.size(), sites.data(), sites.size()).in_range; };
+  CHECK(checked());
+  CHECK_FALSE((SymbolicContext{tri.data(), sites.data()}.in_range));  // unchecked by default
+  tri[2].y = 1e300;  // beyond 2^100
+  CHECK_FALSE(checked());
+  tri[2].y = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(checked());
+  tri[2].y = 4;
+  sites[1].w = 1e61;  // beyond 2^200
+  CHECK_FALSE(checked());
+  sites[1].w = 0.5;
+  sites[0].p.z = -std::numeric_limits<double>::infinity();
+  CHECK_FALSE(checked());
+  sites[0].p.z = 0;
+  CHECK(checked());
+  // The side tests answer alike through either context.
+  const SymbolicContext on{tri.data(), sites.data(), true}, off{tri.data(), sites.data()};
+  for (int c = 0; c < 3; ++c)
+    CHECK(lrvd::side(SymbolicVertex::mesh_vertex(c), 0, 1, on) == lrvd::side(SymbolicVertex::mesh_vertex(c), 0, 1, off));
 }

@@ -77,7 +77,8 @@ void CellClipper::append_symbolic(const LocalVertex& q, std::vector<SymbolicVert
 
 // side(q; k, l) of a corner, by side1, stored for (k, l) and (l, k).
 Sign CellClipper::evaluate_corner(const LocalVertex& q, int k, int l) {
-  const Sign r = predicates::side1(ctx_.sites[labels_[k]], ctx_.sites[labels_[l]], ctx_.vertices[(*triangle_)[q.where]]);
+  const Sign r = predicates::side1(ctx_.sites[labels_[k]], ctx_.sites[labels_[l]], ctx_.vertices[(*triangle_)[q.where]],
+                                    ctx_.in_range);
   corner_sign_[(q.where * m_ + k) * m_ + l] = static_cast<std::int8_t>(r);
   corner_sign_[(q.where * m_ + l) * m_ + k] = static_cast<std::int8_t>(-r);
   return r;
@@ -94,11 +95,11 @@ Sign CellClipper::evaluate_vertex(const LocalVertex& q, int k, int l) {
   if (q.type == SymbolicVertex::Type::B) {
     const int a = tri[q.where], b = tri[q.where == 2 ? 0 : q.where + 1];
     r = predicates::side2(s[labels_[k]], s[others[0]], s[labels_[l]], ctx_.vertices[std::min(a, b)],
-                          ctx_.vertices[std::max(a, b)]);
+                          ctx_.vertices[std::max(a, b)], ctx_.in_range);
     edge_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   } else {
     r = predicates::side3(s[labels_[k]], s[others[0]], s[others[1]], s[labels_[l]], ctx_.vertices[tri[0]],
-                          ctx_.vertices[tri[1]], ctx_.vertices[tri[2]]);
+                          ctx_.vertices[tri[1]], ctx_.vertices[tri[2]], ctx_.in_range);
     inner_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   }
   return r;

@@ -33,7 +33,7 @@ bool is_localized(DiagramKind kind) { return kind == DiagramKind::Lrvd || kind =
 bool is_power(DiagramKind kind) { return kind == DiagramKind::Lrpd || kind == DiagramKind::Rpd; }
 
 SymbolicContext Diagram::context(const SurfaceMesh& mesh) const {
-  return SymbolicContext{mesh.positions().data(), sites.data()};
+  return checked_context(mesh.positions().data(), mesh.positions().size(), sites.data(), sites.size());
 }
 
 std::vector<Site> make_sites(const Samples& samples, bool weighted) {

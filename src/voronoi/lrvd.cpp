@@ -105,7 +105,7 @@ class LrvdBuilder {
         home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
-    ctx_ = SymbolicContext{mesh.positions().data(), sites_.data()};
+    ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
   }
 
   Diagram run() {
