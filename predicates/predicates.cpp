@@ -259,11 +259,19 @@ Side3Terms<NT> side3_terms(const Site& i, const Site& j, const Site& k, const Si
 [[gnu::flatten]] Sign side1_fpf(const Site& i, const Site& l, const Vec3& q) {
   return -certain_sign(side1_f<Fpf>(i, l, q));
 }
+// side2's filter takes a cheaper form of the same signs: with G2 = G1 - 2 e.a_l and
+// F2 = F1 - 2 e.a_j, N = 2 (G1 e.a_j - F1 e.a_l) and F1 - F2 = 2 e.a_j; and
+// F1 = a_j.((q1 - p_i) + (q1 - p_j)) + w_j - w_i (2 u1.a_j - |a_j|^2 = a_j.(2 u1 - a_j)), G1 alike.
+// 14 products instead of 28.
 [[gnu::flatten]] Sign side2_fpf(const Site& i, const Site& j, const Site& l, const Vec3& q1,
                                 const Vec3& q2) {
-  Fpf num, den;
-  side2_num_den<Fpf>(i, j, l, q1, q2, num, den);
-  return -(certain_sign(num) * certain_sign(den));
+  const V3<Fpf> aj = sub<Fpf>(j.p, i.p), al = sub<Fpf>(l.p, i.p), e = sub<Fpf>(q1, q2);
+  const V3<Fpf> u1 = sub<Fpf>(q1, i.p), vj = sub<Fpf>(q1, j.p), vl = sub<Fpf>(q1, l.p);
+  const V3<Fpf> sj{u1.x + vj.x, u1.y + vj.y, u1.z + vj.z}, sl{u1.x + vl.x, u1.y + vl.y, u1.z + vl.z};
+  const Fpf F1 = dot(aj, sj) + (Fpf(j.w) - Fpf(i.w)), G1 = dot(al, sl) + (Fpf(l.w) - Fpf(i.w));
+  const Fpf ea = dot(e, aj), el = dot(e, al);
+  const Fpf half_num = G1 * ea - F1 * el;
+  return -(certain_sign(half_num) * certain_sign(ea));
 }
 [[gnu::flatten]] bool cross_certainly_nonzero_fpf(const Vec3& a, const Vec3& b, const Vec3& c) {
   const V3<Fpf> n = cross(sub<Fpf>(b, a), sub<Fpf>(c, a));
