@@ -106,9 +106,22 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
     REQUIRE(fine.edge_count() == checked.edge_count());
     REQUIRE(fine.boundary_loops() == checked.boundary_loops());
     REQUIRE(fine.component_count() == checked.component_count());
+    REQUIRE(fine.triangle_components() == checked.triangle_components());
     for (int t = 0; t < fine.triangle_count(); ++t)
       for (int e = 0; e < 3; ++e) REQUIRE(fine.neighbor(t, e) == checked.neighbor(t, e));
     for (int v = 0; v < fine.vertex_count(); ++v) REQUIRE(fine.vertex_neighbors(v) == checked.vertex_neighbors(v));
+    // The vertex-to-vertex lists: exactly the ends of the edges at v, in increasing order.
+    std::vector<std::vector<int>> expected(fine.vertex_count());
+    for (const Triangle& tri : fine.triangles())
+      for (int e = 0; e < 3; ++e) {
+        expected[tri[e]].push_back(tri[(e + 1) % 3]);
+        expected[tri[(e + 1) % 3]].push_back(tri[e]);
+      }
+    for (int v = 0; v < fine.vertex_count(); ++v) {
+      std::sort(expected[v].begin(), expected[v].end());
+      expected[v].erase(std::unique(expected[v].begin(), expected[v].end()), expected[v].end());
+      REQUIRE(fine.vertex_neighbors(v) == expected[v]);
+    }
   }
   // Each input triangle's pieces are consecutive, in the input's order (the octahedron's faces are
   // its octants), and the input's vertices keep their indices.

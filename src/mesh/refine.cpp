@@ -101,6 +101,12 @@ class EdgeTable {
   size_t mask_ = 0, live_ = 0, dead_ = 0;
 };
 
+// The edge of `tri` joining a and b (two of its corners): corners e and (e + 1) % 3, e being the
+// corner after the one that is neither.
+int edge_of(const Triangle& tri, int a, int b) {
+  return (tri[0] != a && tri[0] != b) ? 1 : (tri[1] != a && tri[1] != b) ? 2 : 0;
+}
+
 struct LongEdge {
   double length;
   int a, b;
@@ -161,8 +167,7 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
       if (t < 0) continue;
       // Rotate so that the split edge is (u, v) = corners 0 -> 1 of t, w opposite.
       Triangle tri = triangles[t];
-      int e = 0;
-      while (!((tri[e] == edge.a || tri[e] == edge.b) && (tri[(e + 1) % 3] == edge.a || tri[(e + 1) % 3] == edge.b))) ++e;
+      const int e = edge_of(tri, edge.a, edge.b);
       const int u = tri[e], v = tri[(e + 1) % 3], w = tri[(e + 2) % 3];
       const int t_new = static_cast<int>(triangles.size());
       triangles[t] = {u, m, w};
@@ -217,15 +222,17 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     for (int k = 0; k < 2; ++k) {
       const int t = users[k];
       if (t < 0) continue;
-      const Triangle& tri = triangles[t];
-      int e = 0;
-      while (!((tri[e] == a || tri[e] == b) && (tri[(e + 1) % 3] == a || tri[(e + 1) % 3] == b))) ++e;
+      const int e = edge_of(triangles[t], a, b);
       const int across = users[1 - k];
       neighbors[new_triangle[t]][e] = across < 0 ? -1 : new_triangle[across];
     }
   });
+  // Splitting keeps each input triangle's pieces edge-connected, and the pieces are in the input's
+  // order: the components, numbered by first triangle, are the input's.
+  std::vector<int> components(nt);
+  for (int t = 0; t < nt; ++t) components[t] = mesh.triangle_components()[origin[old_triangle[t]]];
   return SurfaceMesh(std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
-                     static_cast<int>(edge_triangles.size()));
+                     static_cast<int>(edge_triangles.size()), std::move(components), mesh.component_count());
 }
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {

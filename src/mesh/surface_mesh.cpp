@@ -52,12 +52,18 @@ SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> tria
 }
 
 SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles,
-                         std::vector<std::array<int, 3>> neighbors, int edge_count)
-    : positions_(std::move(positions)), triangles_(std::move(triangles)), neighbors_(std::move(neighbors)),
+                         std::vector<std::array<int, 3>> neighbors, int edge_count, std::vector<int> components,
+                         int component_count)
+    : positions_(std::move(positions)),
+      triangles_(std::move(triangles)),
+      neighbors_(std::move(neighbors)),
+      component_of_triangle_(std::move(components)),
+      component_count_(component_count),
       edge_count_(edge_count) {
   check_triangle_areas();
   build_vertex_triangles();
-  finish_topology();
+  build_vertex_neighbors();
+  build_boundary_loops();
 }
 
 void SurfaceMesh::check_triangle_areas() const {
@@ -194,24 +200,42 @@ void SurfaceMesh::link_and_check() {
 }
 
 void SurfaceMesh::finish_topology() {
-  const int nt = triangle_count(), nv = vertex_count();
-  auto corner_of = [&](int t, int v) { return triangles_[t][0] == v ? 0 : triangles_[t][1] == v ? 1 : 2; };
-  // Vertex-to-vertex lists (CSR), sorted. Around a manifold vertex each neighbour u follows v in
-  // the one triangle holding edge (v, u), or, on the boundary, precedes it in the one holding (u, v).
-  vv_offsets_.assign(nv + 1, 0);
-  vv_vertices_.clear();
-  vv_vertices_.reserve(vt_triangles_.size() + 2);
-  for (int v = 0; v < nv; ++v) {
-    const size_t first = vv_vertices_.size();
-    for (const int* t = vertex_triangles_begin(v); t != vertex_triangles_end(v); ++t) {
-      const int c = corner_of(*t, v);
-      vv_vertices_.push_back(triangles_[*t][(c + 1) % 3]);
-      if (neighbors_[*t][(c + 2) % 3] < 0) vv_vertices_.push_back(triangles_[*t][(c + 2) % 3]);
-    }
-    std::sort(vv_vertices_.begin() + first, vv_vertices_.end());
-    vv_offsets_[v + 1] = static_cast<int>(vv_vertices_.size());
-  }
+  build_vertex_neighbors();
+  build_components();
+  build_boundary_loops();
+}
 
+void SurfaceMesh::build_vertex_neighbors() {
+  const int nv = vertex_count();
+  auto corner_of = [&](int t, int v) { return triangles_[t][0] == v ? 0 : triangles_[t][1] == v ? 1 : 2; };
+  // Vertex-to-vertex lists (CSR), sorted. Around a manifold vertex v each neighbour u follows v in
+  // the one triangle holding edge (v, u), or, on the boundary, precedes it in the one holding (u, v).
+  // The relation is symmetric: going through the vertices u in increasing order and appending u to
+  // the list of each of its neighbours (each edge once, by the same rule seen from u) leaves every
+  // list sorted, without a sort.
+  auto for_each_neighbor = [&](int u, auto&& f) {
+    for (const int* t = vertex_triangles_begin(u); t != vertex_triangles_end(u); ++t) {
+      const int c = corner_of(*t, u);
+      f(triangles_[*t][(c + 1) % 3]);
+      if (neighbors_[*t][(c + 2) % 3] < 0) f(triangles_[*t][(c + 2) % 3]);
+    }
+  };
+  // The same entries counted per triangle: w gets u for each edge u -> w, and x gets y for each
+  // boundary edge x -> y.
+  vv_offsets_.assign(nv + 1, 0);
+  for (int t = 0; t < triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      ++vv_offsets_[triangles_[t][(e + 1) % 3] + 1];
+      if (neighbors_[t][e] < 0) ++vv_offsets_[triangles_[t][e] + 1];
+    }
+  std::partial_sum(vv_offsets_.begin(), vv_offsets_.end(), vv_offsets_.begin());
+  vv_vertices_.assign(vv_offsets_[nv], 0);
+  std::vector<int> fill(vv_offsets_.begin(), vv_offsets_.end() - 1);
+  for (int u = 0; u < nv; ++u) for_each_neighbor(u, [&](int w) { vv_vertices_[fill[w]++] = u; });
+}
+
+void SurfaceMesh::build_components() {
+  const int nt = triangle_count();
   // Connected components over triangle adjacency.
   component_of_triangle_.assign(nt, -1);
   component_count_ = 0;
@@ -233,7 +257,10 @@ void SurfaceMesh::finish_topology() {
       }
     }
   }
+}
 
+void SurfaceMesh::build_boundary_loops() {
+  const int nt = triangle_count();
   // Boundary loops: each boundary vertex of a manifold mesh has one outgoing boundary edge.
   boundary_loops_.clear();
   std::unordered_map<int, int> next_on_boundary;

@@ -77,14 +77,18 @@ class SurfaceMesh {
  private:
   friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*);
   //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
-  //! check is repeated (midpoints are rounded); the rest holds by construction.
+  //! check is repeated (midpoints are rounded); the rest holds by construction. `components`:
+  //! each triangle's component, numbered as finish_topology() would (by first triangle).
   SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles, std::vector<std::array<int, 3>> neighbors,
-              int edge_count);
+              int edge_count, std::vector<int> components, int component_count);
 
   void build_topology();            // all of the below, in order
   void build_vertex_triangles();    // vertex-to-triangle lists
   void link_and_check();            // duplicates, edges and neighbours, one fan per vertex
   void finish_topology();           // vertex-to-vertex lists, components, boundary loops
+  void build_vertex_neighbors();    // vertex-to-vertex lists
+  void build_components();          // components over triangle adjacency
+  void build_boundary_loops();
   void check_triangle_areas() const;
 
   std::vector<Vec3> positions_;

@@ -33,6 +33,8 @@ class AliasTable {
     for (double w : weights) sum += w;
     std::vector<double> scaled(n);
     std::vector<int> small, large;
+    small.reserve(n);
+    large.reserve(n);
     for (size_t i = 0; i < n; ++i) {
       scaled[i] = weights[i] * static_cast<double>(n) / sum;
       (scaled[i] < 1 ? small : large).push_back(static_cast<int>(i));
@@ -248,10 +250,9 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     result.max_radius = r_min;
   }
   const SurfaceMesh& m = result.mesh;
-  std::vector<double> areas(m.triangle_count());
-  for (int t = 0; t < m.triangle_count(); ++t) areas[t] = m.triangle_area(t);
-  const AliasTable by_area(areas);
   Sampler sampler(m, r_min, std::move(vertex_radius));
+  const std::vector<double>& areas = sampler.disks().triangle_areas();
+  const AliasTable by_area(areas);
   Random random(options.seed);
   result.time_s.init = seconds_since(start);
 

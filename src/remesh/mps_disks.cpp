@@ -51,15 +51,20 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       center_head_(mesh.triangle_count(), -1),
       vertex_stamp_(mesh.vertex_count(), 0),
       vertex_inside_(mesh.vertex_count(), 0),
-      triangles_info_(mesh.triangle_count()) {
+      triangles_info_(mesh.triangle_count()),
+      areas_(mesh.triangle_count()) {
   for (int t = 0; t < mesh.triangle_count(); ++t) {
-    triangles_info_[t].normal = mesh.triangle_normal(t);
     const Triangle& tri = mesh.triangle(t);
-    const Vec3 c = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
-    double r2 = 0;
-    for (int k = 0; k < 3; ++k) r2 = std::max(r2, squared_distance(c, mesh.position(tri[k])));
-    triangles_info_[t].center = c;
-    triangles_info_[t].radius = std::sqrt(r2);
+    const Vec3 &a = mesh.position(tri[0]), &b = mesh.position(tri[1]), &d = mesh.position(tri[2]);
+    // As mesh.triangle_normal(t) and mesh.triangle_area(t) compute them, from one cross product.
+    const Vec3 n = cross(b - a, d - a);
+    const double length = norm(n);
+    areas_[t] = 0.5 * length;
+    TriangleInfo& info = triangles_info_[t];
+    info.normal = n / length;
+    const Vec3 c = (a + b + d) / 3.0;
+    info.center = c;
+    info.radius = std::sqrt(std::max({squared_distance(c, a), squared_distance(c, b), squared_distance(c, d)}));
   }
 }
 

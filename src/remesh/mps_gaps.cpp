@@ -309,7 +309,7 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     piece.area = area;
     piece.alive = true;
     piece.next_in_triangle = head_[t];
-    for (const Vec3& y : q) points_.push_back(y);
+    points_.insert(points_.end(), q.begin(), q.end());
     const int index = static_cast<int>(pieces_.size());
     pieces_.push_back(piece);
     head_[t] = index;

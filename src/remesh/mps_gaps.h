@@ -64,6 +64,8 @@ class DiskIndex {
   bool faces_like(int s, int t) const { return dot(triangles_info_[s].normal, triangles_info_[t].normal) > kFacingCosine; }
   //! Unit normal of triangle t (mesh.triangle_normal(t)).
   const Vec3& normal(int t) const { return triangles_info_[t].normal; }
+  //! Area of each triangle (mesh.triangle_area(t): the normal's cross product gives both).
+  const std::vector<double>& triangle_areas() const { return areas_; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
   //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
@@ -118,6 +120,7 @@ class DiskIndex {
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_;
   std::vector<TriangleInfo> triangles_info_;  // per triangle
+  std::vector<double> areas_;                 // per triangle
 };
 
 //! Squared distance from p to triangle t of the mesh.
