@@ -59,6 +59,18 @@ Vec3 quadric_target(const CellQuadric& q, const Vec3& x0, double rank_threshold)
   return {x0.x + step[0], x0.y + step[1], x0.z + step[2]};
 }
 
+// Per input vertex, the cell that holds it (-1 if none): where the balancing's first search for the
+// vertex's closest point on the remesh starts.
+std::vector<int> input_vertex_cells(const Diagram& diagram, const SurfaceMesh& mesh) {
+  std::vector<int> cell(mesh.vertex_count(), -1);
+  for (const CellPolygon& poly : diagram.polygons) {
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    for (int k = 0; k < poly.vertex_count; ++k)
+      if (v[k].type == SymbolicVertex::Type::A) cell[v[k].v[0]] = poly.cell;
+  }
+  return cell;
+}
+
 std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
   const auto pairs = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
   return {pairs.begin(), pairs.end()};
@@ -225,7 +237,9 @@ FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMe
         return true;
       };
     };
-    result.offsets = balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor, mesh_index);
+    const std::vector<int> input_cells = input_vertex_cells(diagram, mesh);
+    result.offsets =
+        balance_offsets(mesh, dual, incident, acceptable, options.offsets, make_focus_floor, mesh_index, &input_cells);
     // The floor that settling keeps: the focus rounds' where they ran (step 1's result meets it).
     result.reverted += settle(dual, quadric_fitted, focus_floor ? *focus_floor : fitted_floor, allowed, incident, crossings_now);
   }

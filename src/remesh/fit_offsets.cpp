@@ -95,7 +95,7 @@ class OffsetBalancer {
  public:
   OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
                  const std::function<bool(int)>& acceptable, const OffsetOptions& options,
-                 const ClosestPointIndex* mesh_index)
+                 const ClosestPointIndex* mesh_index, const std::vector<int>* input_vertex_cell)
       : mesh_(mesh), dual_(dual), incident_(incident), acceptable_(acceptable), options_(options),
         proper_(proper_triangles(dual.positions, dual.triangles)) {
     if (!mesh_index) own_index_.emplace(mesh);
@@ -103,6 +103,7 @@ class OffsetBalancer {
     for (int t = 0; t < static_cast<int>(dual_.triangles.size()); ++t)
       if (proper_[t]) proper_triangles_.push_back(dual_.triangles[t]), dual_triangle_.push_back(t);
     place_samples();
+    if (input_vertex_cell) hint_input_vertices(*input_vertex_cell);
     moved_.assign(dual.positions.size(), 1);
   }
 
@@ -279,6 +280,18 @@ class OffsetBalancer {
       for (const Vec3& b : bary) input_points_.push_back(at(p, f, b)), input_source_.push_back(t);
     }
     input_.resize(input_points_.size());
+  }
+
+  // The input vertices' first hints: a proper remesh triangle at the vertex whose cell holds them.
+  void hint_input_vertices(const std::vector<int>& cell_of) {
+    if (static_cast<int>(cell_of.size()) != mesh_.vertex_count()) return;
+    // A proper triangle at each remesh vertex, as its index in proper_triangles_.
+    std::vector<int> proper_at(dual_.positions.size(), -1);
+    for (int k = 0; k < static_cast<int>(proper_triangles_.size()); ++k)
+      for (int v : proper_triangles_[k])
+        if (proper_at[v] < 0) proper_at[v] = k;
+    for (int u = 0; u < mesh_.vertex_count(); ++u)
+      if (cell_of[u] >= 0 && cell_of[u] < static_cast<int>(proper_at.size())) input_[u].hint = proper_at[cell_of[u]];
   }
 
   // Per vertex, the samples of its triangles with the vertex's weight there (CSR).
@@ -578,9 +591,9 @@ class OffsetBalancer {
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
                              const std::function<bool(int)>& acceptable, const OffsetOptions& options,
                              const std::function<std::function<bool(int)>()>& focus_floor,
-                             const ClosestPointIndex* mesh_index) {
+                             const ClosestPointIndex* mesh_index, const std::vector<int>* input_vertex_cell) {
   OffsetResult result;
-  OffsetBalancer balancer(mesh, dual, incident, acceptable, options, mesh_index);
+  OffsetBalancer balancer(mesh, dual, incident, acceptable, options, mesh_index, input_vertex_cell);
   std::vector<Vec3> best = dual.positions;
   double best_max = result.max_before = balancer.measure();
   for (int round = 0; round < options.rounds; ++round) {

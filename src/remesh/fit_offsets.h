@@ -66,10 +66,13 @@ struct OffsetResult {
 //! one-ring, under the floor `focus_floor()` returns (called once, with `dual` at the state the
 //! focus rounds start from) where that beats the rounds' floor, within a Qavg budget. `max_after`
 //! is then measured on the finer samples. `mesh_index`, if given, is a ClosestPointIndex of `mesh`
-//! (the CVT's), used instead of building another.
+//! (the CVT's), used instead of building another. `input_vertex_cell`, if given, is per input vertex
+//! the remesh vertex whose cell holds it (or -1): the first search of the vertex's closest point on
+//! the remesh starts at that vertex's triangles, which only prunes it (the same answer).
 OffsetResult balance_offsets(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
                              const std::function<bool(int)>& acceptable, const OffsetOptions& options = {},
                              const std::function<std::function<bool(int)>()>& focus_floor = {},
-                             const ClosestPointIndex* mesh_index = nullptr);
+                             const ClosestPointIndex* mesh_index = nullptr,
+                             const std::vector<int>* input_vertex_cell = nullptr);
 
 }  // namespace lrvd

@@ -42,6 +42,16 @@ std::vector<Site> make_sites(const Samples& samples, bool weighted) {
   return sites;
 }
 
+namespace {
+
+// q == r for two type (b) or (c) vertices, the labels (which differ most often) first.
+bool same_vertex(const SymbolicVertex& q, const SymbolicVertex& r) {
+  return q.label[1] == r.label[1] && q.label[0] == r.label[0] && q.label[2] == r.label[2] && q.v[0] == r.v[0] &&
+         q.v[1] == r.v[1] && q.v[2] == r.v[2] && q.type == r.type;
+}
+
+}  // namespace
+
 CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
                               const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
@@ -56,15 +66,37 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
   std::vector<PolygonIntegrals> part(np);
   tbb::parallel_for(tbb::blocked_range<int>(0, np, 512), [&](const tbb::blocked_range<int>& range) {
     std::vector<Vec3> points;
+    // A type (b) or (c) vertex is shared by the polygons of its labels in its triangle, which come
+    // in cell order: it is computed by the polygon of its smallest label and found in `known` by
+    // the others (position() depends on the symbolic vertex alone, so the value is the same). Also
+    // sharing the type (b) vertices of the triangle across cost more in look-ups than it saved.
+    struct Known {
+      SymbolicVertex q;
+      Vec3 position;
+    };
+    std::vector<Known> known;  // of the current triangle
+    known.reserve(16);
+    int known_triangle = -1;
     for (int p = range.begin(); p != range.end(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
       const Vec3& x = samples.positions[poly.cell];
       const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
-      points.clear();
+      if (poly.triangle != known_triangle) known.clear(), known_triangle = poly.triangle;
+      if (static_cast<int>(points.size()) < poly.vertex_count) points.resize(poly.vertex_count);
       const SymbolicVertex* verts = diagram.polygon_vertices(poly);
       for (int a = 0; a < poly.vertex_count; ++a) {
-        const SymbolicVertex& q = verts[a];  // a mesh vertex's position is the vertex's own
-        points.push_back((q.type == SymbolicVertex::Type::A ? ctx.vertices[q.v[0]] : position(q, ctx)) - x);
+        const SymbolicVertex& q = verts[a];
+        if (q.type == SymbolicVertex::Type::A) {
+          points[a] = ctx.vertices[q.v[0]] - x;  // a mesh vertex's position is the vertex's own
+        } else if (q.label[0] == poly.cell) {
+          known.push_back({q, position(q, ctx)});
+          points[a] = known.back().position - x;
+        } else {
+          const Known* k = known.data();
+          const Known* end = k + known.size();
+          while (k != end && !same_vertex(k->q, q)) ++k;
+          points[a] = (k != end ? k->position : position(q, ctx)) - x;
+        }
       }
       // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
       PolygonIntegrals& out = part[p];
