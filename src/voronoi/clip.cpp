@@ -88,10 +88,10 @@ void CellClipper::append_symbolic(const LocalVertex& q, std::vector<SymbolicVert
 }
 
 // side(q; k, l) of corner c, by side1, stored for (k, l) and (l, k).
-Sign CellClipper::evaluate_corner(int c, int k, int l) {
+[[gnu::always_inline]] inline Sign CellClipper::evaluate_corner(int c, int k, int l) {
   const Sign r = predicates::side1(*site_[k], *site_[l], *corner_[c]);
-  corner_sign_[(c * m_ + k) * m_ + l] = static_cast<std::int8_t>(r);
-  corner_sign_[(c * m_ + l) * m_ + k] = static_cast<std::int8_t>(-static_cast<int>(r));
+  corner_sign_[3 * (k * m_ + l) + c] = static_cast<std::int8_t>(r);
+  corner_sign_[3 * (l * m_ + k) + c] = static_cast<std::int8_t>(-static_cast<int>(r));
   return r;
 }
 
@@ -101,32 +101,32 @@ Sign CellClipper::evaluate_vertex(const LocalVertex& q, int k, int l) {
   if (q.type == SymbolicVertex::Type::B) {
     const int other = q.label[0] == k ? q.label[1] : q.label[0];
     r = predicates::side2(*site_[k], *site_[other], *site_[l], vertices_[edge_lo_[q.where]], vertices_[edge_hi_[q.where]]);
-    edge_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
+    edge_sign_[q.key + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   } else {
     int others[2], n = 0;
     for (std::uint8_t x : q.label)
       if (x != k) others[n++] = x;
     r = predicates::side3(*site_[k], *site_[others[0]], *site_[others[1]], *site_[l], *corner_[0], *corner_[1], *corner_[2]);
-    inner_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
+    inner_sign_[q.key + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   }
   return r;
 }
 
-// side(q; k, l) of the symbolic vertex, as side() evaluates it, through the memo.
-inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l) {
+// side(q; k, l) of the symbolic vertex, as side() evaluates it, through the memo; corner_signs
+// points at the corners' entries for (k, l). The vertices of cell k's polygon, clipped in label
+// order, carry k and labels already clipped by, never l: side() is never Zero here.
+inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs) {
   if (q.type == SymbolicVertex::Type::A) {
-    const std::int8_t memo = corner_sign_[(q.where * m_ + k) * m_ + l];
+    const std::int8_t memo = corner_signs[q.where];
     return memo != 0 ? static_cast<Sign>(memo) : evaluate_corner(q.where, k, l);
   }
-  if (q.label[0] == l || q.label[1] == l || q.label[2] == l) return Sign::Zero;
-  const std::uint32_t memo =
-      (q.type == SymbolicVertex::Type::B ? edge_sign_ : inner_sign_)[static_cast<std::size_t>(q.key) * m_ + l];
+  const std::uint32_t memo = (q.type == SymbolicVertex::Type::B ? edge_sign_ : inner_sign_)[q.key + l];
   return (memo >> 2) == epoch_ ? static_cast<Sign>(static_cast<int>(memo & 3u) - 1) : evaluate_vertex(q, k, l);
 }
 
 // intersect() on local vertices: type B on the mesh edge u and w share, else type C with the
 // label they share besides k.
-inline CellClipper::LocalVertex CellClipper::intersection(const LocalVertex& u, const LocalVertex& w, int k, int l) const {
+[[gnu::always_inline]] inline CellClipper::LocalVertex CellClipper::intersection(const LocalVertex& u, const LocalVertex& w, int k, int l) const {
   LocalVertex q;
   if (const unsigned common = u.mask & w.mask) {
     const int e = common & 1u ? 0 : (common & 2u ? 1 : 2);
@@ -137,7 +137,7 @@ inline CellClipper::LocalVertex CellClipper::intersection(const LocalVertex& u, 
     q.label[0] = static_cast<std::uint8_t>(a);
     q.label[1] = static_cast<std::uint8_t>(b);
     q.label[2] = kNoLabel;
-    q.key = static_cast<std::uint16_t>((e * m_ + a) * m_ + b);
+    q.key = static_cast<std::uint16_t>(((e * m_ + a) * m_ + b) * m_);
     return q;
   }
   for (std::uint8_t x : u.label) {
@@ -153,7 +153,7 @@ inline CellClipper::LocalVertex CellClipper::intersection(const LocalVertex& u, 
     q.label[0] = static_cast<std::uint8_t>(a);
     q.label[1] = static_cast<std::uint8_t>(b);
     q.label[2] = static_cast<std::uint8_t>(c);
-    q.key = static_cast<std::uint16_t>((a * m_ + b) * m_ + c);
+    q.key = static_cast<std::uint16_t>(((a * m_ + b) * m_ + c) * m_);
     return q;
   }
   throw std::logic_error("intersect: polygon edge is on no mesh edge and its ends share no bisector");
@@ -165,14 +165,15 @@ void CellClipper::clip_local(const LocalPolygon& in, int k, int l, LocalPolygon&
   const int n = in.n;
   if (n + 1 > kMaxVertices) throw std::logic_error("clip: polygon outgrew its bound");
   int count = 0;
-  const Sign first = side_of(in.v[0], k, l);
+  const std::int8_t* corner_signs = corner_sign_ + 3 * (k * m_ + l);
+  const Sign first = side_of(in.v[0], k, l, corner_signs);
   if (first == Sign::Zero) throw_on_bisector();
   Sign su = first;
   for (int a = 0; a < n; ++a) {
     const LocalVertex& u = in.v[a];
     const bool last = a + 1 == n;
     const LocalVertex& w = in.v[last ? 0 : a + 1];
-    const Sign sw = last ? first : side_of(w, k, l);
+    const Sign sw = last ? first : side_of(w, k, l, corner_signs);
     if (sw == Sign::Zero) throw_on_bisector();
     if (su == Sign::Positive) out.v[count++] = u;
     if (su != sw) out.v[count++] = intersection(u, w, k, l);

@@ -91,7 +91,7 @@ class CellClipper {
     std::uint8_t mask;      // edge_mask bits
     std::uint8_t where;     // type A: corner; type B: edge (corner where, corner where + 1)
     std::uint8_t label[3];  // types B and C: local labels, increasing; unused ones 0xff
-    std::uint16_t key;      // type B: (where m + a) m + b; type C: (a m + b) m + c
+    std::uint16_t key;      // memo slot of l = 0: type B ((where m + a) m + b) m, type C ((a m + b) m + c) m
   };
   // One Sutherland-Hodgman step's input or output.
   struct LocalPolygon {
@@ -101,7 +101,7 @@ class CellClipper {
 
   void begin_triangle(const std::array<int, 3>& tri, const int* labels, int m, const SymbolicContext& ctx);
   void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) const;
-  Sign side_of(const LocalVertex& q, int k, int l);
+  Sign side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs);
   Sign evaluate_corner(int c, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
   void clip_local(const LocalPolygon& in, int k, int l, LocalPolygon& out);
@@ -116,8 +116,8 @@ class CellClipper {
   const Site* site_[kMaxLabels];    // by local label
   const Vec3* corner_[3];           // corner positions
   int edge_lo_[3], edge_hi_[3];     // edge e's end points, lower vertex index first
-  // Memo of the side tests: corner c for cells (k, l) at corner_sign_[(c m + k) m + l] (0 while
-  // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key m + l], valid when
+  // Memo of the side tests: corner c for cells (k, l) at corner_sign_[3 (k m + l) + c] (0 while
+  // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key + l], valid when
   // the entry's high bits hold the current epoch_ (low two bits: sign + 1).
   std::int8_t corner_sign_[3 * kMaxLabels * kMaxLabels];
   std::vector<std::uint32_t> edge_sign_, inner_sign_;
