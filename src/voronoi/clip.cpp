@@ -160,10 +160,11 @@ inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l, const std::
 }
 
 // One Sutherland-Hodgman step, as clip_by_bisector: `in` clipped by bisector(k, l) into `out`.
-// Exact signs along a convex polygon change at most twice, so `out` has at most one vertex more.
+// Exact signs along a convex polygon change at most twice, so `out` has at most one vertex more;
+// the bound on `in` keeps even inconsistent signs (twice as many vertices) inside the arrays.
 void CellClipper::clip_local(const LocalPolygon& in, int k, int l, LocalPolygon& out) {
   const int n = in.n;
-  if (n + 1 > kMaxVertices) throw std::logic_error("clip: polygon outgrew its bound");
+  if (2 * n > kMaxVertices) throw std::logic_error("clip: polygon outgrew its bound");
   int count = 0;
   const std::int8_t* corner_signs = corner_sign_ + 3 * (k * m_ + l);
   const Sign first = side_of(in.v[0], k, l, corner_signs);

@@ -82,7 +82,7 @@ class CellClipper {
 
  private:
   static constexpr int kMaxLabels = 16;    // more candidates take the per-cell path
-  static constexpr int kMaxVertices = 24;  // a convex polygon cut by at most 15 bisectors: 18
+  static constexpr int kMaxVertices = 40;  // a convex polygon cut by at most 15 bisectors: 18
 
   // A polygon vertex during clipping, eight bytes: labels as indices into the triangle's label
   // list.
