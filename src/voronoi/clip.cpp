@@ -42,96 +42,106 @@ void clip_triangle(const SurfaceMesh& mesh, int t, int k, const int* others, int
 
 namespace {
 
-// Beyond this many candidates the memo tables (m^3 and m^4 entries) would outgrow the cache;
-// such triangles are clipped cell by cell.
-constexpr int kMaxMemoLabels = 16;
 constexpr std::uint8_t kNoLabel = 0xff;
 constexpr std::uint32_t kMaxEpoch = 1u << 30;
 
+[[noreturn]] void throw_on_bisector() {
+  throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
+}
+
 }  // namespace
+
+void CellClipper::begin_triangle(const std::array<int, 3>& tri, const int* labels, int m, const SymbolicContext& ctx) {
+  triangle_ = &tri;
+  labels_ = labels;
+  m_ = m;
+  vertices_ = ctx.vertices;
+  in_range_ = ctx.in_range;
+  for (int a = 0; a < m; ++a) site_[a] = &ctx.sites[labels[a]];
+  for (int c = 0; c < 3; ++c) {
+    corner_[c] = &ctx.vertices[tri[c]];
+    const int a = tri[c], b = tri[c == 2 ? 0 : c + 1];
+    edge_lo_[c] = std::min(a, b);
+    edge_hi_[c] = std::max(a, b);
+  }
+}
 
 // Written in place: a vertex assembled field by field on the stack and copied right away stalls
 // the copy (the wide loads cannot take the narrow stores' data).
 void CellClipper::append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const {
-  const std::array<int, 3>& tri = *triangle_;
   SymbolicVertex& out = verts.emplace_back();  // as mesh_vertex, on_edge and in_triangle build it
   out.type = q.type;
   switch (q.type) {
     case SymbolicVertex::Type::A:
-      out.v[0] = tri[q.where];
+      out.v[0] = (*triangle_)[q.where];
       break;
-    case SymbolicVertex::Type::B: {
-      const int a = tri[q.where], b = tri[q.where == 2 ? 0 : q.where + 1];
-      out.v[0] = std::min(a, b);
-      out.v[1] = std::max(a, b);
+    case SymbolicVertex::Type::B:
+      out.v[0] = edge_lo_[q.where];
+      out.v[1] = edge_hi_[q.where];
       out.label[0] = labels_[q.label[0]];
       out.label[1] = labels_[q.label[1]];
       break;
-    }
     case SymbolicVertex::Type::C:
-      out.v = tri;
+      out.v = *triangle_;
       out.label = {labels_[q.label[0]], labels_[q.label[1]], labels_[q.label[2]]};
       break;
   }
 }
 
-// side(q; k, l) of a corner, by side1, stored for (k, l) and (l, k).
-Sign CellClipper::evaluate_corner(const LocalVertex& q, int k, int l) {
-  const Sign r = predicates::side1(ctx_.sites[labels_[k]], ctx_.sites[labels_[l]], ctx_.vertices[(*triangle_)[q.where]],
-                                    ctx_.in_range);
-  corner_sign_[(q.where * m_ + k) * m_ + l] = static_cast<std::int8_t>(r);
-  corner_sign_[(q.where * m_ + l) * m_ + k] = static_cast<std::int8_t>(-r);
+// side(q; k, l) of corner c, by side1, stored for (k, l) and (l, k).
+[[gnu::always_inline]] inline Sign CellClipper::evaluate_corner(int c, int k, int l) {
+  const Sign r = predicates::side1(*site_[k], *site_[l], *corner_[c], in_range_);
+  corner_sign_[3 * (k * m_ + l) + c] = static_cast<std::int8_t>(r);
+  corner_sign_[3 * (l * m_ + k) + c] = static_cast<std::int8_t>(-static_cast<int>(r));
   return r;
 }
 
 // side(q; k, l) of a type B or C vertex, by side2 or side3 as side() calls them, stored for l.
 Sign CellClipper::evaluate_vertex(const LocalVertex& q, int k, int l) {
-  const Site* s = ctx_.sites;
-  const std::array<int, 3>& tri = *triangle_;
-  int others[2], n = 0;
-  for (std::uint8_t x : q.label)
-    if (x != kNoLabel && x != k) others[n++] = labels_[x];
   Sign r;
   if (q.type == SymbolicVertex::Type::B) {
-    const int a = tri[q.where], b = tri[q.where == 2 ? 0 : q.where + 1];
-    r = predicates::side2(s[labels_[k]], s[others[0]], s[labels_[l]], ctx_.vertices[std::min(a, b)],
-                          ctx_.vertices[std::max(a, b)], ctx_.in_range);
-    edge_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
+    const int other = q.label[0] == k ? q.label[1] : q.label[0];
+    r = predicates::side2(*site_[k], *site_[other], *site_[l], vertices_[edge_lo_[q.where]], vertices_[edge_hi_[q.where]],
+                          in_range_);
+    edge_sign_[q.key + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   } else {
-    r = predicates::side3(s[labels_[k]], s[others[0]], s[others[1]], s[labels_[l]], ctx_.vertices[tri[0]],
-                          ctx_.vertices[tri[1]], ctx_.vertices[tri[2]], ctx_.in_range);
-    inner_sign_[static_cast<std::size_t>(q.key) * m_ + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
+    int others[2], n = 0;
+    for (std::uint8_t x : q.label)
+      if (x != k) others[n++] = x;
+    r = predicates::side3(*site_[k], *site_[others[0]], *site_[others[1]], *site_[l], *corner_[0], *corner_[1], *corner_[2],
+                          in_range_);
+    inner_sign_[q.key + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   }
   return r;
 }
 
-// side(q; k, l) of the symbolic vertex, as side() evaluates it, through the memo.
-inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l) {
+// side(q; k, l) of the symbolic vertex, as side() evaluates it, through the memo; corner_signs
+// points at the corners' entries for (k, l). The vertices of cell k's polygon, clipped in label
+// order, carry k and labels already clipped by, never l: side() is never Zero here.
+inline Sign CellClipper::side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs) {
   if (q.type == SymbolicVertex::Type::A) {
-    const std::int8_t memo = corner_sign_[(q.where * m_ + k) * m_ + l];
-    return memo != 0 ? static_cast<Sign>(memo) : evaluate_corner(q, k, l);
+    const std::int8_t memo = corner_signs[q.where];
+    return memo != 0 ? static_cast<Sign>(memo) : evaluate_corner(q.where, k, l);
   }
-  if (q.label[0] == l || q.label[1] == l || q.label[2] == l) return Sign::Zero;
-  const std::uint32_t memo =
-      (q.type == SymbolicVertex::Type::B ? edge_sign_ : inner_sign_)[static_cast<std::size_t>(q.key) * m_ + l];
+  const std::uint32_t memo = (q.type == SymbolicVertex::Type::B ? edge_sign_ : inner_sign_)[q.key + l];
   return (memo >> 2) == epoch_ ? static_cast<Sign>(static_cast<int>(memo & 3u) - 1) : evaluate_vertex(q, k, l);
 }
 
 // intersect() on local vertices: type B on the mesh edge u and w share, else type C with the
-// label they share besides k. Appended to `out` in place (see append_symbolic).
-void CellClipper::append_intersection(const LocalVertex& u, const LocalVertex& w, int k, int l,
-                                      std::vector<LocalVertex>& out) const {
+// label they share besides k.
+[[gnu::always_inline]] inline CellClipper::LocalVertex CellClipper::intersection(const LocalVertex& u, const LocalVertex& w, int k, int l) const {
+  LocalVertex q;
   if (const unsigned common = u.mask & w.mask) {
     const int e = common & 1u ? 0 : (common & 2u ? 1 : 2);
-    LocalVertex& q = out.emplace_back();
+    const int a = std::min(k, l), b = std::max(k, l);
     q.type = SymbolicVertex::Type::B;
     q.mask = static_cast<std::uint8_t>(1u << e);
     q.where = static_cast<std::uint8_t>(e);
-    q.label[0] = static_cast<std::uint8_t>(std::min(k, l));
-    q.label[1] = static_cast<std::uint8_t>(std::max(k, l));
+    q.label[0] = static_cast<std::uint8_t>(a);
+    q.label[1] = static_cast<std::uint8_t>(b);
     q.label[2] = kNoLabel;
-    q.key = (e * m_ + q.label[0]) * m_ + q.label[1];
-    return;
+    q.key = static_cast<std::uint16_t>(((e * m_ + a) * m_ + b) * m_);
+    return q;
   }
   for (std::uint8_t x : u.label) {
     if (x == kNoLabel || x == k) continue;
@@ -140,17 +150,82 @@ void CellClipper::append_intersection(const LocalVertex& u, const LocalVertex& w
     if (a > b) std::swap(a, b);
     if (b > c) std::swap(b, c);
     if (a > b) std::swap(a, b);
-    LocalVertex& q = out.emplace_back();
     q.type = SymbolicVertex::Type::C;
     q.mask = 0;
     q.where = 0;
     q.label[0] = static_cast<std::uint8_t>(a);
     q.label[1] = static_cast<std::uint8_t>(b);
     q.label[2] = static_cast<std::uint8_t>(c);
-    q.key = (a * m_ + b) * m_ + c;
-    return;
+    q.key = static_cast<std::uint16_t>(((a * m_ + b) * m_ + c) * m_);
+    return q;
   }
   throw std::logic_error("intersect: polygon edge is on no mesh edge and its ends share no bisector");
+}
+
+// One Sutherland-Hodgman step, as clip_by_bisector: `in` clipped by bisector(k, l) into `out`.
+// Exact signs along a convex polygon change at most twice, so `out` has at most one vertex more;
+// the bound on `in` keeps even inconsistent signs (twice as many vertices) inside the arrays.
+void CellClipper::clip_local(const LocalPolygon& in, int k, int l, LocalPolygon& out) {
+  const int n = in.n;
+  if (2 * n > kMaxVertices) throw std::logic_error("clip: polygon outgrew its bound");
+  int count = 0;
+  const std::int8_t* corner_signs = corner_sign_ + 3 * (k * m_ + l);
+  const Sign first = side_of(in.v[0], k, l, corner_signs);
+  if (first == Sign::Zero) throw_on_bisector();
+  Sign su = first;
+  for (int a = 0; a < n; ++a) {
+    const LocalVertex& u = in.v[a];
+    const bool last = a + 1 == n;
+    const LocalVertex& w = in.v[last ? 0 : a + 1];
+    const Sign sw = last ? first : side_of(w, k, l, corner_signs);
+    if (sw == Sign::Zero) throw_on_bisector();
+    if (su == Sign::Positive) out.v[count++] = u;
+    if (su != sw) out.v[count++] = intersection(u, w, k, l);
+    su = sw;
+  }
+  out.n = count;
+}
+
+// Two candidates: one pass over the corners gives both polygons (the second is the first's
+// complement, cut at the same edge points), in the order the general loop lists them.
+void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) const {
+  Sign s[3];
+  for (int c = 0; c < 3; ++c) {
+    s[c] = predicates::side1(*site_[0], *site_[1], *corner_[c], in_range_);
+    if (s[c] == Sign::Zero) throw_on_bisector();
+  }
+  for (int k = 0; k < 2; ++k) {
+    const Sign inside = k == 0 ? Sign::Positive : Sign::Negative;
+    if (s[0] != inside && s[1] != inside && s[2] != inside) continue;
+    unsigned reach = 0, along = 0, first_mask = 0, previous = 0;
+    bool any = false;
+    auto add = [&](unsigned mask) {
+      if (any) along |= previous & mask; else first_mask = mask;
+      reach |= mask;
+      previous = mask;
+      any = true;
+    };
+    for (int c = 0; c < 3; ++c) {
+      const int next = c == 2 ? 0 : c + 1;
+      if (s[c] == inside) {
+        SymbolicVertex& out = verts.emplace_back();
+        out.v[0] = (*triangle_)[c];
+        add(c == 0 ? 0b101u : (c == 1 ? 0b011u : 0b110u));
+      }
+      if (s[c] != s[next]) {
+        SymbolicVertex& out = verts.emplace_back();
+        out.type = SymbolicVertex::Type::B;
+        out.v[0] = edge_lo_[c];
+        out.v[1] = edge_hi_[c];
+        out.label[0] = labels_[0];
+        out.label[1] = labels_[1];
+        add(1u << c);
+      }
+    }
+    along |= previous & first_mask;
+    polygons.push_back({labels_[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(reach),
+                        static_cast<std::uint8_t>(along)});
+  }
 }
 
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
@@ -161,7 +236,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
     polygons.push_back({labels[0], static_cast<int>(verts.size()), 7, 7});
     return;
   }
-  if (m > kMaxMemoLabels) {
+  if (m > kMaxLabels) {  // the memo tables (m^3 and m^4 entries) would outgrow the cache
     for (int a = 0; a < m; ++a) {
       const int k = labels[a];
       clip_triangle(mesh, t, k, labels, m, ctx, fallback_polygon_, fallback_scratch_);
@@ -173,56 +248,49 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
     }
     return;
   }
-  triangle_ = &tri;
-  labels_ = labels;
-  m_ = m;
-  ctx_ = ctx;
+  begin_triangle(tri, labels, m, ctx);
+  if (m == 2) {
+    clip_two(polygons, verts);
+    return;
+  }
   if (++epoch_ == kMaxEpoch) {  // the stamps would wrap around: forget them all
     std::fill(edge_sign_.begin(), edge_sign_.end(), 0);
     std::fill(inner_sign_.begin(), inner_sign_.end(), 0);
     epoch_ = 1;
   }
   const std::size_t m2 = static_cast<std::size_t>(m) * m;
-  corner_sign_.assign(3 * m2, 0);
+  std::fill(corner_sign_, corner_sign_ + 3 * m2, 0);
   if (edge_sign_.size() < 3 * m2 * m) edge_sign_.resize(3 * m2 * m, 0);
   if (inner_sign_.size() < m2 * m2) inner_sign_.resize(m2 * m2, 0);
 
-  // The triangle's corners, built once (see append_symbolic).
-  static const LocalVertex corners[3] = {{SymbolicVertex::Type::A, 0b101, 0, {kNoLabel, kNoLabel, kNoLabel}, -1},
-                                         {SymbolicVertex::Type::A, 0b011, 1, {kNoLabel, kNoLabel, kNoLabel}, -1},
-                                         {SymbolicVertex::Type::A, 0b110, 2, {kNoLabel, kNoLabel, kNoLabel}, -1}};
   for (int k = 0; k < m; ++k) {
-    polygon_.assign(corners, corners + 3);
-    // Sutherland-Hodgman, as clip_by_bisector.
-    for (int l = 0; l < m && !polygon_.empty(); ++l) {
-      if (l == k) continue;
-      const size_t n = polygon_.size();
-      scratch_.clear();
-      const Sign first = side_of(polygon_[0], k, l);
-      if (first == Sign::Zero) throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
-      Sign su = first;
-      for (size_t a = 0; a < n; ++a) {
-        const LocalVertex& u = polygon_[a];
-        const LocalVertex& w = polygon_[a + 1 == n ? 0 : a + 1];
-        const Sign sw = a + 1 == n ? first : side_of(w, k, l);
-        if (sw == Sign::Zero) throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
-        if (su == Sign::Positive) scratch_.push_back(u);
-        if (su != sw) append_intersection(u, w, k, l, scratch_);
-        su = sw;
-      }
-      polygon_.swap(scratch_);
+    LocalPolygon* current = &polygon_;
+    LocalPolygon* next = &scratch_;
+    current->n = 3;
+    for (int c = 0; c < 3; ++c) {
+      LocalVertex& q = current->v[c];
+      q.type = SymbolicVertex::Type::A;
+      q.mask = static_cast<std::uint8_t>(c == 0 ? 0b101u : (c == 1 ? 0b011u : 0b110u));
+      q.where = static_cast<std::uint8_t>(c);
+      q.label[0] = q.label[1] = q.label[2] = kNoLabel;
+      q.key = 0;
     }
-    if (polygon_.empty()) continue;
-    PolygonEdges pe;  // as polygon_edges
-    unsigned previous = polygon_.back().mask;
-    for (const LocalVertex& q : polygon_) {
-      pe.reach |= q.mask;
-      pe.along |= previous & q.mask;
+    for (int l = 0; l < m && current->n > 0; ++l) {
+      if (l == k) continue;
+      clip_local(*current, k, l, *next);
+      std::swap(current, next);
+    }
+    if (current->n == 0) continue;
+    unsigned reach = 0, along = 0, previous = current->v[current->n - 1].mask;  // as polygon_edges
+    for (int a = 0; a < current->n; ++a) {
+      const LocalVertex& q = current->v[a];
+      reach |= q.mask;
+      along |= previous & q.mask;
       previous = q.mask;
       append_symbolic(q, verts);
     }
-    polygons.push_back({labels[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(pe.reach),
-                        static_cast<std::uint8_t>(pe.along)});
+    polygons.push_back({labels[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(reach),
+                        static_cast<std::uint8_t>(along)});
   }
 }
 

@@ -81,34 +81,49 @@ class CellClipper {
             std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts);
 
  private:
-  // A polygon vertex during clipping: labels as indices into the triangle's label list.
+  static constexpr int kMaxLabels = 16;    // more candidates take the per-cell path
+  static constexpr int kMaxVertices = 40;  // a convex polygon cut by at most 15 bisectors: 18
+
+  // A polygon vertex during clipping, eight bytes: labels as indices into the triangle's label
+  // list.
   struct LocalVertex {
     SymbolicVertex::Type type;
     std::uint8_t mask;      // edge_mask bits
     std::uint8_t where;     // type A: corner; type B: edge (corner where, corner where + 1)
     std::uint8_t label[3];  // types B and C: local labels, increasing; unused ones 0xff
-    int key;                // type B: (where m + a) m + b; type C: (a m + b) m + c
+    std::uint16_t key;      // memo slot of l = 0: type B ((where m + a) m + b) m, type C ((a m + b) m + c) m
+  };
+  // One Sutherland-Hodgman step's input or output.
+  struct LocalPolygon {
+    int n = 0;
+    LocalVertex v[kMaxVertices];
   };
 
-  Sign side_of(const LocalVertex& q, int k, int l);
-  Sign evaluate_corner(const LocalVertex& q, int k, int l);
+  void begin_triangle(const std::array<int, 3>& tri, const int* labels, int m, const SymbolicContext& ctx);
+  void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) const;
+  Sign side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs);
+  Sign evaluate_corner(int c, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
-  void append_intersection(const LocalVertex& u, const LocalVertex& w, int k, int l,
-                           std::vector<LocalVertex>& out) const;
+  void clip_local(const LocalPolygon& in, int k, int l, LocalPolygon& out);
+  LocalVertex intersection(const LocalVertex& u, const LocalVertex& w, int k, int l) const;
   void append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const;
 
   // The triangle being clipped.
   const std::array<int, 3>* triangle_ = nullptr;
   const int* labels_ = nullptr;
   int m_ = 0;
-  SymbolicContext ctx_;
-  // Memo of the side tests: corner c for cells (k, l) at corner_sign_[(c m + k) m + l] (0 while
-  // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key m + l], valid when
+  const Vec3* vertices_ = nullptr;
+  bool in_range_ = false;  // SymbolicContext::in_range of the triangle's context
+  const Site* site_[kMaxLabels];    // by local label
+  const Vec3* corner_[3];           // corner positions
+  int edge_lo_[3], edge_hi_[3];     // edge e's end points, lower vertex index first
+  // Memo of the side tests: corner c for cells (k, l) at corner_sign_[3 (k m + l) + c] (0 while
+  // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key + l], valid when
   // the entry's high bits hold the current epoch_ (low two bits: sign + 1).
-  std::vector<std::int8_t> corner_sign_;
+  std::int8_t corner_sign_[3 * kMaxLabels * kMaxLabels];
   std::vector<std::uint32_t> edge_sign_, inner_sign_;
   std::uint32_t epoch_ = 0;
-  std::vector<LocalVertex> polygon_, scratch_;
+  LocalPolygon polygon_, scratch_;
   std::vector<SymbolicVertex> fallback_polygon_, fallback_scratch_;
 };
 

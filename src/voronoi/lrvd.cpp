@@ -24,6 +24,9 @@ namespace {
 
 // Fewer out-of-date triangles than this are left to the sequential pass.
 constexpr int kParallelClips = 256;
+// Triangles with fewer candidates are always clipped ahead: their clipping costs less than
+// guessing whether it would be thrown away.
+constexpr size_t kGuessFromLabels = 3;
 // How many triangles ahead the passes over the triangles prefetch their polygon lists.
 constexpr int kPrefetchDistance = 4;
 
@@ -234,18 +237,56 @@ class LrvdBuilder {
     return true;
   }
 
-  // Clips, in parallel, every queued triangle whose polygons are out of date. The sequential pass
-  // below clips a triangle only if its labels changed since: the result is the one of a purely
-  // sequential pass, whatever the number of threads.
+  // Clips, in parallel, every queued triangle whose polygons are out of date, except those that
+  // look likely to gain a label before the sequential pass reaches them (their clipping would be
+  // thrown away). The sequential pass below clips a triangle only if its labels changed since:
+  // the result is the one of a purely sequential pass, whatever the number of threads and
+  // whichever triangles are clipped ahead.
   void clip_queued_in_parallel() {
     pending_.clear();
     for (int t : queue_)
-      if (!clipped_[t]) pending_.push_back(t);
+      if (!clipped_[t] && (state_[t].labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
     if (static_cast<int>(pending_.size()) < kParallelClips) return;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t w = range.begin(); w != range.end(); ++w) clip(pending_[w]);
     });
     stats_.clipped_triangles += static_cast<int>(pending_.size());
+  }
+
+  // A guess, in doubles, whether a cell of a neighbour of t that t lacks reaches their common edge:
+  // some point of the edge closer to it than to the neighbour's other cells (each comparison is
+  // affine along the edge, so the points form an interval). It only decides where t is clipped
+  // first, never what its polygons are, so no exact predicate is needed.
+  bool may_gain_labels(int t) const {
+    const auto& labels = state_[t].labels;
+    const Triangle& tri = mesh_.triangle(t);
+    for (int e = 0; e < 3; ++e) {
+      const int across = mesh_.neighbor(t, e);
+      if (across < 0) continue;
+      const Vec3 &u = mesh_.position(tri[e]), &v = mesh_.position(tri[e == 2 ? 0 : e + 1]);
+      const auto& other = state_[across].labels;
+      for (int k : other) {
+        if (std::find(labels.begin(), labels.end(), k) != labels.end()) continue;
+        const double dku = power_distance(u, k), dkv = power_distance(v, k);
+        double lo = 0, hi = 1;  // the edge's parameter, from u to v
+        for (int j : other) {
+          if (j == k) continue;
+          const double fu = dku - power_distance(u, j), fv = dkv - power_distance(v, j);  // < 0: k is closer
+          if (fu < 0 && fv < 0) continue;
+          if (fu >= 0 && fv >= 0) {
+            lo = hi;
+            break;
+          }
+          const double s = fu / (fu - fv);
+          if (fu < 0)
+            hi = std::min(hi, s);
+          else
+            lo = std::max(lo, s);
+        }
+        if (lo < hi) return true;
+      }
+    }
+    return false;
   }
 
   // §3.4: every cell whose polygon in t reaches a mesh edge (a corner or an edge point) must be a
