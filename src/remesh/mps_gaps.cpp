@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mesh/closest_point.h"
 #include "predicates/exact.h"
+#include "remesh/mps_gap_geometry.h"
 #include "remesh/mps_gaps.h"
 
 namespace lrvd::mps_detail {
@@ -17,130 +17,6 @@ constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fra
 constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
 constexpr double kVertexMargin = 1e-6;   // |d| <= this·w: decide a cell vertex's coverage exactly
 constexpr int kMaxRefusals = 64;         // darts a piece may see refused before it is given up
-
-struct P2 {
-  double x, y;
-};
-double cross2(const P2& a, const P2& b) { return a.x * b.y - a.y * b.x; }
-double dot2(const P2& a, const P2& b) { return a.x * b.x + a.y * b.y; }
-
-double polygon_area(const std::vector<Vec3>& q) {
-  Vec3 s{};
-  for (size_t k = 1; k + 1 < q.size(); ++k) s += cross(q[k] - q[0], q[k + 1] - q[0]);
-  return 0.5 * norm(s);
-}
-
-// Signed area of (triangle (0, a, b)) ∩ (disk of squared radius r2 centred at 0).
-double triangle_disk_area(const P2& a, const P2& b, double r2) {
-  const P2 d{b.x - a.x, b.y - a.y};
-  const double A = dot2(d, d);
-  if (!(A > 0)) return 0;
-  const double B = dot2(a, d), C = dot2(a, a) - r2;
-  double s[4];
-  int n = 0;
-  s[n++] = 0;
-  const double disc = B * B - A * C;
-  if (disc > 0) {
-    const double sq = std::sqrt(disc);
-    const double s1 = (-B - sq) / A, s2 = (-B + sq) / A;
-    if (s1 > 0 && s1 < 1) s[n++] = s1;
-    if (s2 > 0 && s2 < 1) s[n++] = s2;
-  }
-  s[n++] = 1;
-  double area = 0;
-  for (int k = 0; k + 1 < n; ++k) {
-    const P2 p{a.x + s[k] * d.x, a.y + s[k] * d.y}, q{a.x + s[k + 1] * d.x, a.y + s[k + 1] * d.y};
-    const double sm = 0.5 * (s[k] + s[k + 1]);
-    const P2 m{a.x + sm * d.x, a.y + sm * d.y};
-    if (dot2(m, m) <= r2)
-      area += 0.5 * cross2(p, q);
-    else
-      area += 0.5 * r2 * std::atan2(cross2(p, q), dot2(p, q));
-  }
-  return area;
-}
-
-// Area of polygon q (convex, in the plane with unit normal n, of area `area` = polygon_area(q))
-// outside the ball (x, w).
-double uncovered_area(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
-  const double h = dot(x - q[0], n);
-  const double r2 = w - h * h;
-  if (!(r2 > 0)) return area;
-  const Vec3 o = x - h * n;
-  Vec3 u = std::abs(n.x) < 0.9 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
-  u = u / norm(u);
-  const Vec3 v = cross(n, u);
-  double inside = 0;
-  for (size_t k = 0; k < q.size(); ++k) {
-    const Vec3 a = q[k] - o, b = q[(k + 1) % q.size()] - o;
-    inside += triangle_disk_area({dot(a, u), dot(a, v)}, {dot(b, u), dot(b, v)}, r2);
-  }
-  return std::max(0.0, area - std::min(std::abs(inside), area));
-}
-
-// A lower bound of the area of polygon q (convex, in the plane with unit normal n, of area `area`)
-// outside the ball (x, w), without the sector formula: where the centre o of the circle (the ball
-// in the plane) lies beyond the line of an edge of q, at distance d from it on the side away from
-// q, q ∩ ball is within the circular segment on q's side, itself within a rectangle of its chord
-// 2√(r² − d²) by its height r − d; d >= r: q misses the ball. The least such bound over the edges
-// is taken (πr² when none applies).
-double uncovered_area_lower_bound(const std::vector<Vec3>& q, const Vec3& n, const Vec3& x, double w, double area) {
-  const double h = dot(x - q[0], n);
-  const double r2 = w - h * h;
-  if (!(r2 > 0)) return area;
-  const double r = std::sqrt(r2);
-  const Vec3 o = x - h * n;
-  Vec3 c{};
-  for (const Vec3& y : q) c += y;
-  c = c / static_cast<double>(q.size());
-  double inside = M_PI * r2;
-  for (size_t k = 0; k < q.size(); ++k) {
-    const Vec3& a = q[k];
-    const Vec3 m = cross(q[(k + 1) % q.size()] - a, n);  // in the plane, across edge k, |m| = its length
-    const double sc = dot(c - a, m), so = dot(o - a, m);
-    if (sc > 0 ? so >= 0 : so <= 0) continue;  // o on q's side of the edge's line (or on it)
-    const double m2 = dot(m, m);
-    if (!(sc * sc > 1e-12 * r2 * m2)) continue;  // the centroid too close to the line to tell q's side
-    const double d = std::abs(so) / std::sqrt(m2);  // o beyond the edge's line, away from q
-    if (d >= r) return area;
-    inside = std::min(inside, 2 * std::sqrt(r2 - d * d) * (r - d));
-  }
-  return area - inside;
-}
-
-// Keeps the part of convex polygon `in` where h <= 0, h affine (given at the vertices).
-template <class H>
-void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
-  out.clear();
-  const size_t n = in.size();
-  if (n == 0) return;
-  double ha = h(in[n - 1]);
-  for (size_t k = 0; k < n; ++k) {
-    const Vec3& a = in[(k + n - 1) % n];
-    const Vec3& b = in[k];
-    const double hb = h(b);
-    if ((ha <= 0) != (hb <= 0)) out.push_back(a + (ha / (ha - hb)) * (b - a));
-    if (hb <= 0) out.push_back(b);
-    ha = hb;
-  }
-  if (out.size() < 3) out.clear();
-}
-
-bool ball_meets_polygon(const Vec3* q, int count, const Vec3& x, double w) {
-  for (int k = 0; k < count; ++k)
-    if (squared_distance(x, q[k]) < w) return true;  // a corner inside: no closest point needed
-  // Far outside the polygon's bounding sphere (with room for rounding): no closest point needed.
-  Vec3 c{};
-  for (int k = 0; k < count; ++k) c += q[k];
-  c = c / static_cast<double>(count);
-  double radius2 = 0;
-  for (int k = 0; k < count; ++k) radius2 = std::max(radius2, squared_distance(c, q[k]));
-  const double reach = std::sqrt(w) + std::sqrt(radius2);
-  if (squared_distance(x, c) > reach * reach * (1 + 1e-9)) return false;
-  for (int k = 1; k + 1 < count; ++k)
-    if (squared_distance(x, closest_point_on_triangle(x, q[0], q[k], q[k + 1]).point) < w) return true;
-  return false;
-}
 
 }  // namespace
 
