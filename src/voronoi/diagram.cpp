@@ -126,13 +126,6 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
   return out;
 }
 
-namespace {
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-}  // namespace
-
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
   const int np = static_cast<int>(diagram.polygons.size());
   // The edges each polygon runs along (in parallel), then the joins.
@@ -149,30 +142,56 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) 
 
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along_edges) {
   const int np = static_cast<int>(diagram.polygons.size());
+  const CellPolygon* polygons = diagram.polygons.data();
+  const int* offsets = diagram.triangle_offsets.data();
+  // Union-find whose root is the least polygon of its set: parent[p] <= p always (links go to the
+  // smaller root, path halving only shortens), which the numbering below relies on.
   std::vector<int> parent(np);
   std::iota(parent.begin(), parent.end(), 0);
-  for (int p = 0; p < np; ++p) {
-    const CellPolygon& poly = diagram.polygons[p];
-    const unsigned along = along_edges[p];
+  auto find_root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    // The edges joined from t (to a triangle of larger index, so each shared edge once) and, per
+    // edge, where the walk over the across triangle's polygons stands.
+    unsigned upper = 0;
+    int q[3], q_end[3];
     for (int e = 0; e < 3; ++e) {
-      const int across = mesh.neighbor(poly.triangle, e);
-      if (across < 0 || !(along & (1u << e))) continue;
-      if (across < poly.triangle) continue;  // each shared edge is joined once, from its lower triangle
-      for (int q = diagram.triangle_offsets[across]; q < diagram.triangle_offsets[across + 1]; ++q)
-        if (diagram.polygons[q].cell == poly.cell) {
-          const int ra = find_root(parent, p), rb = find_root(parent, q);
-          if (ra != rb) parent[ra] = rb;
-        }
+      const int across = mesh.neighbor(t, e);
+      if (across < t) continue;  // no triangle across (-1), or the edge is joined from across
+      upper |= 1u << e;
+      q[e] = offsets[across];
+      q_end[e] = offsets[across + 1];
+    }
+    if (!upper) continue;
+    // Both triangles' polygons come in cell order, a cell having at most one in a triangle: the
+    // polygon of p's cell across is found by walks that only move forward.
+    for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
+      unsigned edges = along_edges[p] & upper;
+      if (!edges) continue;
+      const int cell = polygons[p].cell;
+      do {
+        const int e = __builtin_ctz(edges);
+        edges &= edges - 1;
+        int& r = q[e];
+        while (r < q_end[e] && polygons[r].cell < cell) ++r;
+        if (r == q_end[e] || polygons[r].cell != cell) continue;
+        const int ra = find_root(p), rb = find_root(r);
+        if (ra < rb) parent[rb] = ra;
+        else if (rb < ra) parent[ra] = rb;
+      } while (edges);
     }
   }
+  // In polygon order each set's root comes first, so it numbers the set (in its cell) before the
+  // set's other polygons; those find the root at their parent's parent, already made a root.
   CellComponents out;
-  out.polygon_component.assign(np, -1);
+  out.polygon_component.resize(np);
   out.count.assign(diagram.sample_count, 0);
-  std::vector<int> root_component(np, -1);
   for (int p = 0; p < np; ++p) {
-    const int r = find_root(parent, p);
-    if (root_component[r] < 0) root_component[r] = out.count[diagram.polygons[p].cell]++;
-    out.polygon_component[p] = root_component[r];
+    const int r = parent[parent[p]];
+    parent[p] = r;
+    out.polygon_component[p] = r == p ? out.count[polygons[p].cell]++ : out.polygon_component[r];
   }
   return out;
 }
