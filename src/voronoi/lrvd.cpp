@@ -88,7 +88,7 @@ struct LrvdWorkspace {
   std::deque<int> queue;
   std::vector<int> vertex_label, home, conflicts, best_sample, stuck;
   std::vector<double> best;
-  std::vector<VertexEntry> heap;
+  std::vector<VertexEntry> heap, seeds;
   std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
@@ -105,7 +105,7 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), along_(work.along) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), seeds_(work.seeds), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
@@ -142,23 +142,40 @@ class LrvdBuilder {
     best_.assign(nv, std::numeric_limits<double>::infinity());
     best_sample_.assign(nv, -1);
     heap_.clear();
-    auto offer = [&](double d, int i, int v) {
-      if (d > best_[v] || (d == best_[v] && best_sample_[v] >= 0 && i >= best_sample_[v])) return;
+    seeds_.clear();
+    auto better = [&](double d, int i, int v) {
+      if (d > best_[v] || (d == best_[v] && best_sample_[v] >= 0 && i >= best_sample_[v])) return false;
       best_[v] = d;
       best_sample_[v] = i;
-      heap_.push_back({d, i, v});
-      std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+      return true;
     };
+    // The samples' own corners are most of the entries on a dense sampling (MPS): they are sorted
+    // once and merged with the heap of the entries the growth adds, which stays small.
     for (int i = 0; i < samples_.size(); ++i)
-      for (int v : mesh_.triangle(samples_.triangles[i])) offer(power_distance(mesh_.position(v), i), i, v);
-    while (!heap_.empty()) {
-      std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-      const Entry top = heap_.back();
-      heap_.pop_back();
+      for (int v : mesh_.triangle(samples_.triangles[i])) {
+        const double d = power_distance(mesh_.position(v), i);
+        if (better(d, i, v)) seeds_.push_back({d, i, v});
+      }
+    std::sort(seeds_.begin(), seeds_.end(), [](const Entry& a, const Entry& b) { return b > a; });
+    size_t next_seed = 0;
+    while (next_seed < seeds_.size() || !heap_.empty()) {
+      Entry top;
+      if (heap_.empty() || (next_seed < seeds_.size() && heap_.front() > seeds_[next_seed])) {
+        top = seeds_[next_seed++];
+      } else {
+        std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+        top = heap_.back();
+        heap_.pop_back();
+      }
       if (vertex_label_[top.vertex] >= 0) continue;
       vertex_label_[top.vertex] = top.sample;
       for (const int* u = mesh_.vertex_neighbors_begin(top.vertex); u != mesh_.vertex_neighbors_end(top.vertex); ++u)
-        if (vertex_label_[*u] < 0) offer(power_distance(mesh_.position(*u), top.sample), top.sample, *u);
+        if (vertex_label_[*u] < 0) {
+          const double d = power_distance(mesh_.position(*u), top.sample);
+          if (!better(d, top.sample, *u)) continue;
+          heap_.push_back({d, top.sample, *u});
+          std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
+        }
     }
   }
 
@@ -479,6 +496,7 @@ class LrvdBuilder {
   std::vector<double>& best_;  // region growing: the least entry queued per vertex
   std::vector<int>& best_sample_;
   std::vector<VertexEntry>& heap_;
+  std::vector<VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
