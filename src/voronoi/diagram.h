@@ -74,6 +74,8 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
 //! Connected components of each cell: polygons of one cell are joined when they share a segment
 //! of positive length on a mesh edge (touching at a single point does not join them).
 //! Returns, per polygon, its component id (0..count-1 per cell), and the count per cell.
+//! \pre the diagram's polygons are ordered by triangle, then cell, with at most one polygon per
+//!      (triangle, cell), as compute_lrvd and compute_rvd make them.
 struct CellComponents {
   std::vector<int> polygon_component;
   std::vector<int> count;  //!< per cell; 0 for a cell with no polygon
