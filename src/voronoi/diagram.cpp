@@ -55,7 +55,8 @@ bool same_vertex(const SymbolicVertex& q, const SymbolicVertex& r) {
 CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
                               const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
-  const SymbolicContext ctx = diagram.context(mesh);
+  // Positions only, no side tests: the range check of context() would be wasted on every evaluation.
+  const SymbolicContext ctx{mesh.positions().data(), diagram.sites.data()};
   // Each polygon's integrals in parallel, then summed per cell in polygon order: the same result
   // with any number of threads.
   struct PolygonIntegrals {
