@@ -66,28 +66,6 @@ void CellClipper::begin_triangle(const std::array<int, 3>& tri, const int* label
   }
 }
 
-// Written in place: a vertex assembled field by field on the stack and copied right away stalls
-// the copy (the wide loads cannot take the narrow stores' data).
-void CellClipper::append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const {
-  SymbolicVertex& out = verts.emplace_back();  // as mesh_vertex, on_edge and in_triangle build it
-  out.type = q.type;
-  switch (q.type) {
-    case SymbolicVertex::Type::A:
-      out.v[0] = (*triangle_)[q.where];
-      break;
-    case SymbolicVertex::Type::B:
-      out.v[0] = edge_lo_[q.where];
-      out.v[1] = edge_hi_[q.where];
-      out.label[0] = labels_[q.label[0]];
-      out.label[1] = labels_[q.label[1]];
-      break;
-    case SymbolicVertex::Type::C:
-      out.v = *triangle_;
-      out.label = {labels_[q.label[0]], labels_[q.label[1]], labels_[q.label[2]]};
-      break;
-  }
-}
-
 // side(q; k, l) of corner c, by side1, stored for (k, l) and (l, k).
 [[gnu::always_inline]] inline Sign CellClipper::evaluate_corner(int c, int k, int l) {
   const Sign r = predicates::side1(*site_[k], *site_[l], *corner_[c], in_range_);
@@ -188,7 +166,7 @@ void CellClipper::clip_local(const LocalPolygon& in, int k, int l, LocalPolygon&
 
 // Two candidates: one pass over the corners gives both polygons (the second is the first's
 // complement, cut at the same edge points), in the order the general loop lists them.
-void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) const {
+void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts) const {
   Sign s[3];
   for (int c = 0; c < 3; ++c) {
     s[c] = predicates::side1(*site_[0], *site_[1], *corner_[c], in_range_);
@@ -207,18 +185,13 @@ void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<S
     };
     for (int c = 0; c < 3; ++c) {
       const int next = c == 2 ? 0 : c + 1;
+      const auto where = static_cast<std::uint8_t>(c);
       if (s[c] == inside) {
-        SymbolicVertex& out = verts.emplace_back();
-        out.v[0] = (*triangle_)[c];
+        verts.push_back({SymbolicVertex::Type::A, where, {kNoLabel, kNoLabel, kNoLabel}});
         add(c == 0 ? 0b101u : (c == 1 ? 0b011u : 0b110u));
       }
       if (s[c] != s[next]) {
-        SymbolicVertex& out = verts.emplace_back();
-        out.type = SymbolicVertex::Type::B;
-        out.v[0] = edge_lo_[c];
-        out.v[1] = edge_hi_[c];
-        out.label[0] = labels_[0];
-        out.label[1] = labels_[1];
+        verts.push_back({SymbolicVertex::Type::B, where, {0, 1, kNoLabel}});
         add(1u << c);
       }
     }
@@ -229,10 +202,10 @@ void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<S
 }
 
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
-                       std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) {
+                       std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts,
+                       std::vector<SymbolicVertex>& wide) {
   const Triangle& tri = mesh.triangle(t);
-  if (m == 1) {  // the whole triangle
-    for (int c = 0; c < 3; ++c) verts.push_back(SymbolicVertex::mesh_vertex(tri[c]));
+  if (m == 1) {  // the whole triangle: no vertices
     polygons.push_back({labels[0], static_cast<int>(verts.size()), 7, 7});
     return;
   }
@@ -242,8 +215,8 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
       clip_triangle(mesh, t, k, labels, m, ctx, fallback_polygon_, fallback_scratch_);
       if (fallback_polygon_.empty()) continue;
       const PolygonEdges pe = polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri);
-      verts.insert(verts.end(), fallback_polygon_.begin(), fallback_polygon_.end());
-      polygons.push_back({k, static_cast<int>(verts.size()), static_cast<std::uint8_t>(pe.reach),
+      wide.insert(wide.end(), fallback_polygon_.begin(), fallback_polygon_.end());
+      polygons.push_back({k, static_cast<int>(wide.size()), static_cast<std::uint8_t>(pe.reach),
                           static_cast<std::uint8_t>(pe.along)});
     }
     return;
@@ -287,7 +260,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
       reach |= q.mask;
       along |= previous & q.mask;
       previous = q.mask;
-      append_symbolic(q, verts);
+      verts.push_back({q.type, q.where, {q.label[0], q.label[1], q.label[2]}});
     }
     polygons.push_back({labels[k], static_cast<int>(verts.size()), static_cast<std::uint8_t>(reach),
                         static_cast<std::uint8_t>(along)});

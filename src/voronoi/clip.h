@@ -67,6 +67,39 @@ struct TrianglePolygon {
   std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon
 };
 
+//! A polygon vertex as CellClipper stores it, five bytes instead of a SymbolicVertex's 28: what
+//! defines it, relative to its triangle. A large mesh's diagram (MPS computes one of 650k
+//! triangles) holds millions of them until it is flattened.
+struct PackedVertex {
+  SymbolicVertex::Type type;
+  std::uint8_t where;     //!< type A: the corner; type B: the edge (corner where, corner where + 1)
+  std::uint8_t label[3];  //!< types B and C: indices into the triangle's candidate list, increasing
+};
+
+//! The SymbolicVertex of a packed vertex of `triangle`, whose candidate list is `labels`.
+inline SymbolicVertex unpack(const PackedVertex& q, const std::array<int, 3>& triangle, const int* labels) {
+  SymbolicVertex out;
+  out.type = q.type;
+  switch (q.type) {
+    case SymbolicVertex::Type::A:
+      out.v[0] = triangle[q.where];
+      break;
+    case SymbolicVertex::Type::B: {
+      const int a = triangle[q.where], b = triangle[q.where == 2 ? 0 : q.where + 1];
+      out.v[0] = a < b ? a : b;
+      out.v[1] = a < b ? b : a;
+      out.label[0] = labels[q.label[0]];
+      out.label[1] = labels[q.label[1]];
+      break;
+    }
+    case SymbolicVertex::Type::C:
+      out.v = triangle;
+      out.label = {labels[q.label[0]], labels[q.label[1]], labels[q.label[2]]};
+      break;
+  }
+  return out;
+}
+
 //! The polygons of all candidate cells of one triangle, with storage reused from call to call
 //! (one clipper per thread). Cell k's polygon is the one clip_triangle gives with the whole list
 //! as `others`, vertex for vertex; but a vertex that several cells' polygons share (a mesh
@@ -76,9 +109,13 @@ struct TrianglePolygon {
 class CellClipper {
  public:
   //! Appends, for each cell k of `labels` (m of them, sorted, distinct) in order whose polygon in
-  //! triangle t is not empty, its vertices to `verts` and the polygon to `polygons`.
+  //! triangle t is not empty, its vertices to `verts` (packed against `labels`) and the polygon to
+  //! `polygons`. A single candidate's polygon is the whole triangle and gets no vertices: a polygon
+  //! without vertices stands for the triangle's corners. More than kMaxLabels candidates write
+  //! every vertex, unpacked, to `wide` instead (their labels may not fit a byte).
   void clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
-            std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts);
+            std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts,
+            std::vector<SymbolicVertex>& wide);
 
  private:
   static constexpr int kMaxLabels = 16;    // more candidates take the per-cell path
@@ -100,13 +137,12 @@ class CellClipper {
   };
 
   void begin_triangle(const std::array<int, 3>& tri, const int* labels, int m, const SymbolicContext& ctx);
-  void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<SymbolicVertex>& verts) const;
+  void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts) const;
   Sign side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs);
   Sign evaluate_corner(int c, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
   void clip_local(const LocalPolygon& in, int k, int l, LocalPolygon& out);
   LocalVertex intersection(const LocalVertex& u, const LocalVertex& w, int k, int l) const;
-  void append_symbolic(const LocalVertex& q, std::vector<SymbolicVertex>& verts) const;
 
   // The triangle being clipped.
   const std::array<int, 3>* triangle_ = nullptr;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <deque>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 
 #include <boost/container/small_vector.hpp>
@@ -67,7 +68,8 @@ struct TrianglePolygons {
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
   boost::container::small_vector<TrianglePolygon, 4> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
-  std::vector<SymbolicVertex> verts;
+  std::vector<PackedVertex> verts;  // packed against `labels` as they were when t was clipped
+  std::vector<SymbolicVertex> wide;  // instead of verts, for more candidates than the clipper packs
 
   //! Empties every list but keeps its storage for the next diagram.
   void reset() {
@@ -76,6 +78,7 @@ struct TrianglePolygons {
     pinned.clear();
     polygons.clear();
     verts.clear();
+    wide.clear();
   }
 };
 
@@ -119,7 +122,7 @@ class LrvdBuilder {
       do {
         propagate();
       } while (settle_stuck_conflicts());
-      diagram = flatten();
+      flatten(diagram);
       if (!options_.restore_connectivity || round >= options_.max_connectivity_rounds) break;
       if (!forbid_stray_pieces(diagram)) break;
       ++stats_.connectivity_rounds;
@@ -216,12 +219,13 @@ class LrvdBuilder {
     thread_local std::vector<TrianglePolygon> polygons;
     TrianglePolygons& st = state_[t];
     st.verts.clear();
+    st.wide.clear();
     // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
-    // vertex list step by step, triangle by triangle.
+    // vertex list step by step, triangle by triangle. A single candidate stores no vertices.
     const int m = static_cast<int>(st.labels.size());
-    st.verts.reserve(m == 1 ? 3 : 4 * m + 4);
+    if (m > 1) st.verts.reserve(4 * m + 4);
     polygons.clear();
-    clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts);
+    clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts, st.wide);
     st.polygons.assign(polygons.begin(), polygons.end());
     clipped_[t] = 1;
   }
@@ -450,9 +454,10 @@ class LrvdBuilder {
     }
   }
 
-  // The Diagram of the current polygons; along_ gets each polygon's along edges.
-  Diagram flatten() {
-    Diagram d;
+  // Fills d with the current polygons (reusing its storage: a diagram of a large mesh is flattened
+  // once per connectivity round, and fresh pages cost more than the copy); along_ gets each
+  // polygon's along edges.
+  void flatten(Diagram& d) {
     d.kind = options_.weighted ? DiagramKind::Lrpd : DiagramKind::Lrvd;
     d.sample_count = samples_.size();
     d.sites = sites_;
@@ -460,25 +465,37 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      polygons += state_[t].polygons.size();
-      vertices += state_[t].verts.size();
+      const TrianglePolygons& st = state_[t];
+      // The packed vertices refer to the labels t was clipped with.
+      if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
+      polygons += st.polygons.size();
+      vertices += st.wide.empty() ? (st.verts.empty() ? 3 : st.verts.size()) : st.wide.size();
     }
+    d.polygons.clear();
+    d.vertices.clear();
     d.polygons.reserve(polygons);
     d.vertices.reserve(vertices);
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const TrianglePolygons& st = state_[t];
+      const Triangle& tri = mesh_.triangle(t);
       int begin = 0;
       for (const TrianglePolygon& poly : st.polygons) {
         along_.push_back(poly.along);
-        d.polygons.push_back({t, poly.cell, static_cast<int>(d.vertices.size()) + begin, poly.end - begin});
+        const int first = static_cast<int>(d.vertices.size());
+        if (!st.wide.empty()) {
+          d.vertices.insert(d.vertices.end(), st.wide.begin() + begin, st.wide.begin() + poly.end);
+        } else if (poly.end == begin) {  // the whole triangle
+          for (int c : tri) d.vertices.push_back(SymbolicVertex::mesh_vertex(c));
+        } else {
+          for (int a = begin; a < poly.end; ++a) d.vertices.push_back(unpack(st.verts[a], tri, st.labels.data()));
+        }
+        d.polygons.push_back({t, poly.cell, first, static_cast<int>(d.vertices.size()) - first});
         begin = poly.end;
       }
-      d.vertices.insert(d.vertices.end(), st.verts.begin(), st.verts.end());
       d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
     }
-    return d;
   }
 
   const SurfaceMesh& mesh_;
