@@ -76,9 +76,10 @@ struct PackedVertex {
   std::uint8_t label[3];  //!< types B and C: indices into the triangle's candidate list, increasing
 };
 
-//! The SymbolicVertex of a packed vertex of `triangle`, whose candidate list is `labels`.
-inline SymbolicVertex unpack(const PackedVertex& q, const std::array<int, 3>& triangle, const int* labels) {
-  SymbolicVertex out;
+//! Writes into `out` (as default-constructed) the SymbolicVertex of a packed vertex of `triangle`,
+//! whose candidate list is `labels`. In place: a vertex assembled field by field elsewhere and
+//! then copied stalls the copy (its wide loads cannot take the narrow stores' data).
+inline void unpack(const PackedVertex& q, const std::array<int, 3>& triangle, const int* labels, SymbolicVertex& out) {
   out.type = q.type;
   switch (q.type) {
     case SymbolicVertex::Type::A:
@@ -97,7 +98,6 @@ inline SymbolicVertex unpack(const PackedVertex& q, const std::array<int, 3>& tr
       out.label = {labels[q.label[0]], labels[q.label[1]], labels[q.label[2]]};
       break;
   }
-  return out;
 }
 
 //! The polygons of all candidate cells of one triangle, with storage reused from call to call

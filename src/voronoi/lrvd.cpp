@@ -487,9 +487,9 @@ class LrvdBuilder {
         if (!st.wide.empty()) {
           d.vertices.insert(d.vertices.end(), st.wide.begin() + begin, st.wide.begin() + poly.end);
         } else if (poly.end == begin) {  // the whole triangle
-          for (int c : tri) d.vertices.push_back(SymbolicVertex::mesh_vertex(c));
+          for (int c : tri) d.vertices.emplace_back().v[0] = c;
         } else {
-          for (int a = begin; a < poly.end; ++a) d.vertices.push_back(unpack(st.verts[a], tri, st.labels.data()));
+          for (int a = begin; a < poly.end; ++a) unpack(st.verts[a], tri, st.labels.data(), d.vertices.emplace_back());
         }
         d.polygons.push_back({t, poly.cell, first, static_cast<int>(d.vertices.size()) - first});
         begin = poly.end;
