@@ -60,6 +60,15 @@ struct VertexEntry {
   }
 };
 
+// A vertex during the region growing of §3.2: the least entry queued for it and the sample it
+// went to (-1 while none). One record, not three arrays: the growth visits the vertices in the
+// order of the distances, all over the mesh, and each visit would miss the cache once per array.
+struct VertexClaim {
+  double best = std::numeric_limits<double>::infinity();
+  int best_sample = -1;
+  int label = -1;
+};
+
 // Polygons of one triangle during propagation. Most triangles have at most four candidates: their
 // labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
 // as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there).
@@ -89,8 +98,8 @@ struct LrvdWorkspace {
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
-  std::vector<int> vertex_label, home, conflicts, best_sample, stuck;
-  std::vector<double> best;
+  std::vector<int> vertex_label, home, conflicts, stuck;
+  std::vector<VertexClaim> claims;
   std::vector<VertexEntry> heap, seeds;
   std::vector<unsigned char> along;
 
@@ -108,7 +117,7 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), best_(work.best), best_sample_(work.best_sample), heap_(work.heap), seeds_(work.seeds), along_(work.along) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), claims_(work.claims), heap_(work.heap), seeds_(work.seeds), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
@@ -138,18 +147,17 @@ class LrvdBuilder {
   // triangles in order of distance, reaches it first. Every cell's vertex set is connected.
   void assign_vertices() {
     const int nv = mesh_.vertex_count();
-    vertex_label_.assign(nv, -1);
     // A vertex goes to the least (power distance, sample) that reaches it; an entry that cannot
     // be that least one is never queued.
     using Entry = VertexEntry;
-    best_.assign(nv, std::numeric_limits<double>::infinity());
-    best_sample_.assign(nv, -1);
+    claims_.assign(nv, VertexClaim{});
     heap_.clear();
     seeds_.clear();
     auto better = [&](double d, int i, int v) {
-      if (d > best_[v] || (d == best_[v] && best_sample_[v] >= 0 && i >= best_sample_[v])) return false;
-      best_[v] = d;
-      best_sample_[v] = i;
+      VertexClaim& c = claims_[v];
+      if (d > c.best || (d == c.best && c.best_sample >= 0 && i >= c.best_sample)) return false;
+      c.best = d;
+      c.best_sample = i;
       return true;
     };
     // The samples' own corners are most of the entries on a dense sampling (MPS): they are sorted
@@ -170,16 +178,18 @@ class LrvdBuilder {
         top = heap_.back();
         heap_.pop_back();
       }
-      if (vertex_label_[top.vertex] >= 0) continue;
-      vertex_label_[top.vertex] = top.sample;
+      if (claims_[top.vertex].label >= 0) continue;
+      claims_[top.vertex].label = top.sample;
       for (const int* u = mesh_.vertex_neighbors_begin(top.vertex); u != mesh_.vertex_neighbors_end(top.vertex); ++u)
-        if (vertex_label_[*u] < 0) {
+        if (claims_[*u].label < 0) {
           const double d = power_distance(mesh_.position(*u), top.sample);
           if (!better(d, top.sample, *u)) continue;
           heap_.push_back({d, top.sample, *u});
           std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
         }
     }
+    vertex_label_.resize(nv);
+    for (int v = 0; v < nv; ++v) vertex_label_[v] = claims_[v].label;
   }
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
@@ -510,8 +520,7 @@ class LrvdBuilder {
   std::vector<int>& pending_;
   std::vector<int>&vertex_label_, &home_, &conflicts_;
   std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
-  std::vector<double>& best_;  // region growing: the least entry queued per vertex
-  std::vector<int>& best_sample_;
+  std::vector<VertexClaim>& claims_;  // region growing, per vertex
   std::vector<VertexEntry>& heap_;
   std::vector<VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
