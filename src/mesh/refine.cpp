@@ -27,37 +27,35 @@ uint64_t edge_key(int a, int b) {
 // Undirected edge -> the one or two triangles using it: open addressing with linear probing (the
 // refinement of a large mesh makes millions of look-ups, and a node per edge would dominate).
 // A slot holds the key and its users together: a look-up in a table far larger than the cache
-// is then one miss, not two. Erased slots become tombstones; the table doubles when live + dead
-// slots pass half of it.
+// is then one miss, not two. Erasing shifts the rest of the probe run back (no tombstones), so
+// the table holds live edges only and can be sized for them; any size, not a power of two, so
+// that the size asked for is the memory touched. The table grows when over 3/5 full.
 class EdgeTable {
  public:
   using Users = std::array<int, 2>;
+  //! A table half full with `expected` edges.
   explicit EdgeTable(size_t expected) { rehash(std::max<size_t>(64, 2 * expected)); }
 
   //! The users of the edge, nullptr if it is not in the table.
   Users* find(uint64_t key) {
-    for (size_t i = slot(key);; i = (i + 1) & mask_) {
+    for (size_t i = slot(key);; i = next(i)) {
       if (slots_[i].key == key) return &slots_[i].users;
       if (slots_[i].key == kEmpty) return nullptr;
     }
   }
   //! The users of the edge, inserted as {t, -1} if it was not there (then `fresh` is true).
   Users& emplace(uint64_t key, int t, bool& fresh) {
-    if (2 * (live_ + dead_ + 1) > slots_.size()) rehash(slots_.size() * (live_ + 1 > slots_.size() / 4 ? 2 : 1));
-    size_t tomb = SIZE_MAX;
-    for (size_t i = slot(key);; i = (i + 1) & mask_) {
+    if (5 * (live_ + 1) > 3 * slots_.size()) rehash(2 * slots_.size());
+    for (size_t i = slot(key);; i = next(i)) {
       if (slots_[i].key == key) {
         fresh = false;
         return slots_[i].users;
       }
-      if (slots_[i].key == kDead && tomb == SIZE_MAX) tomb = i;
       if (slots_[i].key == kEmpty) {
-        const size_t at = tomb != SIZE_MAX ? tomb : i;
-        if (at == tomb) --dead_;
-        slots_[at] = {key, {t, -1}};
+        slots_[i] = {key, {t, -1}};
         ++live_;
         fresh = true;
-        return slots_[at].users;
+        return slots_[i].users;
       }
     }
   }
@@ -66,39 +64,46 @@ class EdgeTable {
   template <class F>
   void for_each(F&& f) const {
     for (const Slot& s : slots_)
-      if (s.key != kEmpty && s.key != kDead)
-        f(static_cast<int>(s.key >> 32), static_cast<int>(s.key & 0xffffffffu), s.users);
+      if (s.key != kEmpty) f(static_cast<int>(s.key >> 32), static_cast<int>(s.key & 0xffffffffu), s.users);
   }
-  //! Removes the edge whose users `found` (from find) points at.
+  //! Removes the edge whose users `found` (from find) points at; other edges' users may move.
   void erase(Users* found) {
-    reinterpret_cast<Slot*>(reinterpret_cast<char*>(found) - offsetof(Slot, users))->key = kDead;
+    size_t hole = reinterpret_cast<Slot*>(reinterpret_cast<char*>(found) - offsetof(Slot, users)) - slots_.data();
+    for (size_t i = next(hole); slots_[i].key != kEmpty; i = next(i)) {
+      // The edge at i stays if its home slot lies cyclically in (hole, i]: a look-up would stop
+      // at the hole before reaching it otherwise.
+      const size_t home = slot(slots_[i].key);
+      if (hole < i ? (hole < home && home <= i) : (hole < home || home <= i)) continue;
+      slots_[hole] = slots_[i];
+      hole = i;
+    }
+    slots_[hole].key = kEmpty;
     --live_;
-    ++dead_;
   }
 
  private:
-  static constexpr uint64_t kEmpty = ~uint64_t{0}, kDead = kEmpty - 1;  // no edge (a < b) has these keys
+  static constexpr uint64_t kEmpty = ~uint64_t{0};  // no edge (a < b) has this key
   struct Slot {
     uint64_t key;
     Users users;
   };
-  size_t slot(uint64_t key) const { return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
-  void rehash(size_t capacity) {
-    size_t size = 64;
-    while (size < capacity) size *= 2;
+  // Fibonacci hashing, its high bits mapped onto [0, size) by a multiplication.
+  size_t slot(uint64_t key) const {
+    return static_cast<size_t>((static_cast<unsigned __int128>(key * 0x9E3779B97F4A7C15ull) * slots_.size()) >> 64);
+  }
+  size_t next(size_t i) const { return i + 1 == slots_.size() ? 0 : i + 1; }
+  void rehash(size_t size) {
     std::vector<Slot> slots(size, Slot{kEmpty, {-1, -1}});
-    mask_ = size - 1;
-    for (const Slot& s : slots_) {
-      if (s.key == kEmpty || s.key == kDead) continue;
+    slots.swap(slots_);
+    for (const Slot& s : slots) {
+      if (s.key == kEmpty) continue;
       size_t j = slot(s.key);
-      while (slots[j].key != kEmpty) j = (j + 1) & mask_;
-      slots[j] = s;
+      while (slots_[j].key != kEmpty) j = next(j);
+      slots_[j] = s;
     }
-    slots_.swap(slots);
-    dead_ = 0;
   }
   std::vector<Slot> slots_;
-  size_t mask_ = 0, live_ = 0, dead_ = 0;
+  size_t live_ = 0;
 };
 
 // The edge of `tri` joining a and b (two of its corners): corners e and (e + 1) % 3, e being the
@@ -113,23 +118,36 @@ struct LongEdge {
   bool operator<(const LongEdge& o) const { return length < o.length; }
 };
 
-}  // namespace
+// The refined mesh's arrays, before they become a SurfaceMesh.
+struct Refinement {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  std::vector<std::array<int, 3>> neighbors;
+  int edge_count = 0;
+  std::vector<int> components;
+};
 
-SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
-  if (!(max_length > 0))
-    throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
-  if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
-    throw std::invalid_argument("refine_long_edges: one value per vertex expected");
-  std::vector<Vec3> positions = mesh.positions();
-  std::vector<Triangle> triangles = mesh.triangles();
+Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
+  // The size of the refined mesh, to size the edge table and reserve the arrays that grow, so that
+  // none is rehashed or reallocated on the way (a reallocation copies everything into fresh memory,
+  // which costs more than the refinement itself on a large mesh): the refined triangles average
+  // about max_length² / 6.5 in area (6.5 on feline and ChineseDragon-10kv), a closed mesh gains a
+  // vertex per two triangles, and the queue holds at most about a third as many edges as there are
+  // triangles at the end (0.32 on ChineseDragon-10kv). The reservations have room to spare; beyond
+  // them, the arrays still grow as needed. Only memory depends on this guess, not the refinement.
+  const double expected_triangles = std::min(
+      1.1 * (static_cast<double>(mesh.triangle_count()) + 6.5 * mesh.area() / (max_length * max_length)), 5e8);
+  const double expected_vertices = mesh.vertex_count() + 0.5 * (expected_triangles - mesh.triangle_count());
+  std::vector<Vec3> positions;
+  positions.reserve(static_cast<size_t>(expected_vertices));
+  positions = mesh.positions();
+  std::vector<Triangle> triangles;
+  triangles.reserve(static_cast<size_t>(expected_triangles));
+  triangles = mesh.triangles();
+  if (vertex_values) vertex_values->reserve(static_cast<size_t>(expected_vertices));
 
-  // Which triangles use each undirected edge (one or two). Sized for the end of the refinement,
-  // so that it is not rehashed on the way (7 times on ChineseDragon-10kv at r = 0.005): the refined
-  // triangles average about max_length² / 6.5 in area (6.5 on feline and ChineseDragon-10kv), and
-  // the table holds about two slots per triangle at the end (1.5 edges and 0.5 tombstones of split
-  // edges). Only the table's size depends on this guess, not the refinement.
-  const double expected_triangles = static_cast<double>(triangles.size()) + 6.5 * mesh.area() / (max_length * max_length);
-  EdgeTable edge_triangles(static_cast<size_t>(std::min(2 * expected_triangles, 1e9)));
+  // Which triangles use each undirected edge (one or two): 1.5 edges a triangle at the end.
+  EdgeTable edge_triangles(static_cast<size_t>(1.5 * expected_triangles));
   auto attach = [&](int a, int b, int t) {
     bool fresh = false;
     EdgeTable::Users& users = edge_triangles.emplace(edge_key(a, b), t, fresh);
@@ -139,9 +157,13 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     EdgeTable::Users& slot = *edge_triangles.find(edge_key(a, b));
     (slot[0] == old_t ? slot[0] : slot[1]) = new_t;
   };
-  std::vector<int> origin(triangles.size());  // the input triangle each triangle is a piece of
+  std::vector<int> origin;  // the input triangle each triangle is a piece of
+  origin.reserve(static_cast<size_t>(expected_triangles));
+  origin.resize(triangles.size());
   std::iota(origin.begin(), origin.end(), 0);
-  std::priority_queue<LongEdge> queue;
+  std::vector<LongEdge> waiting;
+  waiting.reserve(static_cast<size_t>(expected_triangles / 2));
+  std::priority_queue<LongEdge> queue(std::less<LongEdge>(), std::move(waiting));
   auto push_if_long = [&](int a, int b) {
     const double len = distance(positions[a], positions[b]);
     if (len > max_length) queue.push({len, std::min(a, b), std::max(a, b)});
@@ -183,6 +205,8 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     push_if_long(edge.a, m);
     push_if_long(m, edge.b);
   }
+  // Freed before the copies below are made, which can then reuse the memory.
+  queue = {};
   // Each input triangle's pieces become consecutive, in the input's order, and the new vertices
   // follow in the order those triangles first use them (the input's vertices keep their indices).
   // Pieces were appended at the end as they were split off: passes over a large refined mesh
@@ -204,6 +228,7 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
       if (new_vertex[v] < 0) new_vertex[v] = next_vertex++;
   std::vector<Vec3> ordered_positions(positions.size());
   for (size_t v = 0; v < positions.size(); ++v) ordered_positions[new_vertex[v]] = positions[v];
+  positions = {};
   if (vertex_values) {
     std::vector<double>& values = *vertex_values;
     std::vector<double> ordered(values.size());
@@ -231,8 +256,22 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
   // order: the components, numbered by first triangle, are the input's.
   std::vector<int> components(nt);
   for (int t = 0; t < nt; ++t) components[t] = mesh.triangle_components()[origin[old_triangle[t]]];
-  return SurfaceMesh(std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
-                     static_cast<int>(edge_triangles.size()), std::move(components), mesh.component_count());
+  return {std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
+          static_cast<int>(edge_triangles.size()), std::move(components)};
+}
+
+}  // namespace
+
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
+  if (!(max_length > 0))
+    throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
+  if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
+    throw std::invalid_argument("refine_long_edges: one value per vertex expected");
+  // The splitting's edge table, queue and unordered arrays are gone before the mesh builds its
+  // vertex lists, which can then reuse some of that memory.
+  Refinement r = split_long_edges(mesh, max_length, vertex_values);
+  return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
+                     std::move(r.components), mesh.component_count());
 }
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {

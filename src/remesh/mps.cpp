@@ -31,7 +31,8 @@ class AliasTable {
     const size_t n = weights.size();
     double sum = 0;
     for (double w : weights) sum += w;
-    std::vector<double> scaled(n);
+    // The scaled weights live in probability_: an index's weight is final once it leaves `small`.
+    std::vector<double>& scaled = probability_;
     std::vector<int> small, large;
     small.reserve(n);
     large.reserve(n);
@@ -42,7 +43,6 @@ class AliasTable {
     while (!small.empty() && !large.empty()) {
       const int s = small.back(), l = large.back();
       small.pop_back();
-      probability_[s] = scaled[s];
       alias_[s] = l;
       scaled[l] -= 1 - scaled[s];
       if (scaled[l] < 1) {
@@ -240,15 +240,15 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   // Initialisation: split long edges so a triangle is smaller than any disk (§4.2, first change).
   progress(fmt::format("splitting edges longer than r = {:.4g}", r_min));
   std::vector<double> vertex_radius;
-  if (options.adaptive) {
-    // The field is linear over each input triangle; the refinement carries it to the new vertices.
-    vertex_radius = adaptive_radius_field(mesh, r_min, options);
-    result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min, &vertex_radius) : mesh;
-    result.max_radius = *std::max_element(vertex_radius.begin(), vertex_radius.end());
-  } else {
-    result.mesh = mesh.max_edge_length() > r_min ? refine_long_edges(mesh, r_min) : mesh;
-    result.max_radius = r_min;
-  }
+  // The field is linear over each input triangle; the refinement carries it to the new vertices.
+  if (options.adaptive) vertex_radius = adaptive_radius_field(mesh, r_min, options);
+  // Not `result.mesh = refine ? refine_long_edges(...) : mesh`: that conditional is a const
+  // prvalue, so the refined mesh would be copied into place rather than moved.
+  if (mesh.max_edge_length() > r_min)
+    result.mesh = refine_long_edges(mesh, r_min, options.adaptive ? &vertex_radius : nullptr);
+  else
+    result.mesh = mesh;
+  result.max_radius = options.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min;
   const SurfaceMesh& m = result.mesh;
   Sampler sampler(m, r_min, std::move(vertex_radius));
   const std::vector<double>& areas = sampler.disks().triangle_areas();
@@ -304,6 +304,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   for (int round = 0; round < options.max_gap_rounds; ++round) {
     if (stale) {
       progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
+      lrpd = {};  // the last round's diagram goes before the next one is built, not after
       lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
       ++result.lrpd_evaluations;
     }

@@ -336,26 +336,26 @@ void GapSet::fenwick_add(int index, double delta) {
 }
 
 void GapSet::rebuild() {
-  // Drop dead pieces, then rebuild the per-triangle lists and the Fenwick tree (capacity: a power
-  // of two with room to grow).
-  std::vector<Piece> pieces;
-  std::vector<Vec3> points;
-  pieces.reserve(alive_);
-  points.reserve(points_.size());
+  // Drop dead pieces in place (a piece and its corners only move towards the front: no fresh
+  // memory), then rebuild the per-triangle lists and the Fenwick tree (capacity: a power of two
+  // with room to grow).
   for (const Piece& p : pieces_) head_[p.triangle] = -1;
   total_ = 0;
+  size_t kept = 0, corners = 0;
   for (const Piece& p : pieces_) {
     if (!p.alive) continue;
     Piece q = p;
-    q.first = static_cast<int>(points.size());
-    for (int k = 0; k < p.count; ++k) points.push_back(points_[p.first + k]);
+    if (q.first != static_cast<int>(corners))
+      std::copy(points_.begin() + p.first, points_.begin() + p.first + p.count, points_.begin() + corners);
+    q.first = static_cast<int>(corners);
+    corners += p.count;
     q.next_in_triangle = head_[q.triangle];
-    head_[q.triangle] = static_cast<int>(pieces.size());
-    pieces.push_back(q);
+    head_[q.triangle] = static_cast<int>(kept);
+    pieces_[kept++] = q;
     total_ += q.area;
   }
-  pieces_.swap(pieces);
-  points_.swap(points);
+  pieces_.resize(kept);
+  points_.resize(corners);
   alive_ = static_cast<int>(pieces_.size());
   dead_since_rebuild_ = 0;
   size_t capacity = 1024;
