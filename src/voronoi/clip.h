@@ -108,6 +108,9 @@ inline void unpack(const PackedVertex& q, const std::array<int, 3>& triangle, co
 //! (a corner's answer for (l, k) is the negation of its answer for (k, l)).
 class CellClipper {
  public:
+  //! Most candidates the clipper packs: more take the per-cell path, which writes to `wide`.
+  static constexpr int kMaxLabels = 16;
+
   //! Appends, for each cell k of `labels` (m of them, sorted, distinct) in order whose polygon in
   //! triangle t is not empty, its vertices to `verts` (packed against `labels`) and the polygon to
   //! `polygons`. A single candidate's polygon is the whole triangle and gets no vertices: a polygon
@@ -118,7 +121,7 @@ class CellClipper {
             std::vector<SymbolicVertex>& wide);
 
  private:
-  static constexpr int kMaxLabels = 16;    // more candidates take the per-cell path
+
   static constexpr int kMaxVertices = 40;  // a convex polygon cut by at most 15 bisectors: 18
 
   // A polygon vertex during clipping, eight bytes: labels as indices into the triangle's label

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <tuple>
 
@@ -69,25 +70,44 @@ struct VertexClaim {
   int label = -1;
 };
 
-// Polygons of one triangle during propagation. Most triangles have at most four candidates: their
-// labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
-// as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there).
-struct TrianglePolygons {
-  boost::container::small_vector<int, 4> labels;  // candidate cells L(t), sorted
+// What few triangles ever hold, allocated on first use: the cells connectivity restoration
+// forbade or pinned, and unpacked vertices (more candidates than the clipper packs).
+struct TriangleExtras {
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
   std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
+  std::vector<SymbolicVertex> wide;  // instead of the packed vertices
+};
+
+// Polygons of one triangle during propagation. Most triangles have at most four candidates: their
+// labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
+// as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there),
+// and the rest of the record is kept small (144 bytes): MPS's diagrams have up to a million
+// triangles, and propagation reads the records of neighbours all the time.
+struct TrianglePolygons {
+  boost::container::small_vector<int, 4> labels;  // candidate cells L(t), sorted
   boost::container::small_vector<TrianglePolygon, 4> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
   std::vector<PackedVertex> verts;  // packed against `labels` as they were when t was clipped
-  std::vector<SymbolicVertex> wide;  // instead of verts, for more candidates than the clipper packs
+  std::unique_ptr<TriangleExtras> extras;
+
+  bool forbids(int k) const { return extras && contains(extras->forbidden, k); }
+  bool pins(int k) const { return extras && contains(extras->pinned, k); }
+  TriangleExtras& extra() {
+    if (!extras) extras = std::make_unique<TriangleExtras>();
+    return *extras;
+  }
+  //! The unpacked vertices, or null when the vertices are packed.
+  const std::vector<SymbolicVertex>* wide() const { return extras && !extras->wide.empty() ? &extras->wide : nullptr; }
 
   //! Empties every list but keeps its storage for the next diagram.
   void reset() {
     labels.clear();
-    forbidden.clear();
-    pinned.clear();
     polygons.clear();
     verts.clear();
-    wide.clear();
+    if (extras) {
+      extras->forbidden.clear();
+      extras->pinned.clear();
+      extras->wide.clear();
+    }
   }
 };
 
@@ -229,13 +249,15 @@ class LrvdBuilder {
     thread_local std::vector<TrianglePolygon> polygons;
     TrianglePolygons& st = state_[t];
     st.verts.clear();
-    st.wide.clear();
+    if (st.extras) st.extras->wide.clear();
     // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
     // vertex list step by step, triangle by triangle. A single candidate stores no vertices.
     const int m = static_cast<int>(st.labels.size());
     if (m > 1) st.verts.reserve(4 * m + 4);
     polygons.clear();
-    clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts, st.wide);
+    thread_local std::vector<SymbolicVertex> unused;  // the clipper writes no unpacked vertex then
+    clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts,
+                 m > CellClipper::kMaxLabels ? st.extra().wide : unused);
     st.polygons.assign(polygons.begin(), polygons.end());
     clipped_[t] = 1;
   }
@@ -345,7 +367,7 @@ class LrvdBuilder {
           // keeps them until a label is first taken away.
           if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
           if (contains(state_[across].labels, k)) continue;
-          if (contains(state_[across].forbidden, k)) {
+          if (state_[across].forbids(k)) {
             conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
             continue;
           }
@@ -359,7 +381,7 @@ class LrvdBuilder {
           continue;
         }
         if (remove_label(t, k)) {
-          insert_sorted(state_[t].forbidden, k);
+          insert_sorted(state_[t].extra().forbidden, k);
           ++stats_.forbidden_labels;
           activate(t);
         }
@@ -370,7 +392,7 @@ class LrvdBuilder {
   // Whether cell k may be taken out of triangle t: not from its sample's triangle, not from a
   // triangle it was pinned to, and not from a triangle's last label.
   bool removable(int t, int k) const {
-    return t != home_[k] && !contains(state_[t].pinned, k) && state_[t].labels.size() > 1;
+    return t != home_[k] && !state_[t].pins(k) && state_[t].labels.size() > 1;
   }
 
   // After propagate(): a conflict left in a triangle t that cannot drop its cell k (k's own
@@ -395,7 +417,7 @@ class LrvdBuilder {
           const int across = mesh_.neighbor(t, e);
           if (across < 0 || !(poly.reach & (1u << e))) continue;
           const TrianglePolygons& sa = state_[across];
-          if (contains(sa.labels, k) || !contains(sa.forbidden, k)) continue;
+          if (contains(sa.labels, k) || !sa.forbids(k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
         }
       }
@@ -405,8 +427,8 @@ class LrvdBuilder {
       return false;
     }
     TrianglePolygons& sa = state_[best_t];
-    erase_sorted(sa.forbidden, best_k);
-    insert_sorted(sa.pinned, best_k);
+    erase_sorted(sa.extra().forbidden, best_k);
+    insert_sorted(sa.extra().pinned, best_k);
     add_label(best_t, best_k);
     activate(best_t);
     ++stats_.pinned_labels;
@@ -432,9 +454,9 @@ class LrvdBuilder {
       const int keep = home_component[k] >= 0 ? home_component[k] : 0;
       if (comps.polygon_component[p] == keep) continue;
       TrianglePolygons& st = state_[poly.triangle];
-      if (contains(st.pinned, k)) continue;
+      if (st.pins(k)) continue;
       if (!remove_label(poly.triangle, k)) continue;
-      insert_sorted(st.forbidden, k);
+      insert_sorted(st.extra().forbidden, k);
       ++stats_.forbidden_labels;
       activate(poly.triangle);
       if (st.labels.empty()) emptied.push_back(poly.triangle);
@@ -455,7 +477,7 @@ class LrvdBuilder {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
           for (int k : state_[across].labels)
-            if (!contains(st.forbidden, k)) add_label(t, k);
+            if (!st.forbids(k)) add_label(t, k);
         }
         if (st.labels.empty()) still.push_back(t);
       }
@@ -479,7 +501,7 @@ class LrvdBuilder {
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
-      vertices += st.wide.empty() ? (st.verts.empty() ? 3 : st.verts.size()) : st.wide.size();
+      vertices += st.wide() ? st.wide()->size() : (st.verts.empty() ? 3 : st.verts.size());
     }
     d.polygons.clear();
     d.vertices.clear();
@@ -494,8 +516,8 @@ class LrvdBuilder {
       for (const TrianglePolygon& poly : st.polygons) {
         along_.push_back(poly.along);
         const int first = static_cast<int>(d.vertices.size());
-        if (!st.wide.empty()) {
-          d.vertices.insert(d.vertices.end(), st.wide.begin() + begin, st.wide.begin() + poly.end);
+        if (const std::vector<SymbolicVertex>* wide = st.wide()) {
+          d.vertices.insert(d.vertices.end(), wide->begin() + begin, wide->begin() + poly.end);
         } else if (poly.end == begin) {  // the whole triangle
           for (int c : tri) d.vertices.emplace_back().v[0] = c;
         } else {
