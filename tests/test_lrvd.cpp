@@ -3,6 +3,7 @@
 // agree where the sampling is dense, and degenerate and bad inputs behave as documented.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -112,11 +113,13 @@ TEST_CASE("Without the connectivity restoration the fixpoint alone can leave a c
   REQUIRE(cases > 0);
 }
 
-TEST_CASE("RVD and LRVD are identical polygon for polygon on a densely sampled sphere", "[rvd][lrvd]") {
-  const SurfaceMesh mesh = test::icosphere(5);  // 20480 triangles
-  const Samples samples = sample_uniform(mesh, 2000, 11);
-  const Diagram rvd = compute_rvd(mesh, samples);
-  const Diagram lrvd = compute_lrvd(mesh, samples);
+namespace {
+
+// Where every restricted Voronoi cell is connected, the LRVD is the RVD: the same polygons in the
+// same order, each the same cyclic sequence of symbolic vertices (clipping order may start it
+// elsewhere). The RVD clips each cell on its own with full vertices; the LRVD's clipper packs its
+// vertices and shares side tests between cells, so this checks that path vertex for vertex.
+void require_same_polygons(const Diagram& rvd, const Diagram& lrvd) {
   REQUIRE(rvd.polygons.size() == lrvd.polygons.size());
   REQUIRE(rvd.triangle_offsets == lrvd.triangle_offsets);
   for (size_t p = 0; p < rvd.polygons.size(); ++p) {
@@ -131,7 +134,37 @@ TEST_CASE("RVD and LRVD are identical polygon for polygon on a densely sampled s
     REQUIRE(shift < b.vertex_count);
     for (int k = 0; k < a.vertex_count; ++k) REQUIRE(va[k] == vb[(k + shift) % b.vertex_count]);
   }
+}
+
+}  // namespace
+
+TEST_CASE("RVD and LRVD are identical polygon for polygon on a densely sampled sphere", "[rvd][lrvd]") {
+  const SurfaceMesh mesh = test::icosphere(5);  // 20480 triangles
+  const Samples samples = sample_uniform(mesh, 2000, 11);
+  const Diagram lrvd = compute_lrvd(mesh, samples);
+  require_same_polygons(compute_rvd(mesh, samples), lrvd);
   REQUIRE(verify_diagram(mesh, samples, lrvd).passed);
+}
+
+TEST_CASE("RVD and LRVD are identical on a coarse square: one, a few and many candidates a triangle",
+          "[rvd][lrvd]") {
+  // A plane square's Voronoi cells are convex, so connected. 8 triangles: 40 samples give most
+  // triangles 3 to 16 candidates (the clipper's packed vertices), 300 samples more than 16 (its
+  // per-cell path with full vertices); 1 sample, one candidate everywhere (no vertices stored).
+  const SurfaceMesh mesh = test::grid(2, 2);
+  for (int n : {1, 40, 300}) {
+    INFO("n = " << n);
+    const Samples samples = sample_uniform(mesh, n, 5);
+    const Diagram lrvd = compute_lrvd(mesh, samples);
+    size_t most = 0;
+    for (int t = 0; t < mesh.triangle_count(); ++t)
+      most = std::max<size_t>(most, lrvd.triangle_offsets[t + 1] - lrvd.triangle_offsets[t]);
+    if (n == 1) REQUIRE(most == 1);
+    if (n == 40) REQUIRE((most >= 3 && most <= 16));
+    if (n == 300) REQUIRE(most > 16);
+    require_same_polygons(compute_rvd(mesh, samples), lrvd);
+    REQUIRE(verify_diagram(mesh, samples, lrvd).passed);
+  }
 }
 
 TEST_CASE("Degenerate samples: on mesh vertices and edges, cospherical, shared triangles, n = 1 and n = V",
