@@ -6,7 +6,6 @@
 #include <queue>
 #include <array>
 #include <cstddef>
-#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
@@ -19,91 +18,14 @@ namespace lrvd {
 
 namespace {
 
-uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (static_cast<uint64_t>(static_cast<uint32_t>(a)) << 32) | static_cast<uint32_t>(b);
-}
-
-// Undirected edge -> the one or two triangles using it: open addressing with linear probing (the
-// refinement of a large mesh makes millions of look-ups, and a node per edge would dominate).
-// A slot holds the key and its users together: a look-up in a table far larger than the cache
-// is then one miss, not two. Erasing shifts the rest of the probe run back (no tombstones), so
-// the table holds live edges only and can be sized for them; any size, not a power of two, so
-// that the size asked for is the memory touched. The table grows when over 3/5 full.
-class EdgeTable {
- public:
-  using Users = std::array<int, 2>;
-  //! A table half full with `expected` edges.
-  explicit EdgeTable(size_t expected) { rehash(std::max<size_t>(64, 2 * expected)); }
-
-  //! The users of the edge, nullptr if it is not in the table.
-  Users* find(uint64_t key) {
-    for (size_t i = slot(key);; i = next(i)) {
-      if (slots_[i].key == key) return &slots_[i].users;
-      if (slots_[i].key == kEmpty) return nullptr;
-    }
-  }
-  //! The users of the edge, inserted as {t, -1} if it was not there (then `fresh` is true).
-  Users& emplace(uint64_t key, int t, bool& fresh) {
-    if (5 * (live_ + 1) > 3 * slots_.size()) rehash(2 * slots_.size());
-    for (size_t i = slot(key);; i = next(i)) {
-      if (slots_[i].key == key) {
-        fresh = false;
-        return slots_[i].users;
-      }
-      if (slots_[i].key == kEmpty) {
-        slots_[i] = {key, {t, -1}};
-        ++live_;
-        fresh = true;
-        return slots_[i].users;
-      }
-    }
-  }
-  size_t size() const { return live_; }
-  //! f(a, b, users) for every edge (a, b), a < b, in the table's order.
-  template <class F>
-  void for_each(F&& f) const {
-    for (const Slot& s : slots_)
-      if (s.key != kEmpty) f(static_cast<int>(s.key >> 32), static_cast<int>(s.key & 0xffffffffu), s.users);
-  }
-  //! Removes the edge whose users `found` (from find) points at; other edges' users may move.
-  void erase(Users* found) {
-    size_t hole = reinterpret_cast<Slot*>(reinterpret_cast<char*>(found) - offsetof(Slot, users)) - slots_.data();
-    for (size_t i = next(hole); slots_[i].key != kEmpty; i = next(i)) {
-      // The edge at i stays if its home slot lies cyclically in (hole, i]: a look-up would stop
-      // at the hole before reaching it otherwise.
-      const size_t home = slot(slots_[i].key);
-      if (hole < i ? (hole < home && home <= i) : (hole < home || home <= i)) continue;
-      slots_[hole] = slots_[i];
-      hole = i;
-    }
-    slots_[hole].key = kEmpty;
-    --live_;
-  }
-
- private:
-  static constexpr uint64_t kEmpty = ~uint64_t{0};  // no edge (a < b) has this key
-  struct Slot {
-    uint64_t key;
-    Users users;
-  };
-  // Fibonacci hashing, its high bits mapped onto [0, size) by a multiplication.
-  size_t slot(uint64_t key) const {
-    return static_cast<size_t>((static_cast<unsigned __int128>(key * 0x9E3779B97F4A7C15ull) * slots_.size()) >> 64);
-  }
-  size_t next(size_t i) const { return i + 1 == slots_.size() ? 0 : i + 1; }
-  void rehash(size_t size) {
-    std::vector<Slot> slots(size, Slot{kEmpty, {-1, -1}});
-    slots.swap(slots_);
-    for (const Slot& s : slots) {
-      if (s.key == kEmpty) continue;
-      size_t j = slot(s.key);
-      while (slots_[j].key != kEmpty) j = next(j);
-      slots_[j] = s;
-    }
-  }
-  std::vector<Slot> slots_;
-  size_t live_ = 0;
+// An undirected edge during the splitting and the one or two triangles using it, in the order
+// they took it (the order decides which side of a split edge is cut first, so it is kept as the
+// splitting has always had it). Each triangle knows the records of its three edges: every look-up
+// the splitting makes is then an index, where a hash table of the edges cost a cache miss each
+// (the table outgrows the caches on a large mesh: most of the refinement's time).
+struct EdgeRecord {
+  std::array<int, 2> users;
+  bool split = false;
 };
 
 // The edge of `tri` joining a and b (two of its corners): corners e and (e + 1) % 3, e being the
@@ -115,6 +37,7 @@ int edge_of(const Triangle& tri, int a, int b) {
 struct LongEdge {
   double length;
   int a, b;
+  int edge;  // its record
   bool operator<(const LongEdge& o) const { return length < o.length; }
 };
 
@@ -146,16 +69,18 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   triangles = mesh.triangles();
   if (vertex_values) vertex_values->reserve(static_cast<size_t>(expected_vertices));
 
-  // Which triangles use each undirected edge (one or two): 1.5 edges a triangle at the end.
-  EdgeTable edge_triangles(static_cast<size_t>(1.5 * expected_triangles));
-  auto attach = [&](int a, int b, int t) {
-    bool fresh = false;
-    EdgeTable::Users& users = edge_triangles.emplace(edge_key(a, b), t, fresh);
-    if (!fresh) users[1] = t;
-  };
-  auto replace = [&](int a, int b, int old_t, int new_t) {
-    EdgeTable::Users& slot = *edge_triangles.find(edge_key(a, b));
-    (slot[0] == old_t ? slot[0] : slot[1]) = new_t;
+  // The edges: 1.5 a triangle at the end, and one more for each split. `edge_of_triangle[t][e]` is
+  // the record of edge e of t (corners e and e + 1).
+  std::vector<EdgeRecord> edges;
+  edges.reserve(static_cast<size_t>(2.0 * expected_triangles));
+  std::vector<std::array<int, 3>> edge_of_triangle;
+  edge_of_triangle.reserve(static_cast<size_t>(expected_triangles));
+  edge_of_triangle.resize(triangles.size());
+  int live_edges = 0;
+  auto new_edge = [&](int t) {
+    edges.push_back({{t, -1}});
+    ++live_edges;
+    return static_cast<int>(edges.size()) - 1;
   };
   std::vector<int> origin;  // the input triangle each triangle is a piece of
   origin.reserve(static_cast<size_t>(expected_triangles));
@@ -164,46 +89,70 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   std::vector<LongEdge> waiting;
   waiting.reserve(static_cast<size_t>(expected_triangles / 2));
   std::priority_queue<LongEdge> queue(std::less<LongEdge>(), std::move(waiting));
-  auto push_if_long = [&](int a, int b) {
+  auto push_if_long = [&](int a, int b, int edge) {
     const double len = distance(positions[a], positions[b]);
-    if (len > max_length) queue.push({len, std::min(a, b), std::max(a, b)});
+    if (len > max_length) queue.push({len, std::min(a, b), std::max(a, b), edge});
   };
+  // An interior edge is first taken by its triangle of lower index (the input is a manifold,
+  // consistently oriented: each edge is listed once, from the side where it runs up).
   for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
     for (int e = 0; e < 3; ++e) {
       const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
-      attach(a, b, t);
-      if (a < b || mesh.neighbor(t, e) < 0) push_if_long(a, b);
+      const int across = mesh.neighbor(t, e);
+      int edge;
+      if (across >= 0 && across < t) {
+        edge = edge_of_triangle[across][mesh.neighbor_edge(t, e)];
+        edges[edge].users[1] = t;
+      } else {
+        edge = new_edge(t);
+      }
+      edge_of_triangle[t][e] = edge;
+      if (a < b || across < 0) push_if_long(a, b, edge);
     }
 
   while (!queue.empty()) {
     const LongEdge edge = queue.top();
     queue.pop();
-    EdgeTable::Users* found = edge_triangles.find(edge_key(edge.a, edge.b));
-    if (found == nullptr) continue;  // already split
-    const EdgeTable::Users users = *found;
-    edge_triangles.erase(found);
+    EdgeRecord& record = edges[edge.edge];
+    if (record.split) continue;
+    record.split = true;
+    --live_edges;
+    const std::array<int, 2> users = record.users;
     const int m = static_cast<int>(positions.size());
     positions.push_back(0.5 * (positions[edge.a] + positions[edge.b]));
     if (vertex_values) vertex_values->push_back(0.5 * ((*vertex_values)[edge.a] + (*vertex_values)[edge.b]));
+    // The halves (a, m) and (m, b), made by the first triangle and taken by the second.
+    int half_a = -1, half_b = -1;
+    auto take = [&](int& half, int t) {
+      if (half < 0)
+        half = new_edge(t);
+      else
+        edges[half].users[1] = t;
+      return half;
+    };
     for (int t : users) {
       if (t < 0) continue;
       // Rotate so that the split edge is (u, v) = corners 0 -> 1 of t, w opposite.
-      Triangle tri = triangles[t];
+      const Triangle tri = triangles[t];
       const int e = edge_of(tri, edge.a, edge.b);
       const int u = tri[e], v = tri[(e + 1) % 3], w = tri[(e + 2) % 3];
+      const int vw = edge_of_triangle[t][(e + 1) % 3], wu = edge_of_triangle[t][(e + 2) % 3];
       const int t_new = static_cast<int>(triangles.size());
       triangles[t] = {u, m, w};
       triangles.push_back({m, v, w});
       origin.push_back(origin[t]);
-      replace(v, w, t, t_new);
-      attach(u, m, t);
-      attach(m, v, t_new);
-      attach(m, w, t);
-      attach(m, w, t_new);
-      push_if_long(m, w);
+      std::array<int, 2>& vw_users = edges[vw].users;
+      (vw_users[0] == t ? vw_users[0] : vw_users[1]) = t_new;
+      const int um = take(u == edge.a ? half_a : half_b, t);
+      const int mv = take(v == edge.a ? half_a : half_b, t_new);
+      const int mw = new_edge(t);
+      edges[mw].users[1] = t_new;
+      edge_of_triangle[t] = {um, mw, wu};
+      edge_of_triangle.push_back({mv, vw, mw});
+      push_if_long(m, w, mw);
     }
-    push_if_long(edge.a, m);
-    push_if_long(m, edge.b);
+    push_if_long(edge.a, m, half_a);
+    push_if_long(m, edge.b, half_b);
   }
   // Freed before the copies below are made, which can then reuse the memory.
   queue = {};
@@ -235,29 +184,25 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
     for (size_t v = 0; v < values.size(); ++v) ordered[new_vertex[v]] = values[v];
     values.swap(ordered);
   }
-  // The adjacency is in the edge table: the refinement of a valid mesh is valid by construction
+  // The adjacency is in the edge records: the refinement of a valid mesh is valid by construction
   // (only its rounded midpoints' triangles get the zero-area check again).
-  // One pass over the table's slots sets both sides of each edge (a look-up per triangle edge
-  // instead would be a cache miss each in a table this size).
   std::vector<Triangle> ordered_triangles(nt);
-  for (int t = 0; t < nt; ++t)
-    for (int e = 0; e < 3; ++e) ordered_triangles[t][e] = new_vertex[triangles[old_triangle[t]][e]];
   std::vector<std::array<int, 3>> neighbors(nt);
-  edge_triangles.for_each([&](int a, int b, const EdgeTable::Users& users) {
-    for (int k = 0; k < 2; ++k) {
-      const int t = users[k];
-      if (t < 0) continue;
-      const int e = edge_of(triangles[t], a, b);
-      const int across = users[1 - k];
-      neighbors[new_triangle[t]][e] = across < 0 ? -1 : new_triangle[across];
+  for (int t = 0; t < nt; ++t) {
+    const int old = old_triangle[t];
+    for (int e = 0; e < 3; ++e) {
+      ordered_triangles[t][e] = new_vertex[triangles[old][e]];
+      const std::array<int, 2>& users = edges[edge_of_triangle[old][e]].users;
+      const int across = users[0] == old ? users[1] : users[0];
+      neighbors[t][e] = across < 0 ? -1 : new_triangle[across];
     }
-  });
+  }
   // Splitting keeps each input triangle's pieces edge-connected, and the pieces are in the input's
   // order: the components, numbered by first triangle, are the input's.
   std::vector<int> components(nt);
   for (int t = 0; t < nt; ++t) components[t] = mesh.triangle_components()[origin[old_triangle[t]]];
   return {std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
-          static_cast<int>(edge_triangles.size()), std::move(components)};
+          live_edges, std::move(components)};
 }
 
 }  // namespace
@@ -267,7 +212,7 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
   if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
     throw std::invalid_argument("refine_long_edges: one value per vertex expected");
-  // The splitting's edge table, queue and unordered arrays are gone before the mesh builds its
+  // The splitting's edge records, queue and unordered arrays are gone before the mesh builds its
   // vertex lists, which can then reuse some of that memory.
   Refinement r = split_long_edges(mesh, max_length, vertex_values);
   return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
