@@ -114,14 +114,13 @@ class CellClipper {
   //! Appends, for each cell k of `labels` (m of them, sorted, distinct) in order whose polygon in
   //! triangle t is not empty, its vertices to `verts` (packed against `labels`) and the polygon to
   //! `polygons`. A single candidate's polygon is the whole triangle and gets no vertices: a polygon
-  //! without vertices stands for the triangle's corners. More than kMaxLabels candidates write
-  //! every vertex, unpacked, to `wide` instead (their labels may not fit a byte).
+  //! without vertices stands for the triangle's corners. More than kMaxLabels candidates take the
+  //! per-cell path, which writes every vertex unpacked, to `wide` instead.
   void clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
             std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts,
             std::vector<SymbolicVertex>& wide);
 
  private:
-
   static constexpr int kMaxVertices = 40;  // a convex polygon cut by at most 15 bisectors: 18
 
   // A polygon vertex during clipping, eight bytes: labels as indices into the triangle's label
