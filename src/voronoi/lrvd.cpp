@@ -486,6 +486,12 @@ class LrvdBuilder {
     }
   }
 
+  // The number of polygon vertices of a clipped triangle once unpacked.
+  static size_t vertex_count(const TrianglePolygons& st) {
+    if (const std::vector<SymbolicVertex>* wide = st.wide()) return wide->size();
+    return st.verts.empty() ? 3 * st.polygons.size() : st.verts.size();  // a single candidate: the corners
+  }
+
   // Fills d with the current polygons (reusing its storage: a diagram of a large mesh is flattened
   // once per connectivity round, and fresh pages cost more than the copy); along_ gets each
   // polygon's along edges.
@@ -501,7 +507,7 @@ class LrvdBuilder {
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
-      vertices += st.wide() ? st.wide()->size() : (st.verts.empty() ? 3 : st.verts.size());
+      vertices += vertex_count(st);
     }
     d.polygons.clear();
     d.vertices.clear();
@@ -512,18 +518,23 @@ class LrvdBuilder {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
+      const std::vector<SymbolicVertex>* wide = st.wide();
+      // The triangle's vertices are made (as default-constructed) in one step, then filled in.
+      const size_t first = d.vertices.size();
+      d.vertices.resize(first + vertex_count(st));
+      SymbolicVertex* out = d.vertices.data() + first;
       int begin = 0;
       for (const TrianglePolygon& poly : st.polygons) {
         along_.push_back(poly.along);
-        const int first = static_cast<int>(d.vertices.size());
-        if (const std::vector<SymbolicVertex>* wide = st.wide()) {
-          d.vertices.insert(d.vertices.end(), wide->begin() + begin, wide->begin() + poly.end);
+        const int at = static_cast<int>(out - d.vertices.data());
+        if (wide) {
+          out = std::copy(wide->begin() + begin, wide->begin() + poly.end, out);
         } else if (poly.end == begin) {  // the whole triangle
-          for (int c : tri) d.vertices.emplace_back().v[0] = c;
+          for (int c : tri) (out++)->v[0] = c;
         } else {
-          for (int a = begin; a < poly.end; ++a) unpack(st.verts[a], tri, st.labels.data(), d.vertices.emplace_back());
+          for (int a = begin; a < poly.end; ++a) unpack(st.verts[a], tri, st.labels.data(), *out++);
         }
-        d.polygons.push_back({t, poly.cell, first, static_cast<int>(d.vertices.size()) - first});
+        d.polygons.push_back({t, poly.cell, at, static_cast<int>(out - d.vertices.data()) - at});
         begin = poly.end;
       }
       d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
