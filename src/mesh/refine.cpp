@@ -51,8 +51,8 @@ struct Refinement {
 };
 
 Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
-  // The size of the refined mesh, to size the edge table and reserve the arrays that grow, so that
-  // none is rehashed or reallocated on the way (a reallocation copies everything into fresh memory,
+  // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
+  // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
   // about max_length² / 6.5 in area (6.5 on feline and ChineseDragon-10kv), a closed mesh gains a
   // vertex per two triangles, and the queue holds at most about a third as many edges as there are
