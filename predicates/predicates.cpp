@@ -345,6 +345,18 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
   return i.id < l.id ? Sign::Positive : Sign::Negative;
 }
 
+Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
+           const BoundedPowerDistance& dl) {
+  // |r - (d_l - d_i)| <= e_i + e_l + u |d~_l - d~_i| <= e_i + e_l + u |r| / (1 - u): a margin of
+  // 2^-40 on the rounded sum of the bounds covers the last term and the sum's own rounding.
+  const double r = dl.value - di.value;
+  if (std::fabs(r) > (di.error + dl.error) * (1 + 0x1p-40)) {
+    bump(local_counters(), kSide1, kCalls);
+    return r > 0 ? Sign::Positive : Sign::Negative;
+  }
+  return side1(i, l, q, true);
+}
+
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            bool inputs_in_range) {
   ThreadCounters& c = local_counters();

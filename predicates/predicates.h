@@ -70,6 +70,30 @@ bool in_filter_range(const Site& s);
 //! Type (a): q is a mesh vertex. Degree 2.
 Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range = false);
 
+//! q's power distance to a site in doubles, with a bound on its rounding error: what side1 needs of
+//! each side, computed once where one point is tested against several sites (a triangle's corners
+//! against its candidate cells). Derivation: docs/predicates.md, "Shared power distances".
+struct BoundedPowerDistance {
+  double value = 0;  //!< fl(|q - p|^2 - w), each coordinate difference, square and sum rounded
+  double error = 0;  //!< >= |value - (|q - p|^2 - w)|
+};
+
+//! \pre `s` and `q` are in the filter range (in_filter_range).
+inline BoundedPowerDistance bounded_power_distance(const Site& s, const Vec3& q) {
+  const double dx = q.x - s.p.x, dy = q.y - s.p.y, dz = q.z - s.p.z;
+  const double squared = dx * dx + dy * dy + dz * dz;
+  // 8u·squared + 2u·|w| + 2^-1000 >= (γ5 / (1 - γ5) + u)·squared + u·|w| + 2^-1071 even after its
+  // own two roundings, with u = 2^-52: any rounding mode, as the double filter's bound.
+  return {squared - s.w, 0x1p-49 * squared + (0x1p-51 * (s.w < 0 ? -s.w : s.w) + 0x1p-1000)};
+}
+
+//! side1(i, l, q, true) from q's bounded power distances to i and to l: the same answer, decided in
+//! doubles when the distances differ by more than their error bounds, else by side1 itself (and
+//! counted as one side1 call either way).
+//! \pre i, l and q are in the filter range; di and dl are bounded_power_distance(i, q) and (l, q).
+Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
+           const BoundedPowerDistance& dl);
+
 //! Type (b): q is the point of line (q1,q2) on bisector(i,j).
 //! \pre (q1 - q2).(p_j - p_i) != 0 (the vertex exists); otherwise returns Zero.
 //! Degree 4 (numerator) times degree 2 (weight-free denominator).

@@ -295,6 +295,9 @@ TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition o
     if (pr::in_filter_range(s[0]) && pr::in_filter_range(s[1]) && pr::in_filter_range(q)) {
       ++in_range;
       REQUIRE(pr::side1(s[0], s[1], q, true) == expected);
+      // From the shared power distances (as the clipper tests a triangle's corners).
+      REQUIRE(pr::side1(s[0], s[1], q, pr::bounded_power_distance(s[0], q), pr::bounded_power_distance(s[1], q)) ==
+              expected);
     }
   }
   CHECK(ties > 1000);  // the grids must exercise the perturbation
@@ -568,7 +571,11 @@ TEST_CASE("side1 is exact a few ulps off a bisector, with large coordinates and 
     REQUIRE(det_side1(c.i, c.l, c.q) == Sign::Zero);
     return std::optional<Config>(c);
   }, [&](const Config& c) {
-    REQUIRE(pr::side1(c.i, c.l, c.q) == expect1(c.i, c.l, c.q));
+    const Sign expected = expect1(c.i, c.l, c.q);
+    REQUIRE(pr::side1(c.i, c.l, c.q) == expected);
+    if (pr::in_filter_range(c.i) && pr::in_filter_range(c.l) && pr::in_filter_range(c.q))
+      REQUIRE(pr::side1(c.i, c.l, c.q, pr::bounded_power_distance(c.i, c.q), pr::bounded_power_distance(c.l, c.q)) ==
+              expected);
     ++checked;
   });
   CHECK(checked > 40000);

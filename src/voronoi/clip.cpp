@@ -57,6 +57,7 @@ void CellClipper::begin_triangle(const std::array<int, 3>& tri, const int* label
   m_ = m;
   vertices_ = ctx.vertices;
   in_range_ = ctx.in_range;
+  corner_distance_known_ = 0;
   for (int a = 0; a < m; ++a) site_[a] = &ctx.sites[labels[a]];
   for (int c = 0; c < 3; ++c) {
     corner_[c] = &ctx.vertices[tri[c]];
@@ -66,9 +67,26 @@ void CellClipper::begin_triangle(const std::array<int, 3>& tri, const int* label
   }
 }
 
+// Corner c's bounded power distance to local cell a, computed on first use in the triangle.
+inline const predicates::BoundedPowerDistance& CellClipper::corner_distance(int a, int c) {
+  const int slot = 3 * a + c;
+  if (!(corner_distance_known_ >> slot & 1)) {
+    corner_distance_[slot] = predicates::bounded_power_distance(*site_[a], *corner_[c]);
+    corner_distance_known_ |= std::uint64_t{1} << slot;
+  }
+  return corner_distance_[slot];
+}
+
+// side1 of corner c for cells k and l: from the corner's shared power distances when the
+// context's inputs are in the filters' range (the same answer, fewer operations), else directly.
+inline Sign CellClipper::corner_side(int c, int k, int l) {
+  if (!in_range_) return predicates::side1(*site_[k], *site_[l], *corner_[c], false);
+  return predicates::side1(*site_[k], *site_[l], *corner_[c], corner_distance(k, c), corner_distance(l, c));
+}
+
 // side(q; k, l) of corner c, by side1, stored for (k, l) and (l, k).
 [[gnu::always_inline]] inline Sign CellClipper::evaluate_corner(int c, int k, int l) {
-  const Sign r = predicates::side1(*site_[k], *site_[l], *corner_[c], in_range_);
+  const Sign r = corner_side(c, k, l);
   corner_sign_[3 * (k * m_ + l) + c] = static_cast<std::int8_t>(r);
   corner_sign_[3 * (l * m_ + k) + c] = static_cast<std::int8_t>(-static_cast<int>(r));
   return r;
@@ -166,10 +184,10 @@ void CellClipper::clip_local(const LocalPolygon& in, int k, int l, LocalPolygon&
 
 // Two candidates: one pass over the corners gives both polygons (the second is the first's
 // complement, cut at the same edge points), in the order the general loop lists them.
-void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts) const {
+void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts) {
   Sign s[3];
   for (int c = 0; c < 3; ++c) {
-    s[c] = predicates::side1(*site_[0], *site_[1], *corner_[c], in_range_);
+    s[c] = corner_side(c, 0, 1);
     if (s[c] == Sign::Zero) throw_on_bisector();
   }
   for (int k = 0; k < 2; ++k) {

@@ -139,7 +139,9 @@ class CellClipper {
   };
 
   void begin_triangle(const std::array<int, 3>& tri, const int* labels, int m, const SymbolicContext& ctx);
-  void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts) const;
+  const predicates::BoundedPowerDistance& corner_distance(int a, int c);
+  Sign corner_side(int c, int k, int l);
+  void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts);
   Sign side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs);
   Sign evaluate_corner(int c, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
@@ -159,6 +161,11 @@ class CellClipper {
   // unknown); a type B or C vertex against l at edge_sign_ or inner_sign_[key + l], valid when
   // the entry's high bits hold the current epoch_ (low two bits: sign + 1).
   std::int8_t corner_sign_[3 * kMaxLabels * kMaxLabels];
+  // Corner c's bounded power distance to cell a at corner_distance_[3 a + c], valid where bit
+  // 3 a + c of corner_distance_known_ is set: each corner test reads two of them (side1 with the
+  // distances shared between the cell pairs of the triangle).
+  predicates::BoundedPowerDistance corner_distance_[3 * kMaxLabels];
+  std::uint64_t corner_distance_known_ = 0;
   std::vector<std::uint32_t> edge_sign_, inner_sign_;
   std::uint32_t epoch_ = 0;
   LocalPolygon polygon_, scratch_;
