@@ -358,6 +358,32 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistan
 }
 
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+           const BoundedPowerDistance& i1, const BoundedPowerDistance& j1, const BoundedPowerDistance& l1,
+           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2) {
+  // Each value with a bound on its distance to the exact one (docs/predicates.md, "Shared power
+  // distances"): a difference adds 2u of its rounded value, a product |a| e_b + (|b| + e_b) e_a
+  // and 2u of itself; 2^-1000 covers every underflow. The bounds themselves are rounded: the
+  // 2^-40 margin of the final tests covers that.
+  constexpr double u2 = 0x1p-51;  // 2u, u = 2^-52
+  const double F1 = i1.value - j1.value, F2 = i2.value - j2.value;
+  const double G1 = i1.value - l1.value, G2 = i2.value - l2.value;
+  const double eF1 = i1.error + j1.error + u2 * std::fabs(F1), eF2 = i2.error + j2.error + u2 * std::fabs(F2);
+  const double eG1 = i1.error + l1.error + u2 * std::fabs(G1), eG2 = i2.error + l2.error + u2 * std::fabs(G2);
+  const double den = F1 - F2;
+  const double eden = eF1 + eF2 + u2 * std::fabs(den);
+  const double P = F1 * G2, Q = G1 * F2, N = P - Q;
+  const double eN = std::fabs(F1) * eG2 + (std::fabs(G2) + eG2) * eF1 + std::fabs(G1) * eF2 +
+                    (std::fabs(F2) + eF2) * eG1 + u2 * (std::fabs(P) + std::fabs(Q) + std::fabs(N)) + 0x1p-1000;
+  constexpr double margin = 1 + 0x1p-40;
+  if (std::fabs(N) > eN * margin && std::fabs(den) > eden * margin) {
+    bump(local_counters(), kSide2, kCalls);
+    // side2 is sign(-f_il(q)), f_il(q) (F1 - F2) = N.
+    return (N > 0) == (den > 0) ? Sign::Negative : Sign::Positive;
+  }
+  return side2(i, j, l, q1, q2, true);
+}
+
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            bool inputs_in_range) {
   ThreadCounters& c = local_counters();
   bump(c, kSide2, kCalls);

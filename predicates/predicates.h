@@ -94,6 +94,15 @@ inline BoundedPowerDistance bounded_power_distance(const Site& s, const Vec3& q)
 Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
            const BoundedPowerDistance& dl);
 
+//! side2(i, j, l, q1, q2, true) from the bounded power distances of q1 and q2 to i, j and l (the
+//! corners of a triangle's edge): the same answer, decided in doubles when the signs of
+//! F1·G2 − G1·F2 and F1 − F2 (F_r = d_i(q_r) − d_j(q_r), G_r = d_i(q_r) − d_l(q_r)) exceed their
+//! error bounds, else by side2 itself (and counted as one side2 call either way).
+//! \pre i, j, l, q1 and q2 are in the filter range; i1 = bounded_power_distance(i, q1), and so on.
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+           const BoundedPowerDistance& i1, const BoundedPowerDistance& j1, const BoundedPowerDistance& l1,
+           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2);
+
 //! Type (b): q is the point of line (q1,q2) on bisector(i,j).
 //! \pre (q1 - q2).(p_j - p_i) != 0 (the vertex exists); otherwise returns Zero.
 //! Degree 4 (numerator) times degree 2 (weight-free denominator).

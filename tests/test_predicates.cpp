@@ -275,6 +275,22 @@ struct Gen {
   }
 };
 
+// side2 from the shared power distances of q1 and q2, as the clipper calls it.
+Sign shared_side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2) {
+  using pr::bounded_power_distance;
+  return pr::side2(i, j, l, q1, q2, bounded_power_distance(i, q1), bounded_power_distance(j, q1),
+                   bounded_power_distance(l, q1), bounded_power_distance(i, q2), bounded_power_distance(j, q2),
+                   bounded_power_distance(l, q2));
+}
+
+bool all_in_range(std::initializer_list<Site> sites, std::initializer_list<Vec3> points) {
+  for (const Site& s : sites)
+    if (!pr::in_filter_range(s)) return false;
+  for (const Vec3& p : points)
+    if (!pr::in_filter_range(p)) return false;
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("side1 agrees with the Gmpq determinant and the perturbed definition on random inputs", "[predicates]") {
@@ -325,6 +341,7 @@ TEST_CASE("side2 agrees with the Gmpq determinant and the perturbed definition o
         pr::in_filter_range(q1) && pr::in_filter_range(q2)) {
       ++in_range;
       REQUIRE(pr::side2(s[0], s[1], s[2], q1, q2, true) == expected);
+      REQUIRE(shared_side2(s[0], s[1], s[2], q1, q2) == expected);
     }
   }
   CHECK(ties > 1000);
@@ -602,7 +619,9 @@ TEST_CASE("side2 is exact a few ulps off a tie, with large coordinates and small
     return c;
   }, [&](const Config& c) {
     if (f_abs(c.i, c.j, c.q1) == f_abs(c.i, c.j, c.q2)) return;
-    REQUIRE(pr::side2(c.i, c.j, c.l, c.q1, c.q2) == expect2(c.i, c.j, c.l, c.q1, c.q2));
+    const Sign expected = expect2(c.i, c.j, c.l, c.q1, c.q2);
+    REQUIRE(pr::side2(c.i, c.j, c.l, c.q1, c.q2) == expected);
+    if (all_in_range({c.i, c.j, c.l}, {c.q1, c.q2})) REQUIRE(shared_side2(c.i, c.j, c.l, c.q1, c.q2) == expected);
     ++checked;
   });
   CHECK(checked > 30000);

@@ -97,8 +97,17 @@ Sign CellClipper::evaluate_vertex(const LocalVertex& q, int k, int l) {
   Sign r;
   if (q.type == SymbolicVertex::Type::B) {
     const int other = q.label[0] == k ? q.label[1] : q.label[0];
-    r = predicates::side2(*site_[k], *site_[other], *site_[l], vertices_[edge_lo_[q.where]], vertices_[edge_hi_[q.where]],
-                          in_range_);
+    const Vec3 &q1 = vertices_[edge_lo_[q.where]], &q2 = vertices_[edge_hi_[q.where]];
+    if (in_range_) {
+      // The edge's ends are corners: side2 from their power distances, shared with the corner tests.
+      const int c = q.where, next = c == 2 ? 0 : c + 1;
+      const int c1 = (*triangle_)[c] == edge_lo_[c] ? c : next, c2 = c1 == c ? next : c;
+      r = predicates::side2(*site_[k], *site_[other], *site_[l], q1, q2, corner_distance(k, c1),
+                            corner_distance(other, c1), corner_distance(l, c1), corner_distance(k, c2),
+                            corner_distance(other, c2), corner_distance(l, c2));
+    } else {
+      r = predicates::side2(*site_[k], *site_[other], *site_[l], q1, q2, false);
+    }
     edge_sign_[q.key + l] = (epoch_ << 2) | static_cast<std::uint32_t>(static_cast<int>(r) + 1);
   } else {
     int others[2], n = 0;
