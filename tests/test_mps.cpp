@@ -145,6 +145,15 @@ TEST_CASE("MPS of two interpenetrating spheres keeps each sphere's samples apart
     // conflict, since their regions lie on different components.
     const MpsVerification v = verify_mps(r.mesh, r.samples);
     CHECK(v.close_pairs_not_local > 0);
+    // The sampling being valid, no close pair is local: the count is that of every pair closer
+    // than the larger radius, here counted over all pairs.
+    REQUIRE(v.min_distance.passed);
+    std::int64_t close = 0;
+    for (int i = 0; i < r.samples.size(); ++i)
+      for (int j = i + 1; j < r.samples.size(); ++j)
+        close += squared_distance(r.samples.positions[i], r.samples.positions[j]) <
+                 std::max(r.samples.weights[i], r.samples.weights[j]);
+    CHECK(v.close_pairs_not_local == close);
   }
 }
 

@@ -4,7 +4,6 @@
 #include "verification/mps_check.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -55,26 +54,32 @@ std::uint64_t pair_key(int i, int j) {
 // such triangles.
 class LocalRegions {
  public:
-  explicit LocalRegions(const SurfaceMesh& mesh) : mesh_(mesh), stamp_(mesh.triangle_count(), -1), normals_(mesh.triangle_count()) {
-    for (int t = 0; t < mesh.triangle_count(); ++t) normals_[t] = mesh.triangle_normal(t);
+  explicit LocalRegions(const SurfaceMesh& mesh) : mesh_(mesh), info_(mesh.triangle_count()) {
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Triangle& tri = mesh.triangle(t);
+      const Vec3 &a = mesh.position(tri[0]), &b = mesh.position(tri[1]), &c = mesh.position(tri[2]);
+      TriangleInfo& info = info_[t];
+      info.normal = mesh.triangle_normal(t);
+      info.center = (a + b + c) / 3.0;
+      info.radius = std::sqrt(
+          std::max({squared_distance(info.center, a), squared_distance(info.center, b), squared_distance(info.center, c)}));
+    }
   }
   //! Calls f(triangle) for each triangle of the region until f returns true; returns whether it did.
   template <class F>
   bool search(const Vec3& x, int t, double w, F&& f) {
     ++epoch_;
     queue_.assign(1, t);
-    stamp_[t] = epoch_;
+    info_[t].stamp = epoch_;
     if (f(t)) return true;
+    const Vec3 facing = info_[t].normal;
+    const double r = std::sqrt(w);
     for (size_t k = 0; k < queue_.size(); ++k)
       for (int e = 0; e < 3; ++e) {
         const int n = mesh_.neighbor(queue_[k], e);
-        if (n < 0 || stamp_[n] == epoch_) continue;
-        stamp_[n] = epoch_;
-        if (!(dot(normals_[n], normals_[t]) > 0)) continue;
-        const Triangle& tri = mesh_.triangle(n);
-        const ClosestPoint c =
-            closest_point_on_triangle(x, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
-        if (!(squared_distance(x, c.point) < w)) continue;
+        if (n < 0 || info_[n].stamp == epoch_) continue;
+        info_[n].stamp = epoch_;
+        if (!(dot(info_[n].normal, facing) > 0) || !meets(n, x, w, r)) continue;
         queue_.push_back(n);
         if (f(n)) return true;
       }
@@ -85,9 +90,29 @@ class LocalRegions {
   }
 
  private:
+  // Whether the ball B(x, r), w = r², meets triangle t: the distance from x to t's closest point
+  // is below r. Two shortcuts that the closest point would confirm: a ball far from t's bounding
+  // sphere (by more than rounding) misses it, a ball holding a corner meets it.
+  bool meets(int t, const Vec3& x, double w, double r) const {
+    const double reach = r + info_[t].radius;
+    if (squared_distance(x, info_[t].center) > reach * reach * (1 + 1e-9)) return false;
+    const Triangle& tri = mesh_.triangle(t);
+    for (int c = 0; c < 3; ++c)
+      if (squared_distance(x, mesh_.position(tri[c])) < w) return true;
+    const ClosestPoint c = closest_point_on_triangle(x, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
+    return squared_distance(x, c.point) < w;
+  }
+
+  // What a search reads of a triangle, in one cache line.
+  struct TriangleInfo {
+    Vec3 normal;
+    Vec3 center;        // the bounding sphere about the centroid
+    double radius = 0;
+    int stamp = -1;     // the last search that saw the triangle
+  };
   const SurfaceMesh& mesh_;
-  std::vector<int> stamp_, queue_;
-  std::vector<Vec3> normals_;
+  std::vector<TriangleInfo> info_;
+  std::vector<int> queue_;
   int epoch_ = 0;
 };
 
@@ -95,16 +120,25 @@ class LocalRegions {
 struct SampleDisks {
   std::vector<int> offset{0}, triangles;
   SampleDisks(const Samples& s, LocalRegions& regions) {
-    offset.reserve(s.size() + 1);
-    for (int i = 0; i < s.size(); ++i) {
-      const size_t first = triangles.size();
+    // Grown in the order of the samples' triangles (neighbouring samples touch the same
+    // triangles, which stay in cache), then listed by sample.
+    std::vector<int> order(s.size());
+    for (int i = 0; i < s.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return s.triangles[a] < s.triangles[b]; });
+    std::vector<int> found, first(s.size()), count(s.size());
+    for (int i : order) {
+      first[i] = static_cast<int>(found.size());
       regions.search(s.positions[i], s.triangles[i], s.weights[i], [&](int n) {
-        triangles.push_back(n);
+        found.push_back(n);
         return false;
       });
-      std::sort(triangles.begin() + first, triangles.end());
-      offset.push_back(static_cast<int>(triangles.size()));
+      count[i] = static_cast<int>(found.size()) - first[i];
+      std::sort(found.begin() + first[i], found.end());
     }
+    offset.resize(s.size() + 1);
+    for (int i = 0; i < s.size(); ++i) offset[i + 1] = offset[i] + count[i];
+    triangles.resize(found.size());
+    for (int i = 0; i < s.size(); ++i) std::copy_n(found.begin() + first[i], count[i], triangles.begin() + offset[i]);
   }
   const int* begin(int i) const { return triangles.data() + offset[i]; }
   const int* end(int i) const { return triangles.data() + offset[i + 1]; }
@@ -155,37 +189,50 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
   return close;
 }
 
-// Pairs closer than max(r_i, r_j) anywhere in space (hash grid of cell r_max) that are not local
-// to each other: on different sheets or past a notch (allowed, reported).
+// Pairs closer than max(r_i, r_j) anywhere in space (a grid of cells at least r_max wide, the
+// samples sorted by cell) that are not local to each other: on different sheets or past a notch
+// (allowed, reported).
 std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::uint64_t>& local) {
   if (s.size() < 2) return 0;
   double r_max = 0;
   for (double w : s.weights) r_max = std::max(r_max, std::sqrt(w));
   if (!(r_max > 0)) return 0;
-  using Cell = std::array<std::int64_t, 3>;
-  struct CellHash {
-    std::size_t operator()(const Cell& c) const {
-      return static_cast<std::size_t>(c[0] * 73856093 ^ c[1] * 19349663 ^ c[2] * 83492791);
-    }
-  };
-  auto cell_of = [&](const Vec3& p) {
-    return Cell{static_cast<std::int64_t>(std::floor(p.x / r_max)), static_cast<std::int64_t>(std::floor(p.y / r_max)),
-                static_cast<std::int64_t>(std::floor(p.z / r_max))};
-  };
-  std::unordered_map<Cell, std::vector<int>, CellHash> grid;
-  for (int i = 0; i < s.size(); ++i) grid[cell_of(s.positions[i])].push_back(i);
+  Vec3 lo = s.positions[0], hi = s.positions[0];
+  for (const Vec3& p : s.positions) {
+    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  }
+  // 21 bits per axis, so that a cell packs into one 64-bit key: cells grow past r_max if needed.
+  constexpr double kCellsPerAxis = 1 << 20;
+  const double cell = std::max({r_max, (hi.x - lo.x) / kCellsPerAxis, (hi.y - lo.y) / kCellsPerAxis,
+                                (hi.z - lo.z) / kCellsPerAxis});
+  // Coordinates start at 1, so that the neighbours of a cell at 0 are still inside the 21 bits.
+  auto coordinate = [&](double x, double origin) { return static_cast<std::uint64_t>((x - origin) / cell) + 1; };
+  auto key = [](std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (x << 42) | (y << 21) | z; };
+  std::vector<std::pair<std::uint64_t, int>> by_cell(s.size());
+  for (int i = 0; i < s.size(); ++i) {
+    const Vec3& p = s.positions[i];
+    by_cell[i] = {key(coordinate(p.x, lo.x), coordinate(p.y, lo.y), coordinate(p.z, lo.z)), i};
+  }
+  std::sort(by_cell.begin(), by_cell.end());
+  std::unordered_map<std::uint64_t, int> first;  // the first entry of each cell in by_cell
+  first.reserve(by_cell.size());
+  for (int k = static_cast<int>(by_cell.size()) - 1; k >= 0; --k) first[by_cell[k].first] = k;
   std::int64_t pairs = 0;
   for (int i = 0; i < s.size(); ++i) {
-    const Cell c = cell_of(s.positions[i]);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          auto it = grid.find(Cell{c[0] + dx, c[1] + dy, c[2] + dz});
-          if (it == grid.end()) continue;
-          for (int j : it->second) {
+    const Vec3& p = s.positions[i];
+    const std::uint64_t cx = coordinate(p.x, lo.x), cy = coordinate(p.y, lo.y), cz = coordinate(p.z, lo.z);
+    for (std::uint64_t x = cx - 1; x <= cx + 1; ++x)
+      for (std::uint64_t y = cy - 1; y <= cy + 1; ++y)
+        for (std::uint64_t z = cz - 1; z <= cz + 1; ++z) {
+          const std::uint64_t c = key(x, y, z);
+          const auto it = first.find(c);
+          if (it == first.end()) continue;
+          for (int k = it->second; k < static_cast<int>(by_cell.size()) && by_cell[k].first == c; ++k) {
+            const int j = by_cell[k].second;
             if (j <= i) continue;
             const double w = std::max(s.weights[i], s.weights[j]);
-            if (squared_distance(s.positions[i], s.positions[j]) < w && !local.count(pair_key(i, j))) ++pairs;
+            if (squared_distance(p, s.positions[j]) < w && !local.count(pair_key(i, j))) ++pairs;
           }
         }
   }
