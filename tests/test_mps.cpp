@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <string>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -51,6 +52,20 @@ MpsVerification check_sampling(const SurfaceMesh& input, const MpsResult& r, boo
   CHECK(v.maximal.passed);
   CHECK(v.diagram_covers.passed);
   CHECK(v.min_distance_ratio >= 1.0);
+  // The overload that computes its own LRPD beside the distance checks gives the same answers and
+  // hands out the same diagram.
+  Diagram own;
+  nlohmann::json alone = verify_mps(r.mesh, r.samples, options, &own).to_json(), given = v.to_json();
+  alone.erase("time_s");
+  given.erase("time_s");
+  CHECK(alone == given);
+  REQUIRE(own.polygons.size() == lrpd.polygons.size());
+  CHECK(own.vertices == lrpd.vertices);
+  for (size_t p = 0; p < own.polygons.size(); ++p) {
+    const CellPolygon &a = own.polygons[p], &b = lrpd.polygons[p];
+    REQUIRE(std::tie(a.triangle, a.cell, a.first_vertex, a.vertex_count) ==
+            std::tie(b.triangle, b.cell, b.first_vertex, b.vertex_count));
+  }
   if (!check_remesh) return v;
   const DualMesh dual = compute_dual(lrpd, r.mesh, r.samples);
   const RemeshVerification rv = verify_remesh(input, dual.positions, dual.triangles, r.samples.size());

@@ -7,10 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
 #include <fmt/format.h>
+#include <tbb/parallel_invoke.h>
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
@@ -360,31 +362,63 @@ std::string MpsVerification::summary() const {
          diagram_covers.summary_line("diagram_covers");
 }
 
-MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
-                           const MpsVerifyOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+void check_samples(const SurfaceMesh& mesh, const Samples& samples) {
   if (samples.size() == 0) throw InputError("no samples to verify");
   if (static_cast<int>(samples.weights.size()) != samples.size())
     throw InputError("a Poisson-disk sampling needs a weight (radius²) for every sample");
-  if (!is_power(lrpd.kind) || lrpd.sample_count != samples.size())
-    throw InputError("the maximality check needs a power diagram (LRPD) of these samples");
   for (int i = 0; i < samples.size(); ++i)
     if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
       throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
+                           const MpsVerifyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  check_samples(mesh, samples);
+  if (!is_power(lrpd.kind) || lrpd.sample_count != samples.size())
+    throw InputError("the maximality check needs a power diagram (LRPD) of these samples");
   MpsVerification out;
   LocalRegions regions(mesh);
   const SampleDisks disks(samples, regions);
   out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, disks, regions, out));
   check_maximality(mesh, samples, lrpd, disks, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
-  out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.time_s = seconds_since(start);
   return out;
 }
 
-MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options) {
-  LrvdOptions lrpd;
-  lrpd.weighted = true;
-  return verify_mps(mesh, samples, compute_lrvd(mesh, samples, lrpd), options);
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options,
+                           Diagram* lrpd_out) {
+  const auto start = std::chrono::steady_clock::now();
+  check_samples(mesh, samples);
+  MpsVerification out;
+  Diagram lrpd;
+  LocalRegions regions(mesh);
+  std::optional<SampleDisks> disks;
+  // The diagram and the distance checks read only the mesh and the samples.
+  tbb::parallel_invoke(
+      [&] {
+        LrvdOptions lrpd_options;
+        lrpd_options.weighted = true;
+        lrpd = compute_lrvd(mesh, samples, lrpd_options);
+      },
+      [&] {
+        disks.emplace(samples, regions);
+        out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, *disks, regions, out));
+      });
+  check_maximality(mesh, samples, lrpd, *disks, options, out);
+  out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
+  if (lrpd_out) *lrpd_out = std::move(lrpd);
+  out.time_s = seconds_since(start);
+  return out;
 }
 
 }  // namespace lrvd

@@ -23,7 +23,7 @@ struct MpsVerifyOptions {
 
 struct MpsVerification {
   bool passed = true;  //!< min_distance, maximal and diagram_covers all hold
-  double time_s = 0;
+  double time_s = 0;  //!< the whole call: with the overload that computes the LRPD, that LRPD too
   //! Local samples are at least max(r_i, r_j) apart (exact). Samples i and j are local to each
   //! other when each one's triangle lies in the local region of the other's ball of radius
   //! max(r_i, r_j): the triangles the ball meets that face like the centre's triangle (normals at
@@ -58,7 +58,10 @@ struct MpsVerification {
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
                            const MpsVerifyOptions& options = {});
 
-//! As above with an LRPD computed here.
-MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options = {});
+//! As above with an LRPD computed here, beside the checks that do not need it (minimum distance,
+//! close pairs), on another thread when there is one; the results do not depend on it. The
+//! diagram goes to `*lrpd` when asked for (the LRRT of the samples is its dual).
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options = {},
+                           Diagram* lrpd = nullptr);
 
 }  // namespace lrvd

@@ -53,12 +53,10 @@ int run_mps(const MpsCommandOptions& opt) {
 
   // The checks start from the samples alone: a new LRPD, new local regions.
   progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
-  LrvdOptions lrpd_options;
-  lrpd_options.weighted = true;
-  const Diagram lrpd = compute_lrvd(result.mesh, samples, lrpd_options);
   MpsVerifyOptions verify_options;
   verify_options.exact_maximality = opt.exact;
-  const MpsVerification check = verify_mps(result.mesh, samples, lrpd, verify_options);
+  Diagram lrpd;
+  const MpsVerification check = verify_mps(result.mesh, samples, verify_options, &lrpd);
   const bool maximal = check.maximal.passed && check.diagram_covers.passed;
   const bool min_distance_ok = check.min_distance.passed;
 
