@@ -120,7 +120,7 @@ class LocalRegions {
 
 // The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
 struct SampleDisks {
-  std::vector<int> offset{0}, triangles;
+  std::vector<int> offset, triangles;
   SampleDisks(const Samples& s, LocalRegions& regions) {
     // Grown in the order of the samples' triangles (neighbouring samples touch the same
     // triangles, which stay in cache), then listed by sample.
@@ -137,7 +137,7 @@ struct SampleDisks {
       count[i] = static_cast<int>(found.size()) - first[i];
       std::sort(found.begin() + first[i], found.end());
     }
-    offset.resize(s.size() + 1);
+    offset.assign(s.size() + 1, 0);
     for (int i = 0; i < s.size(); ++i) offset[i + 1] = offset[i] + count[i];
     triangles.resize(found.size());
     for (int i = 0; i < s.size(); ++i) std::copy_n(found.begin() + first[i], count[i], triangles.begin() + offset[i]);
