@@ -43,6 +43,8 @@ void clip_triangle(const SurfaceMesh& mesh, int t, int k, const int* others, int
 namespace {
 
 constexpr std::uint8_t kNoLabel = 0xff;
+// The edge mask of corner c: edges c - 1 and c (edge e joins corners e and e + 1).
+constexpr std::uint8_t kCornerMask[3] = {0b101, 0b011, 0b110};
 constexpr std::uint32_t kMaxEpoch = 1u << 30;
 
 [[noreturn]] void throw_on_bisector() {
@@ -215,7 +217,7 @@ void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<P
       const auto where = static_cast<std::uint8_t>(c);
       if (s[c] == inside) {
         verts.push_back({SymbolicVertex::Type::A, where, {kNoLabel, kNoLabel, kNoLabel}});
-        add(c == 0 ? 0b101u : (c == 1 ? 0b011u : 0b110u));
+        add(kCornerMask[c]);
       }
       if (s[c] != s[next]) {
         verts.push_back({SymbolicVertex::Type::B, where, {0, 1, kNoLabel}});
@@ -270,7 +272,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
     for (int c = 0; c < 3; ++c) {
       LocalVertex& q = current->v[c];
       q.type = SymbolicVertex::Type::A;
-      q.mask = static_cast<std::uint8_t>(c == 0 ? 0b101u : (c == 1 ? 0b011u : 0b110u));
+      q.mask = kCornerMask[c];
       q.where = static_cast<std::uint8_t>(c);
       q.label[0] = q.label[1] = q.label[2] = kNoLabel;
       q.key = 0;
