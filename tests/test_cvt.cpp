@@ -182,6 +182,46 @@ TEST_CASE("Remeshing CGAL's models gives valid meshes of the requested size and 
   }
 }
 
+TEST_CASE("The CVT keeps every sample on its connected component", "[cvt]") {
+  // CGAL's bones: 26 closed components, some a few hundredths of the others' area. An L-BFGS site
+  // may cross the gap between two bones; its closest point is then taken on its own bone, or a
+  // small bone could lose its last sample (and the diagram its cells there).
+  const SurfaceMesh mesh = cgal_mesh("bones.off");
+  REQUIRE(mesh.component_count() == 26);
+  const Samples start = sample_by_component(mesh, 200, 1, mesh.minimum_vertex_counts());
+  auto per_component = [&](const Samples& s) {
+    std::vector<int> count(mesh.component_count(), 0);
+    for (int t : s.triangles) ++count[mesh.triangle_components()[t]];
+    return count;
+  };
+  const std::vector<int> before = per_component(start);
+  for (int c : before) REQUIRE(c >= 4);
+  for (CvtOptimizer optimizer : {CvtOptimizer::Lbfgs, CvtOptimizer::Lloyd}) {
+    CvtOptions options;
+    options.optimizer = optimizer;
+    options.iterations = 40;
+    const CvtResult r = optimize_cvt(mesh, start, options);
+    REQUIRE(per_component(r.samples) == before);
+    REQUIRE(r.energy < r.energy_history.front());
+  }
+}
+
+TEST_CASE("Open meshes with holes keep every hole at low N", "[cvt][remesh]") {
+  // CGAL's holes (six holes in a curved sheet) and pig (seven boundary loops, two of them 3 and 4
+  // edges long): a hole inside one cell, or two holes met by one cell, closes it in the dual. The
+  // repair finds those cells from the boundary loops they meet (the dual alone has no defect
+  // there), and pinched vertices, which open meshes may have with every edge used once or twice.
+  for (const char* model : {"holes.off", "pig.off"}) {
+    const SurfaceMesh input = cgal_mesh(model);
+    REQUIRE_FALSE(input.is_closed());
+    const Remeshed r = remesh(input, 200);
+    INFO(model << "\n" << r.check.summary());
+    REQUIRE(r.result.repair_rounds > 0);
+    REQUIRE(r.check.passed);
+    REQUIRE(r.check.boundary_loops == static_cast<int>(input.boundary_loops().size()));
+  }
+}
+
 TEST_CASE("Fitting the vertices to their cells' planes lowers the distance and keeps the CVT's shape", "[cvt][remesh][fit]") {
   const SurfaceMesh input = cgal_mesh("elk.off");
   RemeshOptions options;

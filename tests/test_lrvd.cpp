@@ -273,6 +273,13 @@ TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") 
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {0, NAN, 1}}), Catch::Contains("non-finite"));
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 3}}), Catch::Contains("from the surface"));
   REQUIRE_THROWS_WITH(sample_uniform(mesh, 0, 1), Catch::Contains("at least 1"));
+  // A component without a sample would have no cell (the CVT once handed such samples over and the
+  // builder wrote out of bounds): refused, naming the component.
+  const SurfaceMesh two = test::merge(mesh, test::octahedron(), {4, 0, 0});
+  Samples one_side = sample_uniform(mesh, 10, 1);
+  REQUIRE_NOTHROW(compute_lrvd(mesh, one_side));
+  REQUIRE_THROWS_WITH(compute_lrvd(two, one_side), Catch::Contains("component 1") && Catch::Contains("holds no sample"));
+  REQUIRE_NOTHROW(compute_lrvd(two, sample_uniform(two, 10, 1)));
   // More samples than triangles without refinement: several samples share triangles (§3.5); the
   // diagram is still valid.
   const SurfaceMesh coarse = test::octahedron();

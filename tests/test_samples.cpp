@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
@@ -17,6 +18,8 @@ namespace {
 std::string temp_path(const std::string& name) { return std::string(LRVD_BINARY_DIR) + "/test_" + name; }
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+bool positions_equal(const Samples& a, const Samples& b) { return a.positions == b.positions && a.triangles == b.triangles; }
 
 }  // namespace
 
@@ -81,6 +84,39 @@ TEST_CASE("Every connected component receives a sample") {
   REQUIRE(hit == std::vector<int>{1, 1, 1});
   REQUIRE_THROWS_WITH(sample_uniform(mesh, 2, 1), Catch::Contains("3 connected components"));
   REQUIRE_THROWS_WITH(sample_uniform(mesh, 0, 1), Catch::Contains("at least 1"));
+}
+
+TEST_CASE("Sampling by component gives each its share by area, and at least its minimum") {
+  // An icosphere (area about 12.1), a unit square (1) and an octahedron (3.46).
+  const SurfaceMesh mesh = test::merge(test::icosphere(2), test::merge(test::grid(4, 4), test::octahedron(), {0, 0, 3}),
+                                       {5, 0, 0});
+  REQUIRE(mesh.component_count() == 3);
+  auto counts = [&](const Samples& s) {
+    std::vector<int> hit(3, 0);
+    for (int t : s.triangles) ++hit[mesh.triangle_components()[t]];
+    return hit;
+  };
+  std::vector<double> area(3, 0.0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) area[mesh.triangle_components()[t]] += mesh.triangle_area(t);
+  const double total = area[0] + area[1] + area[2];
+  const Samples s = sample_by_component(mesh, 100, 7, {4, 3, 4});
+  REQUIRE(s.size() == 100);
+  const std::vector<int> hit = counts(s);
+  for (int c = 0; c < 3; ++c) {
+    INFO("component " << c << ": " << hit[c] << " samples, share " << 100 * area[c] / total);
+    REQUIRE(std::abs(hit[c] - 100 * area[c] / total) < 1.0);
+  }
+  for (int i = 0; i < s.size(); ++i) {
+    const Triangle& tri = mesh.triangle(s.triangles[i]);
+    const Vec3 p = s.barycentric[i].x * mesh.position(tri[0]) + s.barycentric[i].y * mesh.position(tri[1]) +
+                   s.barycentric[i].z * mesh.position(tri[2]);
+    REQUIRE(distance(p, s.positions[i]) < 1e-12);
+  }
+  // Minima above the shares are met first; the rest follow the areas.
+  REQUIRE(counts(sample_by_component(mesh, 20, 7, {4, 7, 4})) [1] == 7);
+  REQUIRE(counts(sample_by_component(mesh, 12, 7, {4, 4, 4})) == std::vector<int>{4, 4, 4});
+  REQUIRE(positions_equal(sample_by_component(mesh, 50, 3, {4, 3, 4}), sample_by_component(mesh, 50, 3, {4, 3, 4})));
+  REQUIRE_THROWS_WITH(sample_by_component(mesh, 11, 1, {4, 4, 4}), Catch::Contains("need 12"));
 }
 
 TEST_CASE("Closest point on a triangle covers vertex, edge and face regions") {
@@ -150,6 +186,41 @@ TEST_CASE("A hinted closest-point query gives the unhinted answer") {
         }
       }
     }
+}
+
+TEST_CASE("A closest-point query within one component answers from its triangles only") {
+  // Two spheres 0.1 apart: points just outside the first one's surface, on the side facing the
+  // second, and points inside the second. Within a component, the answer is the brute-force
+  // closest triangle of that component, whichever the other's distance and the hint.
+  const SurfaceMesh mesh = test::merge(test::icosphere(2), test::icosphere(2), {2.1, 0, 0});
+  REQUIRE(mesh.component_count() == 2);
+  const std::vector<int>& component = mesh.triangle_components();
+  const ClosestPointIndex index(mesh);
+  int other_closer = 0;
+  for (double x : {1.02, 1.04, 1.06, 1.08, 1.5, 2.0, 2.5}) {
+    for (double y : {-0.3, 0.0, 0.2}) {
+      const Vec3 q{x, y, 0.1};
+      const ClosestPoint any = index.query(q);
+      for (int c : {0, 1}) {
+        double best = std::numeric_limits<double>::infinity();
+        for (int t = 0; t < mesh.triangle_count(); ++t)
+          if (component[t] == c) {
+            const Triangle& tri = mesh.triangle(t);
+            best = std::min(best, closest_point_on_triangle(q, mesh.position(tri[0]), mesh.position(tri[1]),
+                                                            mesh.position(tri[2])).distance);
+          }
+        const int first_of_other = c == 0 ? mesh.triangle_count() - 1 : 0;  // a hint in the other component
+        for (int hint : {-1, first_of_other}) {
+          const ClosestPoint within = index.query_within(q, component.data(), c, hint);
+          REQUIRE(within.triangle >= 0);
+          REQUIRE(component[within.triangle] == c);
+          REQUIRE(within.distance == best);
+        }
+        if (component[any.triangle] != c && best > any.distance) ++other_closer;
+      }
+    }
+  }
+  REQUIRE(other_closer > 10);  // the filter mattered for many of the queries
 }
 
 TEST_CASE("Bad sample points are refused with a clear message") {

@@ -39,6 +39,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
                                  "component(s), Euler characteristic {}) has fewer than {}",
                                  input.samples.size(), input.loaded.mesh.component_count(),
                                  input.loaded.mesh.euler_characteristic(), fewest));
+  // The CVT keeps each sample on its component: each gets its share of the samples up front, and
+  // at least the fewest vertices its own topology needs.
+  if (input.mesh.component_count() > 1 && opt.input.points_path.empty())
+    input.samples = sample_by_component(input.mesh, input.samples.size(), opt.input.seed,
+                                        input.mesh.minimum_vertex_counts());
 
   RemeshOptions remesh;
   CvtOptions& cvt = remesh.cvt;

@@ -117,11 +117,14 @@ struct QueryState {
   const ClosestPointIndex::Impl* impl;
   Vec3 p;
   double query_offset;  // |p - float(p)|: the BVH measures from the rounded query point
+  const int* group;     // if not null: only triangles t with group[t] == group_id count
+  int group_id;
   ClosestPoint best;
 };
 
 bool visit_triangle(RTCPointQueryFunctionArguments* args) {
   auto* state = static_cast<QueryState*>(args->userPtr);
+  if (state->group && state->group[args->primID] != state->group_id) return false;
   const auto& tri = state->impl->triangles[args->primID];
   const auto& pos = state->impl->positions;
   ClosestPoint c = closest_point_on_triangle(state->p, pos[tri[0]], pos[tri[1]], pos[tri[2]]);
@@ -161,14 +164,16 @@ ClosestPointIndex::~ClosestPointIndex() {
   if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
-ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const {
+ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const { return query_within(p, nullptr, 0, hint); }
+
+ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, int g, int hint) const {
   RTCPointQuery q;
   q.x = static_cast<float>(p.x), q.y = static_cast<float>(p.y), q.z = static_cast<float>(p.z);
   const Vec3 rounded{q.x, q.y, q.z};
-  QueryState state{impl_.get(), p, distance(p, rounded), {}};
+  QueryState state{impl_.get(), p, distance(p, rounded), group, g, {}};
   q.time = 0;
   q.radius = std::numeric_limits<float>::infinity();
-  if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size())) {
+  if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size()) && (!group || group[hint] == g)) {
     // Only the radius is set: the hint is visited again in the traversal like any triangle, so
     // among triangles at the same distance the first one the traversal meets still wins, as
     // without a hint. The radius is the one visit_triangle would set after meeting the hint.

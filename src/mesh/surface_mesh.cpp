@@ -304,14 +304,19 @@ std::vector<int> SurfaceMesh::component_euler_characteristics() const {
   return chi;
 }
 
-int SurfaceMesh::minimum_vertex_count() const {
+std::vector<int> SurfaceMesh::minimum_vertex_counts() const {
   std::vector<char> open(component_count_, 0);
   for (const std::vector<int>& loop : boundary_loops_) open[vertex_component(loop.front())] = 1;
   const std::vector<int> chi = component_euler_characteristics();
-  int total = 0;
+  std::vector<int> fewest(component_count_);
   for (int c = 0; c < component_count_; ++c)
-    total += open[c] ? 3 : static_cast<int>(std::ceil((7 + std::sqrt(49.0 - 24.0 * chi[c])) / 2 - 1e-9));
-  return total;
+    fewest[c] = open[c] ? 3 : static_cast<int>(std::ceil((7 + std::sqrt(49.0 - 24.0 * chi[c])) / 2 - 1e-9));
+  return fewest;
+}
+
+int SurfaceMesh::minimum_vertex_count() const {
+  const std::vector<int> fewest = minimum_vertex_counts();
+  return std::accumulate(fewest.begin(), fewest.end(), 0);
 }
 
 double SurfaceMesh::triangle_area(int t) const {

@@ -67,6 +67,7 @@ class SurfaceMesh {
   //! components: a closed component of Euler characteristic χ needs ⌈(7 + √(49 − 24χ))/2⌉ (Heawood:
   //! 4 for a sphere, 7 for a torus), one with boundary 3. A lower bound: genus 2 needs 10, not 9.
   int minimum_vertex_count() const;
+  std::vector<int> minimum_vertex_counts() const;  //!< the same per component
 
   double triangle_area(int t) const;
   double area() const;

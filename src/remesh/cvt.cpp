@@ -50,6 +50,13 @@ void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Sa
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
     for (size_t i = range.begin(); i != range.end(); ++i) {
       ClosestPoint c = index.query(points[i], samples.triangles[i]);
+      // A sample keeps to its connected component: a site that crossed the gap between two parts
+      // in a step would take a sample from one part (the last one, possibly) and give it to another.
+      if (mesh && mesh->component_count() > 1 && samples.triangles[i] >= 0 && c.triangle >= 0) {
+        const std::vector<int>& component = mesh->triangle_components();
+        const int own = component[samples.triangles[i]];
+        if (component[c.triangle] != own) c = index.query_within(points[i], component.data(), own, samples.triangles[i]);
+      }
       if (cells && c.triangle >= 0 && i < cells->size() && !(*cells)[i].empty() &&
           !std::binary_search((*cells)[i].begin(), (*cells)[i].end(), c.triangle)) {
         ClosestPoint own;

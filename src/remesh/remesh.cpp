@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <set>
 #include <tuple>
 #include <unordered_map>
 
+#include "mesh/closest_point.h"
 #include "metrics/self_intersections.h"
 
 
@@ -89,6 +91,87 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
   }
 }
 
+// Vertices whose triangles form more than one fan (two triangles around v are in one fan when a
+// chain of triangles sharing edges (v, x) joins them): the dual is pinched there, also where every
+// edge has one or two triangles (an open mesh's dual, or a closed one's whose Euler characteristic
+// happens to match).
+void add_pinched_vertices(const DualMesh& dual, std::set<int>& defect) {
+  // (v, x, triangle) for each edge (v, x) of each triangle, sorted: runs per v, then per x.
+  struct Spoke {
+    int v, x, t;
+    bool operator<(const Spoke& o) const { return std::tie(v, x, t) < std::tie(o.v, o.x, o.t); }
+  };
+  std::vector<Spoke> spokes;
+  spokes.reserve(6 * dual.triangles.size());
+  for (int t = 0; t < static_cast<int>(dual.triangles.size()); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = dual.triangles[t][e], b = dual.triangles[t][(e + 1) % 3];
+      spokes.push_back({a, b, t});
+      spokes.push_back({b, a, t});
+    }
+  std::sort(spokes.begin(), spokes.end());
+  std::vector<int> parent;  // union-find over the triangles around one vertex, by their index in `local`
+  std::vector<int> local;
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (size_t i = 0, j; i < spokes.size(); i = j) {
+    for (j = i; j < spokes.size() && spokes[j].v == spokes[i].v;) ++j;
+    local.clear();
+    for (size_t k = i; k < j; ++k) local.push_back(spokes[k].t);
+    std::sort(local.begin(), local.end());
+    local.erase(std::unique(local.begin(), local.end()), local.end());
+    parent.resize(local.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto index = [&](int t) { return static_cast<int>(std::lower_bound(local.begin(), local.end(), t) - local.begin()); };
+    int fans = static_cast<int>(local.size());
+    for (size_t k = i + 1; k < j; ++k)
+      if (spokes[k].x == spokes[k - 1].x) {
+        const int a = find(index(spokes[k].t)), b = find(index(spokes[k - 1].t));
+        if (a != b) parent[a] = b, --fans;
+      }
+    if (fans > 1) defect.insert(spokes[i].v);
+  }
+}
+
+// Each boundary loop of the mesh comes back in the dual as a loop of boundary edges through the
+// cells along it. A loop met by fewer than three cells is closed over (a hole inside one cell, or
+// two cells meeting across it), and a cell that meets two loops joins them into one boundary of
+// the dual: those cells are where to act when the Euler characteristic is wrong.
+void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& hints) {
+  const auto& loops = mesh.boundary_loops();
+  std::vector<int> loop_of(mesh.vertex_count(), -1);
+  for (size_t l = 0; l < loops.size(); ++l)
+    for (int v : loops[l]) loop_of[v] = static_cast<int>(l);
+  std::vector<std::pair<int, int>> meets;  // (loop, cell)
+  for (const CellPolygon& poly : diagram.polygons) {
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    for (int e = 0; e < 3; ++e) {
+      if (mesh.neighbor(poly.triangle, e) >= 0) continue;
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      for (int k = 0; k < poly.vertex_count; ++k)
+        if (v[k].on_mesh_edge(a, b) && v[(k + 1) % poly.vertex_count].on_mesh_edge(a, b)) {
+          meets.push_back({loop_of[a], poly.cell});
+          break;
+        }
+    }
+  }
+  std::sort(meets.begin(), meets.end());
+  meets.erase(std::unique(meets.begin(), meets.end()), meets.end());
+  std::vector<int> loop_met(diagram.sample_count, -1);
+  for (size_t i = 0, j; i < meets.size(); i = j) {
+    for (j = i; j < meets.size() && meets[j].first == meets[i].first;) ++j;
+    for (size_t k = i; k < j; ++k) {
+      const int cell = meets[k].second;
+      if (j - i < 3) hints.insert(cell);
+      if (loop_met[cell] >= 0 && loop_met[cell] != meets[i].first) hints.insert(cell);
+      loop_met[cell] = meets[i].first;
+    }
+  }
+}
+
 }  // namespace
 
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
@@ -118,13 +201,15 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     if (j - i > 1) defect.insert(vertex_sets[i].begin(), vertex_sets[i].end());
   }
   for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
+  add_pinched_vertices(dual, defect);
   std::set<int> hints;
   add_cell_topology_defects(diagram, mesh, hints);
-  // The dual's Euler characteristic against the closed mesh's: a closed manifold dual can still have
-  // lost a handle (a cell wrapping a tube), which only the cell-topology hints locate.
-  const bool euler_ok = !input_closed || static_cast<int>(dual.positions.size()) - edges +
-                                              static_cast<int>(dual.triangles.size()) ==
-                                          mesh.euler_characteristic();
+  if (!input_closed) add_closed_over_holes(diagram, mesh, hints);
+  // The dual's Euler characteristic against the mesh's: a manifold dual can still have lost a
+  // handle (a cell wrapping a tube) or a hole of an open mesh (a cell around it), which only the
+  // cell-topology hints locate.
+  const bool euler_ok = static_cast<int>(dual.positions.size()) - edges + static_cast<int>(dual.triangles.size()) ==
+                        mesh.euler_characteristic();
   // A sample in no triangle: its cell meets fewer than two others at a triple point (an island).
   std::vector<char> used(dual.positions.size(), 0);
   for (const Triangle& t : dual.triangles)
@@ -173,6 +258,70 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, doubl
     }
 }
 
+// Moves samples into the defect cells: for each one, the sample of the lightest cell away from
+// every defect (from a component that keeps more than the fewest vertices its topology needs) goes
+// to the point of the defect cell farthest from its sample (across the tube a ring cell wraps,
+// the tip a cap cell covers). A raised density draws samples into a thin part only as far as a
+// CVT round carries them; this brings them there at once, also from another component. Returns
+// how many samples moved.
+int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<double>& density,
+                     const std::vector<int>& defect, Samples& samples) {
+  const int n = samples.size();
+  std::vector<char> involved(n, 0);
+  for (int i : defect) involved[i] = 1;
+  for (const SymbolicVertex& q : diagram.vertices)
+    for (int a = 0; a < q.num_labels(); ++a)
+      if (involved[q.label[a]] == 1)
+        for (int b = 0; b < q.num_labels(); ++b)
+          if (!involved[q.label[b]]) involved[q.label[b]] = 2;
+  const std::vector<int>& component = mesh.triangle_components();
+  std::vector<int> count(mesh.component_count(), 0);
+  for (int i = 0; i < n; ++i) ++count[component[samples.triangles[i]]];
+  const std::vector<int> fewest = mesh.minimum_vertex_counts();
+  const CellIntegrals cells = integrate_cells(diagram, mesh, samples, &density);
+  std::vector<int> donors;
+  for (int i = 0; i < n; ++i)
+    if (!involved[i]) donors.push_back(i);
+  std::sort(donors.begin(), donors.end(), [&](int a, int b) { return std::tie(cells.area[a], a) < std::tie(cells.area[b], b); });
+  struct Farthest {
+    double d2 = -1;
+    Vec3 p;
+    int triangle = -1;
+  };
+  std::vector<Farthest> far(n);
+  const SymbolicContext ctx = diagram.context(mesh);
+  for (const CellPolygon& poly : diagram.polygons) {
+    if (involved[poly.cell] != 1) continue;
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const Vec3 p = position(v[k], ctx);
+      const double d2 = squared_distance(p, samples.positions[poly.cell]);
+      if (d2 > far[poly.cell].d2) far[poly.cell] = {d2, p, poly.triangle};
+    }
+  }
+  std::vector<int> targets(defect);
+  std::sort(targets.begin(), targets.end());
+  targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
+  int moved = 0;
+  size_t next = 0;
+  for (int d : targets) {
+    if (far[d].triangle < 0) continue;
+    while (next < donors.size() && count[component[samples.triangles[donors[next]]]] <= fewest[component[samples.triangles[donors[next]]]])
+      ++next;
+    if (next == donors.size()) break;
+    const int s = donors[next++];
+    --count[component[samples.triangles[s]]];
+    const Triangle& tri = mesh.triangle(far[d].triangle);
+    const ClosestPoint c = closest_point_on_triangle(far[d].p, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
+    samples.positions[s] = c.point;
+    samples.triangles[s] = far[d].triangle;
+    samples.barycentric[s] = c.barycentric;
+    ++count[component[far[d].triangle]];
+    ++moved;
+  }
+  return moved;
+}
+
 }  // namespace
 
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
@@ -217,11 +366,18 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     settle(result, defects);
     RemeshResult best = result;
     best_defects = defects;
-    for (int round = 0; round < options.repair_rounds && !defects.empty(); ++round) {
+    // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
+    // characteristic that no defect finder locates).
+    for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
       raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
+      // The second run also moves samples into the defect cells (the first, whose raised density
+      // suffices on the models of docs/results.md, leaves them to the CVT).
+      const bool moved = keep_to_sheets &&
+                         relocate_samples(result.cvt.diagram, mesh, again.triangle_density, defects.where_to_act(),
+                                          result.cvt.samples) > 0;
       // The diagram of the samples is the last one computed: the density changed, the diagram not.
-      result.cvt = optimize_cvt(mesh, result.cvt.samples, again, &result.cvt.diagram, &index);
+      result.cvt = optimize_cvt(mesh, result.cvt.samples, again, moved ? nullptr : &result.cvt.diagram, &index);
       result.total_iterations += result.cvt.iterations;
       result.diagram_evaluations += result.cvt.diagram_evaluations;
       result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);

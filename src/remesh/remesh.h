@@ -28,7 +28,8 @@ struct RemeshOptions {
   //! kept: vertices move further only where the repair rounds could not do without it
   std::vector<double> final_max_moves = {0.75, 1.0};
   //! when the run (first CVT and repair rounds) ends with defects, run it again from the same
-  //! samples with CvtOptions::keep_to_sheets, and keep the run with fewer defects
+  //! samples with CvtOptions::keep_to_sheets, each round also moving samples into the defect
+  //! cells, and keep the run with fewer defects
   bool keep_to_sheets_retry = true;
 };
 
@@ -87,8 +88,13 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! stops when that leaves none. The result is the state with the fewest defects (the caller
 //! verifies it). If it still has defects, the whole run is repeated with every sample kept to its
 //! own sheet (CvtOptions::keep_to_sheets: the centroid of a cell wrapping a thin wall must not send
-//! its sample across the wall or a narrow gap) and the run with fewer defects is kept; the counters
-//! cover both runs. The result is fitted to the surface under the CVT's quality floor (fit_to_surface) unless
+//! its sample across the wall or a narrow gap), and each of its rounds first moves the samples of
+//! the lightest cells away from the defects (from any component that keeps the fewest vertices its
+//! topology needs) to the points of the defect cells farthest from their samples; the run with
+//! fewer defects is kept, and the counters cover both runs. Samples otherwise stay on their
+//! connected components. Rounds stop early when no cell is known to act on. Open meshes are
+//! repaired where a boundary loop is closed over (met by fewer than three cells, or a cell meets
+//! two loops) or the dual is pinched at a vertex. The result is fitted to the surface under the CVT's quality floor (fit_to_surface) unless
 //! switched off; if crossings are left in it, it is untangled again from its fitted vertices with
 //! the longer reaches of `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,

@@ -566,9 +566,23 @@ class LrvdBuilder {
 void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool weighted) {
   if (samples.size() == 0) throw InputError("no samples: a diagram needs at least one");
   if (weighted && !samples.weighted()) throw InputError("a power diagram needs a weight for every sample");
-  for (int i = 0; i < samples.size(); ++i)
+  std::vector<char> sampled(mesh.component_count(), 0);
+  for (int i = 0; i < samples.size(); ++i) {
     if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
       throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
+    sampled[mesh.triangle_components()[samples.triangles[i]]] = 1;
+  }
+  // A cell grows over the surface from its sample, so a part of the mesh without a sample would
+  // be left without cells.
+  const auto empty = std::find(sampled.begin(), sampled.end(), 0);
+  if (empty != sampled.end()) {
+    const int c = static_cast<int>(empty - sampled.begin());
+    const auto& component = mesh.triangle_components();
+    throw InputError(fmt::format("connected component {} of the mesh ({} of its {} triangles, e.g. triangle {}) holds no "
+                                 "sample: a localized diagram needs at least one sample on every component",
+                                 c, std::count(component.begin(), component.end(), c), mesh.triangle_count(),
+                                 std::find(component.begin(), component.end(), c) - component.begin()));
+  }
 }
 
 Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options) {

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <numeric>
+#include <queue>
+#include <stdexcept>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -93,6 +96,54 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
     samples.triangles[i] = t;
     point_in_triangle(mesh, t, u1, u2, samples.positions[i], samples.barycentric[i]);
   }
+  return samples;
+}
+
+Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum) {
+  const int components = mesh.component_count();
+  if (static_cast<int>(minimum.size()) != components)
+    throw std::invalid_argument("sample_by_component: one minimum per component");
+  const long long fewest = std::accumulate(minimum.begin(), minimum.end(), 0LL);
+  if (n < fewest)
+    throw InputError(fmt::format("{} samples are too few for the mesh's {} components: they need {} at least", n,
+                                 components, fewest));
+  // Each component's triangles with their cumulative areas.
+  std::vector<std::vector<int>> triangles(components);
+  std::vector<std::vector<double>> cumulative(components);
+  std::vector<double> area(components, 0.0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const int c = mesh.triangle_components()[t];
+    triangles[c].push_back(t);
+    cumulative[c].push_back(area[c] += mesh.triangle_area(t));
+  }
+  const double total = std::accumulate(area.begin(), area.end(), 0.0);
+  // Each further sample to the component furthest below its share n · area / total (the least
+  // index among ties).
+  std::vector<int> count(minimum);
+  std::priority_queue<std::pair<double, int>> below;  // (shortfall, -component)
+  for (int c = 0; c < components; ++c) below.push({n * area[c] / total - count[c], -c});
+  for (long long given = fewest; given < n; ++given) {
+    auto [short_by, c] = below.top();
+    below.pop();
+    ++count[-c];
+    below.push({short_by - 1, c});
+  }
+  Random random(seed);
+  Samples samples;
+  samples.positions.resize(n);
+  samples.triangles.resize(n);
+  samples.barycentric.resize(n);
+  int i = 0;
+  for (int c = 0; c < components; ++c)
+    for (int k = 0; k < count[c]; ++k, ++i) {
+      const std::vector<double>& cum = cumulative[c];
+      const double target = random.uniform() * area[c];
+      const size_t at = std::min<size_t>(std::upper_bound(cum.begin(), cum.end(), target) - cum.begin(), cum.size() - 1);
+      const int t = triangles[c][at];
+      const double u1 = random.uniform(), u2 = random.uniform();
+      samples.triangles[i] = t;
+      point_in_triangle(mesh, t, u1, u2, samples.positions[i], samples.barycentric[i]);
+    }
   return samples;
 }
 

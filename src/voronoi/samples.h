@@ -29,6 +29,12 @@ struct Samples {
 //! \throw InputError when n < 1 or n is smaller than the number of components.
 Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed);
 
+//! n points uniformly distributed by area within each connected component, the components given
+//! counts in proportion to their areas but at least minimum[c] each (then each further sample to
+//! the component furthest below its share). For a CVT, whose samples keep to their components.
+//! \throw InputError when n is smaller than the sum of the minima.
+Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum);
+
 //! Locates points on the mesh by closest point and moves each onto it.
 //! \throw InputError when a point is not finite, farther from the surface than 1% of the bounding
 //!        box diagonal, when two points coincide, or when a component of the mesh gets no point.
