@@ -222,6 +222,18 @@ TEST_CASE("Open meshes with holes keep every hole at low N", "[cvt][remesh]") {
   }
 }
 
+TEST_CASE("The second run moves samples into the defect cells: CGAL's triceratops at 300", "[cvt][remesh]") {
+  // Horns and a frill thinner than the cells: the first run's 24 rounds of raised density end with
+  // pinched and unused vertices; the second run, which also moves samples of light cells into the
+  // defect cells, ends valid.
+  const SurfaceMesh input = cgal_mesh("triceratops.off");
+  const Remeshed r = remesh(input, 300);
+  INFO(r.check.summary());
+  REQUIRE(r.result.kept_to_sheets);
+  REQUIRE(r.check.passed);
+  REQUIRE(r.result.dual.positions.size() == 300);
+}
+
 TEST_CASE("Fitting the vertices to their cells' planes lowers the distance and keeps the CVT's shape", "[cvt][remesh][fit]") {
   const SurfaceMesh input = cgal_mesh("elk.off");
   RemeshOptions options;
