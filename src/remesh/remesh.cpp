@@ -304,8 +304,10 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   targets.erase(std::unique(targets.begin(), targets.end()), targets.end());
   int moved = 0;
   size_t next = 0;
+  std::vector<Vec3> placed;  // two defect cells may share their farthest point (a vertex of both)
   for (int d : targets) {
-    if (far[d].triangle < 0) continue;
+    if (far[d].triangle < 0 || std::find(placed.begin(), placed.end(), far[d].p) != placed.end()) continue;
+    placed.push_back(far[d].p);
     while (next < donors.size() && count[component[samples.triangles[donors[next]]]] <= fewest[component[samples.triangles[donors[next]]]])
       ++next;
     if (next == donors.size()) break;
