@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -413,6 +414,34 @@ TEST_CASE("MPS of CGAL's ChineseDragon is maximal where the LRPD's cells miss sp
     // If a change of the LRPD makes it vanish, pick another seed that shows it.
     if (update == MpsGapUpdate::Local) CHECK(v.polygons_outside_own_ball > 0);
   }
+}
+
+TEST_CASE("The MPS coverage check decides slivers exactly: CGAL's mpi", "[mps][verification]") {
+  // mpi.off (a torus of 180 long triangles, coordinates about 10) refined below r has slivers of
+  // area 1.8e-7, where the rounding of the polygon vertices' positions alone is above 1e-9 of the
+  // area: the sums in doubles leave three triangles in doubt, and the exact areas must decide them.
+  const SurfaceMesh mpi = cgal_mesh("mpi.off");
+  MpsOptions options;
+  options.radius = 0.03;
+  const MpsResult r = maximal_poisson_disk_sampling(mpi, options);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int t = 0; t < r.mesh.triangle_count(); ++t) smallest = std::min(smallest, r.mesh.triangle_area(t));
+  REQUIRE(smallest < 1e-6);
+  const MpsVerification v = check_sampling(mpi, r, false);
+  INFO(v.to_json().dump());
+  REQUIRE(v.diagram_covers.passed);
+  REQUIRE(v.passed);
+  // The exact decision is not a tolerance: take one polygon away from a triangle and it fails.
+  LrvdOptions power;
+  power.weighted = true;
+  Diagram lrpd = compute_lrvd(r.mesh, r.samples, power);
+  int t = 0;
+  while (lrpd.triangle_offsets[t + 1] - lrpd.triangle_offsets[t] < 2 ||
+         r.mesh.triangle_area(t) >= 1e-6) ++t;
+  lrpd.polygons.erase(lrpd.polygons.begin() + lrpd.triangle_offsets[t]);
+  for (size_t u = t + 1; u < lrpd.triangle_offsets.size(); ++u) --lrpd.triangle_offsets[u];
+  const MpsVerification cut = verify_mps(r.mesh, r.samples, lrpd);
+  REQUIRE_FALSE(cut.diagram_covers.passed);
 }
 
 TEST_CASE("MPS refuses a non-positive or absurdly small radius", "[mps][input]") {
