@@ -240,9 +240,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 
 namespace {
 
-// Multiplies the density on the triangles of the defect cells and of their neighbours, so that the
-// CVT draws more samples into the thin part they wrap.
-void raise_density(const Diagram& diagram, const std::vector<int>& defect, double factor, std::vector<double>& density) {
+// Per cell: 1 for the defect cells, 2 for the cells that share a diagram vertex with one, else 0.
+std::vector<char> defect_neighbourhood(const Diagram& diagram, const std::vector<int>& defect) {
   std::vector<char> involved(diagram.sample_count, 0);
   for (int i : defect) involved[i] = 1;
   for (const SymbolicVertex& q : diagram.vertices)
@@ -250,6 +249,13 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, doubl
       if (involved[q.label[a]] == 1)
         for (int b = 0; b < q.num_labels(); ++b)
           if (!involved[q.label[b]]) involved[q.label[b]] = 2;
+  return involved;
+}
+
+// Multiplies the density on the triangles of the defect cells and of their neighbours, so that the
+// CVT draws more samples into the thin part they wrap.
+void raise_density(const Diagram& diagram, const std::vector<int>& defect, double factor, std::vector<double>& density) {
+  const std::vector<char> involved = defect_neighbourhood(diagram, defect);
   std::vector<char> raised(density.size(), 0);
   for (const CellPolygon& poly : diagram.polygons)
     if (involved[poly.cell] && !raised[poly.triangle]) {
@@ -267,13 +273,7 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, doubl
 int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<double>& density,
                      const std::vector<int>& defect, Samples& samples) {
   const int n = samples.size();
-  std::vector<char> involved(n, 0);
-  for (int i : defect) involved[i] = 1;
-  for (const SymbolicVertex& q : diagram.vertices)
-    for (int a = 0; a < q.num_labels(); ++a)
-      if (involved[q.label[a]] == 1)
-        for (int b = 0; b < q.num_labels(); ++b)
-          if (!involved[q.label[b]]) involved[q.label[b]] = 2;
+  const std::vector<char> involved = defect_neighbourhood(diagram, defect);
   const std::vector<int>& component = mesh.triangle_components();
   std::vector<int> count(mesh.component_count(), 0);
   for (int i = 0; i < n; ++i) ++count[component[samples.triangles[i]]];
