@@ -578,9 +578,9 @@ void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool w
   if (empty != sampled.end()) {
     const int c = static_cast<int>(empty - sampled.begin());
     const auto& component = mesh.triangle_components();
-    throw InputError(fmt::format("connected component {} of the mesh ({} of its {} triangles, e.g. triangle {}) holds no "
+    throw InputError(fmt::format("connected component {} of the mesh ({} triangles, the first is triangle {}) holds no "
                                  "sample: a localized diagram needs at least one sample on every component",
-                                 c, std::count(component.begin(), component.end(), c), mesh.triangle_count(),
+                                 c, std::count(component.begin(), component.end(), c),
                                  std::find(component.begin(), component.end(), c) - component.begin()));
   }
 }
