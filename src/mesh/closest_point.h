@@ -40,8 +40,8 @@ class ClosestPointIndex {
   //! at one distance included (tested at mesh vertices).
   ClosestPoint query(const Vec3& p, int hint = -1) const;
   //! The closest point among the triangles t with group[t] == g (e.g. one connected component:
-  //! `group` = SurfaceMesh::triangle_components()); a `hint` outside the group is not used.
-  //! A triangle of no other group is the answer, even when one is closer.
+  //! `group` = SurfaceMesh::triangle_components()); triangles of other groups are never the
+  //! answer, even when closer. A `hint` outside the group is not used.
   ClosestPoint query_within(const Vec3& p, const int* group, int g, int hint = -1) const;
 
   struct Impl;  // public name so the Embree callbacks can see it; its definition stays private
