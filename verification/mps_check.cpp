@@ -338,6 +338,7 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
   // vertex positions alone is above 1e-9 of the area.
   std::unique_ptr<verify_detail::ExactVertices> exact;
   std::vector<const verify_detail::ExactVertex*> points;
+  std::vector<int> ids;  // a polygon's vertices, all indexed before any is pointed to (indexing may reallocate)
   for (int t = 0; t < nt; ++t) {
     ++out.diagram_covers.checked;
     const double a = mesh.triangle_area(t);
@@ -357,7 +358,7 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
       for (int k = d.triangle_offsets[t]; k < d.triangle_offsets[t + 1] && covered; ++k) {
         const CellPolygon& cp = d.polygons[k];
         const SymbolicVertex* q = d.polygon_vertices(cp);
-        std::vector<int> ids(cp.vertex_count);
+        ids.resize(cp.vertex_count);
         for (int j = 0; j < cp.vertex_count; ++j) ids[j] = exact->index(q[j]);
         points.clear();
         for (int id : ids) {
