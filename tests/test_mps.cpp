@@ -144,6 +144,15 @@ TEST_CASE("MPS of CGAL's elk, uniform and adaptive, is maximal and remeshes vali
     for (double x : r.radii) smallest = std::min(smallest, x), largest = std::max(largest, x);
     CHECK(largest > 1.5 * smallest);  // the radius does adapt
     check_sampling(elk, r, true);
+    // Edges split to the radius field at their ends: longer than r_min where the radius is larger,
+    // never longer than the largest radius, and fewer triangles than the paper's rule gives.
+    CHECK(r.mesh.max_edge_length() > 1.2 * r.radius);
+    CHECK(r.mesh.max_edge_length() <= r.max_radius);
+    options.refinement = MpsRefinement::MinRadius;
+    const MpsResult paper = maximal_poisson_disk_sampling(elk, options);
+    CHECK(paper.mesh.max_edge_length() <= paper.radius);
+    CHECK(paper.mesh.triangle_count() > 2 * r.mesh.triangle_count());
+    check_sampling(elk, paper, true);
   }
 }
 

@@ -165,6 +165,37 @@ TEST_CASE("Refinement carries a field that is linear over each input triangle to
   REQUIRE_THROWS(refine_long_edges(mesh, 0.11, &wrong));
 }
 
+TEST_CASE("Refinement to a length field splits each edge to the smaller length at its ends") {
+  // A positive field linear over the octahedron, from 0.05 to about 0.25: the field is carried to
+  // the new vertices, every edge ends up no longer than the field at either end, and the coarse
+  // parts keep fewer triangles than splitting everywhere to the smallest length.
+  const SurfaceMesh mesh = test::octahedron();
+  auto f = [](const Vec3& p) { return 0.15 + 0.1 * p.x; };
+  std::vector<double> lengths;
+  for (const Vec3& p : mesh.positions()) lengths.push_back(f(p));
+  const SurfaceMesh fine = refine_to_length_field(mesh, lengths);
+  REQUIRE(lengths.size() == static_cast<size_t>(fine.vertex_count()));
+  for (int v = 0; v < fine.vertex_count(); ++v) REQUIRE(lengths[v] == Approx(f(fine.position(v))).margin(1e-12));
+  double longest = 0;
+  for (int t = 0; t < fine.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = fine.triangle(t)[e], b = fine.triangle(t)[(e + 1) % 3];
+      const double length = distance(fine.position(a), fine.position(b));
+      REQUIRE(length <= std::min(lengths[a], lengths[b]));
+      longest = std::max(longest, length);
+    }
+  CHECK(longest > 0.15);  // coarser where the field is long
+  CHECK(fine.triangle_count() < refine_long_edges(mesh, 0.05).triangle_count() / 2);
+  CHECK(fine.area() == Approx(mesh.area()).epsilon(1e-12));
+  std::vector<double> bad(mesh.vertex_count(), 0.1);
+  bad[2] = 0;
+  REQUIRE_THROWS_AS(refine_to_length_field(mesh, bad), InputError);
+  bad[2] = std::nan("");
+  REQUIRE_THROWS_AS(refine_to_length_field(mesh, bad), InputError);
+  std::vector<double> wrong(mesh.vertex_count() - 1, 0.1);
+  REQUIRE_THROWS(refine_to_length_field(mesh, wrong));
+}
+
 TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic work at its hub") {
   // Edge and duplicate look-ups go through the corner with the fewest triangles, and the
   // one-ring check searches the hub's sorted list: a hub costs O(d log d), not O(d²) (which would

@@ -28,6 +28,7 @@ struct MpsCommandOptions {
   double max_radius_ratio = MpsOptions{}.max_radius_ratio;
   std::uint64_t seed = 1;
   std::string gap_update = "local";
+  std::string refine = "local";
   std::string output, remesh, report;
   bool exact = false;
 };
@@ -45,6 +46,7 @@ int run_mps(const MpsCommandOptions& opt) {
   options.max_radius_ratio = opt.max_radius_ratio;
   options.seed = opt.seed;
   options.gap_update = opt.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
+  options.refinement = opt.refine == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::LocalRadius;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   const MpsResult result = maximal_poisson_disk_sampling(input, options);
@@ -70,7 +72,9 @@ int run_mps(const MpsCommandOptions& opt) {
                      {"euler_characteristic", input.euler_characteristic()},
                      {"longest_bbox_side", result.scale}};
   if (loaded.repair.changed()) report["input"]["repair"] = loaded.repair.notes;
-  report["refined"] = {{"triangles", result.mesh.triangle_count()}, {"max_edge_length", result.mesh.max_edge_length()}};
+  report["refined"] = {{"triangles", result.mesh.triangle_count()},
+                       {"max_edge_length", result.mesh.max_edge_length()},
+                       {"rule", opt.adaptive && opt.refine == "local" ? "local radius" : "r_min"}};
   report["radius"] = {{"relative", opt.radius},
                       {"absolute", result.radius},
                       {"max_absolute", result.max_radius},
@@ -156,6 +160,11 @@ Action add_mps_command(CLI::App& app) {
                   "local: one LRPD, gaps clipped as disks are added (default); lrpd: a new LRPD after every round "
                   "of darts (the paper's loop)")
       ->check(CLI::IsMember({"local", "lrpd"}))
+      ->capture_default_str();
+  cmd->add_option("--refine", opt->refine,
+                  "Adaptive: split edges longer than the radius at their ends (local, default) or longer than "
+                  "r_min everywhere (rmin: the paper's rule, more triangles); the same with a uniform radius")
+      ->check(CLI::IsMember({"local", "rmin"}))
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();

@@ -1,5 +1,5 @@
-// Refinement by splitting long edges (paper §4.2): every edge longer than a bound is split at its
-// midpoint, longest first, until none is left, so that each triangle can hold at most one sample.
+// Refinement by splitting long edges (paper §4.2): every edge longer than a bound (one length, or
+// a length field over the vertices) is split at its midpoint, longest first, until none is left.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -50,7 +50,10 @@ struct Refinement {
   std::vector<int> components;
 };
 
-Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
+// Splits every edge longer than max_length, or, when `values_are_lengths`, than the smaller of
+// its ends' values (max_length is then not used).
+Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
+                            bool values_are_lengths) {
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
   // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
@@ -58,8 +61,17 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   // vertex per two triangles, and the queue holds at most about a third as many edges as there are
   // triangles at the end (0.32 on ChineseDragon-10kv). The reservations have room to spare; beyond
   // them, the arrays still grow as needed. Only memory depends on this guess, not the refinement.
-  const double expected_triangles = std::min(
-      1.1 * (static_cast<double>(mesh.triangle_count()) + 6.5 * mesh.area() / (max_length * max_length)), 5e8);
+  double per_length_squared = mesh.area() / (max_length * max_length);  // area / length², summed
+  if (values_are_lengths) {
+    per_length_squared = 0;
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Triangle& tri = mesh.triangle(t);
+      const double shortest = std::min({(*vertex_values)[tri[0]], (*vertex_values)[tri[1]], (*vertex_values)[tri[2]]});
+      per_length_squared += mesh.triangle_area(t) / (shortest * shortest);
+    }
+  }
+  const double expected_triangles =
+      std::min(1.1 * (static_cast<double>(mesh.triangle_count()) + 6.5 * per_length_squared), 5e8);
   const double expected_vertices = mesh.vertex_count() + 0.5 * (expected_triangles - mesh.triangle_count());
   std::vector<Vec3> positions;
   positions.reserve(static_cast<size_t>(expected_vertices));
@@ -91,7 +103,8 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   std::priority_queue<LongEdge> queue(std::less<LongEdge>(), std::move(waiting));
   auto push_if_long = [&](int a, int b, int edge) {
     const double len = distance(positions[a], positions[b]);
-    if (len > max_length) queue.push({len, std::min(a, b), std::max(a, b), edge});
+    const double bound = values_are_lengths ? std::min((*vertex_values)[a], (*vertex_values)[b]) : max_length;
+    if (len > bound) queue.push({len, std::min(a, b), std::max(a, b), edge});
   };
   // An interior edge is first taken by its triangle of lower index (the input is a manifold,
   // consistently oriented: each edge is listed once, from the side where it runs up).
@@ -214,7 +227,18 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
     throw std::invalid_argument("refine_long_edges: one value per vertex expected");
   // The splitting's edge records, queue and unordered arrays are gone before the mesh builds its
   // vertex lists, which can then reuse some of that memory.
-  Refinement r = split_long_edges(mesh, max_length, vertex_values);
+  Refinement r = split_long_edges(mesh, max_length, vertex_values, false);
+  return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
+                     std::move(r.components), mesh.component_count());
+}
+
+SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths) {
+  if (static_cast<int>(vertex_lengths.size()) != mesh.vertex_count())
+    throw std::invalid_argument("refine_to_length_field: one length per vertex expected");
+  for (double length : vertex_lengths)
+    if (!(length > 0) || !std::isfinite(length))
+      throw InputError(fmt::format("refinement lengths must be positive (got {})", length));
+  Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true);
   return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
                      std::move(r.components), mesh.component_count());
 }

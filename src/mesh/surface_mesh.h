@@ -77,6 +77,7 @@ class SurfaceMesh {
 
  private:
   friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*);
+  friend SurfaceMesh refine_to_length_field(const SurfaceMesh&, std::vector<double>&);
   //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
   //! check is repeated (midpoints are rounded); the rest holds by construction. `components`:
   //! each triangle's component, numbered as finish_topology() would (by first triangle).
@@ -110,6 +111,14 @@ class SurfaceMesh {
 //! vertices, each taking the mean of its edge's end points: a field linear over each input
 //! triangle is carried over exactly (up to rounding), since every edge split lies in one of them.
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values = nullptr);
+
+//! The same splitting with a length per vertex: every edge longer than the smaller of its ends'
+//! lengths is split. `vertex_lengths` (one per vertex of `mesh`, all positive) is carried to the
+//! new vertices as refine_long_edges carries its values; a length field linear over each input
+//! triangle is then smallest at an edge's ends, so every point of an edge of the result is
+//! closer to its ends than the field there. Used by the adaptive MPS with its radius field.
+//! \throw InputError when a length is not positive.
+SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.

@@ -237,17 +237,24 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
                                  "(limit {:.3g}); use a larger radius",
                                  options.radius, expected, options.max_expected_samples));
 
-  // Initialisation: split long edges so a triangle is smaller than any disk (§4.2, first change).
-  progress(fmt::format("splitting edges longer than r = {:.4g}", r_min));
+  // Initialisation: split long edges so a triangle is smaller than the disks the radius field
+  // gives there (§4.2, first change; the paper splits to r_min everywhere, which the
+  // MinRadius rule keeps: with an adaptive radius up to r_max = 2·r_min it makes up to four times
+  // the triangles, and the LRPD, the darts' regions and the gap pieces cost by the triangle).
+  const bool split_to_field = options.adaptive && options.refinement == MpsRefinement::LocalRadius;
+  progress(split_to_field ? fmt::format("splitting edges longer than the radius at their ends (r_min = {:.4g})", r_min)
+                 : fmt::format("splitting edges longer than r = {:.4g}", r_min));
   std::vector<double> vertex_radius;
   // The field is linear over each input triangle; the refinement carries it to the new vertices.
   if (options.adaptive) vertex_radius = adaptive_radius_field(mesh, r_min, options);
   // Not `result.mesh = refine ? refine_long_edges(...) : mesh`: that conditional is a const
   // prvalue, so the refined mesh would be copied into place rather than moved.
-  if (mesh.max_edge_length() > r_min)
-    result.mesh = refine_long_edges(mesh, r_min, options.adaptive ? &vertex_radius : nullptr);
-  else
+  if (mesh.max_edge_length() <= r_min)
     result.mesh = mesh;
+  else if (split_to_field)
+    result.mesh = refine_to_length_field(mesh, vertex_radius);
+  else
+    result.mesh = refine_long_edges(mesh, r_min, options.adaptive ? &vertex_radius : nullptr);
   result.max_radius = options.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min;
   const SurfaceMesh& m = result.mesh;
   Sampler sampler(m, r_min, std::move(vertex_radius));

@@ -20,6 +20,12 @@ enum class MpsGapUpdate {
   Lrpd    //!< the paper's loop: darts into the gaps until too many rejections, then a new LRPD
 };
 
+//! What the mesh's edges are split to before sampling (the two agree for a uniform radius).
+enum class MpsRefinement {
+  LocalRadius,  //!< every edge no longer than the radius field at its ends (adaptive: up to r_max)
+  MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule, also for adaptive radii)
+};
+
 struct MpsOptions {
   double radius = 0.01;                  //!< r (uniform) or r_min (adaptive), relative to the longest bounding-box side
   bool adaptive = false;                 //!< radius from curvature, never below r_min
@@ -29,6 +35,7 @@ struct MpsOptions {
   std::uint64_t seed = 1;                //!< the same seed gives the same samples on every machine
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
+  MpsRefinement refinement = MpsRefinement::LocalRadius;
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
@@ -36,7 +43,7 @@ struct MpsOptions {
 };
 
 struct MpsTimings {
-  double init = 0;           //!< bounding box, edge splitting, radius field, area table
+  double init = 0;           //!< bounding box, radius field, edge splitting, area table
   double dart_throwing = 0;  //!< the initial dart throwing
   double gap_filling = 0;    //!< LRPD gap detection and darts into the gaps
   double total = 0;
