@@ -2,8 +2,10 @@
 // r_min = 0.004 in the unit cube, init / dart throwing / gap filling / total seconds and sample
 // counts per model, then the independent checks (minimum distance, maximality on a fresh LRPD).
 //
-// Usage: bench_mps [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] [--gap-update local|lrpd] [MESH ...]
-// --remesh also checks the LRRT of the samples (verify_remesh against the input).
+// Usage: bench_mps [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] [--gap-update local|lrpd]
+//                  [--split-to field|rmin] [MESH ...]
+// --remesh also checks the LRRT of the samples (verify_remesh against the input); --split-to rmin
+// splits the adaptive runs' edges to r_min, as the paper does (default: to the radius field).
 // Without meshes: CGAL's armadillo, ChineseDragon-10kv and bunny00 (LRVD_CGAL_DATA_DIR), then the
 // Table 3 models of /work/shared/data/meshes when present (feline, vaselion, dragon_100k,
 // gargoyle_100k). --quick runs uniform only with r = 0.01.
@@ -45,6 +47,7 @@ int main(int argc, char** argv) {
   bool quick = false, verify = true, remesh = false;
   std::string json_path;
   lrvd::MpsGapUpdate update = lrvd::MpsGapUpdate::Local;
+  lrvd::MpsRefinement refinement = lrvd::MpsRefinement::RadiusField;
   std::vector<std::string> meshes;
   int threads = 0;  // 0: every core
   for (int a = 1; a < argc; ++a) {
@@ -55,9 +58,11 @@ int main(int argc, char** argv) {
     else if (arg == "--json" && a + 1 < argc) json_path = argv[++a];
     else if (arg == "--threads" && a + 1 < argc) threads = std::stoi(argv[++a]);
     else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
+    else if (arg == "--split-to" && a + 1 < argc)
+      refinement = std::string(argv[++a]) == "rmin" ? lrvd::MpsRefinement::MinRadius : lrvd::MpsRefinement::RadiusField;
     else if (arg.rfind("--", 0) == 0) {  // an option it does not know (or --help), not a mesh
       std::fprintf(stderr, "usage: %s [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] "
-                           "[--gap-update local|lrpd] [MESH ...]\n", argv[0]);
+                           "[--gap-update local|lrpd] [--split-to field|rmin] [MESH ...]\n", argv[0]);
       return arg == "--help" ? 0 : 2;
     } else meshes.push_back(arg);
   }
@@ -95,6 +100,7 @@ int main(int argc, char** argv) {
       options.radius = row.r;
       options.adaptive = adaptive;
       options.gap_update = update;
+      options.refinement = refinement;
       row.result = lrvd::maximal_poisson_disk_sampling(mesh, options);
       const lrvd::MpsResult& r = row.result;
       std::string checks = "-";

@@ -491,6 +491,15 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(read_xyz(dir + "samples.xyz").weights.size() == j["samples"].get<size_t>());
 
   CHECK(run(mesh + " --radius 0.1 --adaptive -o " + dir + "samples2.xyz") == 0);
+  const std::string paper_report = dir + "report_rmin.json";
+  std::remove(paper_report.c_str());
+  REQUIRE(run(mesh + " --radius 0.1 --adaptive --split-to rmin -o " + dir + "samples3.xyz --report " + paper_report) == 0);
+  std::ifstream paper_in(paper_report);
+  const nlohmann::json paper = nlohmann::json::parse(paper_in);
+  CHECK(paper["refined"]["rule"] == "r_min");
+  CHECK(paper["refined"]["max_edge_length"].get<double>() <= paper["radius"]["absolute"].get<double>());
+  CHECK(j["refined"]["rule"] == "r_min");  // a uniform radius: the field is r_min everywhere
+  CHECK(run(mesh + " --radius 0.1 --adaptive --split-to coarse -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius=-0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 1e-7 -o " + dir + "bad.xyz") == 2);  // would need ~10^14 samples

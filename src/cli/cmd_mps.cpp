@@ -28,7 +28,7 @@ struct MpsCommandOptions {
   double max_radius_ratio = MpsOptions{}.max_radius_ratio;
   std::uint64_t seed = 1;
   std::string gap_update = "local";
-  std::string refine = "local";
+  std::string split_to = "field";
   std::string output, remesh, report;
   bool exact = false;
 };
@@ -46,7 +46,7 @@ int run_mps(const MpsCommandOptions& opt) {
   options.max_radius_ratio = opt.max_radius_ratio;
   options.seed = opt.seed;
   options.gap_update = opt.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
-  options.refinement = opt.refine == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::LocalRadius;
+  options.refinement = opt.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   const MpsResult result = maximal_poisson_disk_sampling(input, options);
@@ -74,7 +74,7 @@ int run_mps(const MpsCommandOptions& opt) {
   if (loaded.repair.changed()) report["input"]["repair"] = loaded.repair.notes;
   report["refined"] = {{"triangles", result.mesh.triangle_count()},
                        {"max_edge_length", result.mesh.max_edge_length()},
-                       {"rule", opt.adaptive && opt.refine == "local" ? "local radius" : "r_min"}};
+                       {"rule", opt.adaptive && opt.split_to == "field" ? "radius field" : "r_min"}};
   report["radius"] = {{"relative", opt.radius},
                       {"absolute", result.radius},
                       {"max_absolute", result.max_radius},
@@ -161,10 +161,10 @@ Action add_mps_command(CLI::App& app) {
                   "of darts (the paper's loop)")
       ->check(CLI::IsMember({"local", "lrpd"}))
       ->capture_default_str();
-  cmd->add_option("--refine", opt->refine,
-                  "Adaptive: split edges longer than the radius at their ends (local, default) or longer than "
-                  "r_min everywhere (rmin: the paper's rule, more triangles); the same with a uniform radius")
-      ->check(CLI::IsMember({"local", "rmin"}))
+  cmd->add_option("--split-to", opt->split_to,
+                  "Adaptive: split edges longer than the radius field at their ends (field, default) or longer "
+                  "than r_min everywhere (rmin: the paper's rule, more triangles); the same with a uniform radius")
+      ->check(CLI::IsMember({"field", "rmin"}))
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();

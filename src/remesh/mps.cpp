@@ -241,7 +241,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   // gives there (§4.2, first change; the paper splits to r_min everywhere, which the
   // MinRadius rule keeps: with an adaptive radius up to r_max = 2·r_min it makes up to four times
   // the triangles, and the LRPD, the darts' regions and the gap pieces cost by the triangle).
-  const bool split_to_field = options.adaptive && options.refinement == MpsRefinement::LocalRadius;
+  const bool split_to_field = options.adaptive && options.refinement == MpsRefinement::RadiusField;
   progress(split_to_field ? fmt::format("splitting edges longer than the radius at their ends (r_min = {:.4g})", r_min)
                  : fmt::format("splitting edges longer than r = {:.4g}", r_min));
   std::vector<double> vertex_radius;

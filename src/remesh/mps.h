@@ -22,7 +22,7 @@ enum class MpsGapUpdate {
 
 //! What the mesh's edges are split to before sampling (the two agree for a uniform radius).
 enum class MpsRefinement {
-  LocalRadius,  //!< every edge no longer than the radius field at its ends (adaptive: up to r_max)
+  RadiusField,  //!< every edge no longer than the radius field at its ends (adaptive: up to r_max)
   MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule, also for adaptive radii)
 };
 
@@ -35,7 +35,7 @@ struct MpsOptions {
   std::uint64_t seed = 1;                //!< the same seed gives the same samples on every machine
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
-  MpsRefinement refinement = MpsRefinement::LocalRadius;
+  MpsRefinement refinement = MpsRefinement::RadiusField;
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
