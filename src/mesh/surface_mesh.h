@@ -114,9 +114,9 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
 
 //! The same splitting with a length per vertex: every edge longer than the smaller of its ends'
 //! lengths is split. `vertex_lengths` (one per vertex of `mesh`, all positive) is carried to the
-//! new vertices as refine_long_edges carries its values; a length field linear over each input
-//! triangle is then smallest at an edge's ends, so every point of an edge of the result is
-//! closer to its ends than the field there. Used by the adaptive MPS with its radius field.
+//! new vertices as refine_long_edges carries its values. A field linear over each input triangle
+//! is smallest at an edge's ends, so each edge of the result is no longer than the field anywhere
+//! along it. Used by the adaptive MPS with its radius field.
 //! \throw InputError when a length is not positive.
 SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths);
 

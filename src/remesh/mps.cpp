@@ -1,6 +1,7 @@
-// Maximal Poisson-disk sampling (paper §4.2): initialisation (edge splitting to r_min, radius
-// field, area table), dart throwing with triangle-based conflict checks, then gap detection with
-// the LRPD and darts into the gaps until none is left. The conflict rule is in docs/mps.md.
+// Maximal Poisson-disk sampling (paper §4.2): initialisation (radius field, edge splitting to
+// r_min or to the adaptive radius, area table), dart throwing with triangle-based conflict
+// checks, then gap detection with the LRPD and darts into the gaps until none is left. The
+// conflict rule is in docs/mps.md.
 #include "remesh/mps.h"
 
 #include <algorithm>
@@ -242,8 +243,9 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   // MinRadius rule keeps: with an adaptive radius up to r_max = 2·r_min it makes up to four times
   // the triangles, and the LRPD, the darts' regions and the gap pieces cost by the triangle).
   const bool split_to_field = options.adaptive && options.refinement == MpsRefinement::RadiusField;
-  progress(split_to_field ? fmt::format("splitting edges longer than the radius at their ends (r_min = {:.4g})", r_min)
-                 : fmt::format("splitting edges longer than r = {:.4g}", r_min));
+  progress(split_to_field
+               ? fmt::format("splitting edges longer than the radius at their ends (r_min = {:.4g})", r_min)
+               : fmt::format("splitting edges longer than r = {:.4g}", r_min));
   std::vector<double> vertex_radius;
   // The field is linear over each input triangle; the refinement carries it to the new vertices.
   if (options.adaptive) vertex_radius = adaptive_radius_field(mesh, r_min, options);

@@ -1,7 +1,8 @@
 // Maximal Poisson-disk sampling on a triangle mesh (paper §4.2, after Yan & Wonka 2013): edge
-// splitting to r_min, dart throwing with conflict checks through triangles (no 3D grid), gap
-// detection with the localized restricted power diagram (LRPD, §2.4, §3.5) and gap filling until
-// no gap is left; uniform or curvature-adaptive radius. Details and the conflict rule: docs/mps.md.
+// splitting to r_min (or to the adaptive radius), dart throwing with conflict checks through
+// triangles (no 3D grid), gap detection with the localized restricted power diagram (LRPD, §2.4,
+// §3.5) and gap filling until no gap is left; uniform or curvature-adaptive radius. Details and
+// the conflict rule: docs/mps.md.
 #pragma once
 
 #include <cstdint>
