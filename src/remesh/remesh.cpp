@@ -275,8 +275,9 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   const int n = samples.size();
   const std::vector<char> involved = defect_neighbourhood(diagram, defect);
   const std::vector<int>& component = mesh.triangle_components();
+  auto component_of = [&](int sample) { return component[samples.triangles[sample]]; };
   std::vector<int> count(mesh.component_count(), 0);
-  for (int i = 0; i < n; ++i) ++count[component[samples.triangles[i]]];
+  for (int i = 0; i < n; ++i) ++count[component_of(i)];
   const std::vector<int> fewest = mesh.minimum_vertex_counts();
   const CellIntegrals cells = integrate_cells(diagram, mesh, samples, &density);
   std::vector<int> donors;
@@ -308,11 +309,10 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   for (int d : targets) {
     if (far[d].triangle < 0 || std::find(placed.begin(), placed.end(), far[d].p) != placed.end()) continue;
     placed.push_back(far[d].p);
-    while (next < donors.size() && count[component[samples.triangles[donors[next]]]] <= fewest[component[samples.triangles[donors[next]]]])
-      ++next;
+    while (next < donors.size() && count[component_of(donors[next])] <= fewest[component_of(donors[next])]) ++next;
     if (next == donors.size()) break;
     const int s = donors[next++];
-    --count[component[samples.triangles[s]]];
+    --count[component_of(s)];
     const Triangle& tri = mesh.triangle(far[d].triangle);
     const ClosestPoint c = closest_point_on_triangle(far[d].p, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
     samples.positions[s] = c.point;
