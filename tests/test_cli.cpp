@@ -2,6 +2,7 @@
 // errors, and the report keys the issue texts promise.
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -31,6 +32,8 @@ Run run(const std::string& args) {
   std::ifstream in(err_path);
   std::stringstream text;
   text << in.rdbuf();
+  in.close();
+  std::remove(err_path.c_str());
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
 }
 
