@@ -250,6 +250,40 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
   }
 }
 
+TEST_CASE("A shapeless mask leaves the cells as they are and drops only the masked triangles' vertices", "[lrpd]") {
+  const SurfaceMesh mesh = make_stress_mesh("folded_sheet", 0.5);
+  Samples samples = sample_uniform(mesh, 200, 4);
+  Random random(4);
+  for (int i = 0; i < samples.size(); ++i) samples.weights.push_back(1e-4 * random.uniform());
+  LrvdOptions options;
+  options.weighted = true;
+  const Diagram full = compute_lrvd(mesh, samples, options);
+  std::vector<char> mask(mesh.triangle_count());
+  for (int t = 0; t < mesh.triangle_count(); ++t) mask[t] = t % 3 != 0;
+  options.shapeless = &mask;
+  const Diagram part = compute_lrvd(mesh, samples, options);
+  REQUIRE(part.triangle_offsets == full.triangle_offsets);
+  REQUIRE(part.polygons.size() == full.polygons.size());
+  size_t expected_vertices = 0;
+  for (size_t p = 0; p < full.polygons.size(); ++p) {
+    const CellPolygon &a = full.polygons[p], &b = part.polygons[p];
+    REQUIRE(b.triangle == a.triangle);
+    REQUIRE(b.cell == a.cell);
+    if (mask[a.triangle]) {
+      REQUIRE(b.vertex_count == 0);
+      continue;
+    }
+    expected_vertices += a.vertex_count;
+    REQUIRE(b.vertex_count == a.vertex_count);
+    for (int k = 0; k < a.vertex_count; ++k)
+      REQUIRE(part.polygon_vertices(b)[k] == full.polygon_vertices(a)[k]);
+  }
+  REQUIRE(part.vertices.size() == expected_vertices);
+  REQUIRE(expected_vertices < full.vertices.size());
+  mask.pop_back();
+  REQUIRE_THROWS_AS(compute_lrvd(mesh, samples, options), std::logic_error);
+}
+
 TEST_CASE("Cell integrals add up to the surface", "[lrvd]") {
   const SurfaceMesh mesh = cgal_mesh("knot.off");
   const Samples samples = sample_uniform(mesh, 200, 5);

@@ -308,12 +308,17 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   GapSet gaps(m, sampler.disks(), local, 1e-15 * r_min * r_min);
   LrvdOptions lrpd_options;
   lrpd_options.weighted = true;
+  std::vector<char> covered(m.triangle_count());
+  lrpd_options.shapeless = &covered;
   Diagram lrpd;
   bool stale = true;  // the LRPD is not that of the current samples
   for (int round = 0; round < options.max_gap_rounds; ++round) {
     if (stale) {
       progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
       lrpd = {};  // the last round's diagram goes before the next one is built, not after
+      // Gaps are looked for only in triangles that no disk covers (GapSet::extract): the other
+      // triangles' polygons need their cells, not their shapes. A covered triangle stays covered.
+      for (int t = 0; t < m.triangle_count(); ++t) covered[t] = sampler.disks().fully_covered(t);
       lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
       ++result.lrpd_evaluations;
     }

@@ -486,6 +486,8 @@ class LrvdBuilder {
     }
   }
 
+  bool shapeless(int t) const { return options_.shapeless && (*options_.shapeless)[t]; }
+
   // The number of polygon vertices of a clipped triangle once unpacked.
   static size_t vertex_count(const TrianglePolygons& st) {
     if (const std::vector<SymbolicVertex>* wide = st.wide()) return wide->size();
@@ -507,7 +509,7 @@ class LrvdBuilder {
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
-      vertices += vertex_count(st);
+      if (!shapeless(t)) vertices += vertex_count(st);
     }
     d.polygons.clear();
     d.vertices.clear();
@@ -518,6 +520,14 @@ class LrvdBuilder {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
+      if (shapeless(t)) {
+        for (const TrianglePolygon& poly : st.polygons) {
+          along_.push_back(poly.along);
+          d.polygons.push_back({t, poly.cell, static_cast<int>(d.vertices.size()), 0});
+        }
+        d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
+        continue;
+      }
       const std::vector<SymbolicVertex>* wide = st.wide();
       // The triangle's vertices are made (as default-constructed) in one step, then filled in.
       const size_t first = d.vertices.size();
@@ -587,6 +597,8 @@ void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool w
 
 Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options) {
   check_diagram_input(mesh, samples, options.weighted);
+  if (options.shapeless && options.shapeless->size() != static_cast<size_t>(mesh.triangle_count()))
+    throw std::logic_error("LRVD: the shapeless mask needs one entry per mesh triangle");
   const auto start = std::chrono::steady_clock::now();
   thread_local LrvdWorkspace work;
   Diagram diagram = LrvdBuilder(mesh, samples, options, work).run();

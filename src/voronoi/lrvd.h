@@ -10,6 +10,12 @@ struct LrvdOptions {
   bool weighted = false;               //!< power diagram (LRPD) with the samples' weights
   bool restore_connectivity = true;    //!< forbid a cell in triangles of its stray pieces and re-propagate
   int max_connectivity_rounds = 100;   //!< bound on those rounds (each forbids at least one pair)
+  //! If set (one entry per mesh triangle): the polygons of a triangle t with (*shapeless)[t] != 0
+  //! are listed with their cell but without vertices (vertex_count 0). For a caller that needs the
+  //! shapes of some triangles only (MPS gap detection skips the triangles a disk covers): a
+  //! diagram of a large mesh spends much of its time writing polygon vertices into fresh memory.
+  //! The cells are the same either way.
+  const std::vector<char>* shapeless = nullptr;
 };
 
 //! The LRVD (or LRPD) of the samples on the mesh (paper §3.2-3.5): vertex labels by region
