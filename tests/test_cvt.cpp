@@ -91,6 +91,28 @@ TEST_CASE("Lloyd and L-BFGS both lower the CVT energy", "[cvt]") {
   }
 }
 
+TEST_CASE("The CVT stops on relative changes: a model 1024 times smaller is optimised as far", "[cvt]") {
+  // LBFGSpp's energy-change test is |f_k - f_k+1| <= delta · max(|f_k|, |f_k+1|, 1): absolute
+  // below 1. A small model's energy is far below it (2^-40 of the unit sphere's here), and the test
+  // stopped its CVT after a few iterations with a much higher energy.
+  const SurfaceMesh unit = test::icosphere(3);
+  std::vector<Vec3> shrunk = unit.positions();
+  for (Vec3& p : shrunk) p = std::ldexp(1.0, -10) * p;
+  const SurfaceMesh small(shrunk, unit.triangles());
+  const Samples start = sample_uniform(unit, 60, 3);
+  Samples start_small = start;
+  for (Vec3& p : start_small.positions) p = std::ldexp(1.0, -10) * p;
+  CvtOptions options;
+  options.iterations = 40;
+  const CvtResult a = optimize_cvt(unit, start, options);
+  const CvtResult b = optimize_cvt(small, start_small, options);
+  REQUIRE(b.energy_history.front() < 1e-9);  // the case: an energy far below 1
+  REQUIRE(a.iterations == 40);
+  REQUIRE(b.iterations == a.iterations);
+  const double drop_a = a.energy / a.energy_history.front(), drop_b = b.energy / b.energy_history.front();
+  REQUIRE(drop_b == Approx(drop_a).epsilon(0.01));
+}
+
 TEST_CASE("A CVT given the diagram of its start computes no diagram twice and ends where it would without it", "[cvt]") {
   const SurfaceMesh mesh = cgal_mesh("knot.off");
   CvtOptions options;
