@@ -31,7 +31,8 @@ struct CellPolygon {
   int triangle = -1;
   int cell = -1;
   int first_vertex = 0;  //!< index into Diagram::vertices
-  int vertex_count = 0;
+  int vertex_count = 0;  //!< 0 on the triangles an LRVD was asked to leave without shapes
+                         //!< (LrvdOptions::shapeless); such a diagram is for that caller only
 };
 
 struct DiagramStats {
