@@ -191,8 +191,8 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     // The solver sees the energy times a power of two that puts it above 2^30: its energy-change
     // test, |f_k - f_k+1| <= delta · max(|f_k|, |f_k+1|, 1), is then relative, as the option
     // promises, also on a small model (Igea, 0.16 across, at 4000 samples: F ≈ 4e-8, and the
-    // absolute 1e-9 stopped L-BFGS after 4 iterations). A power of two scales every value the solver computes exactly,
-    // so a model whose energy is above 1 takes the same steps as without it.
+    // absolute 1e-9 stopped L-BFGS after 4 iterations). A power of two scales every value the
+    // solver computes exactly, so a model whose energy stays above 1 takes the same steps.
     const int exponent = current.energy > 0 && std::isfinite(current.energy) ? std::ilogb(current.energy) : 30;
     const double scale = std::ldexp(1.0, std::clamp(30 - exponent, 0, 600));
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
