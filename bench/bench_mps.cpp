@@ -3,9 +3,9 @@
 // counts per model, then the independent checks (minimum distance, maximality on a fresh LRPD).
 //
 // Usage: bench_mps [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] [--gap-update local|lrpd]
-//                  [--split-to field|rmin] [MESH ...]
+//                  [--split-to field|rmin] [--split-factor F] [MESH ...]
 // --remesh also checks the LRRT of the samples (verify_remesh against the input); --split-to rmin
-// splits the adaptive runs' edges to r_min, as the paper does (default: to the radius field).
+// splits the edges to r_min, as the paper does (default: to F = 2 times the radius field).
 // Without meshes: CGAL's armadillo, ChineseDragon-10kv and bunny00 (LRVD_CGAL_DATA_DIR), then the
 // Table 3 models of /work/shared/data/meshes when present (feline, vaselion, dragon_100k,
 // gargoyle_100k). --quick runs uniform only with r = 0.01.
@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
   std::string json_path;
   lrvd::MpsGapUpdate update = lrvd::MpsGapUpdate::Local;
   lrvd::MpsRefinement refinement = lrvd::MpsRefinement::RadiusField;
+  double split_factor = lrvd::MpsOptions{}.split_factor;
   std::vector<std::string> meshes;
   int threads = 0;  // 0: every core
   for (int a = 1; a < argc; ++a) {
@@ -60,9 +61,10 @@ int main(int argc, char** argv) {
     else if (arg == "--gap-update" && a + 1 < argc) update = std::string(argv[++a]) == "lrpd" ? lrvd::MpsGapUpdate::Lrpd : lrvd::MpsGapUpdate::Local;
     else if (arg == "--split-to" && a + 1 < argc)
       refinement = std::string(argv[++a]) == "rmin" ? lrvd::MpsRefinement::MinRadius : lrvd::MpsRefinement::RadiusField;
+    else if (arg == "--split-factor" && a + 1 < argc) split_factor = std::stod(argv[++a]);
     else if (arg.rfind("--", 0) == 0) {  // an option it does not know (or --help), not a mesh
       std::fprintf(stderr, "usage: %s [--quick] [--no-verify] [--remesh] [--threads N] [--json FILE] "
-                           "[--gap-update local|lrpd] [--split-to field|rmin] [MESH ...]\n", argv[0]);
+                           "[--gap-update local|lrpd] [--split-to field|rmin] [--split-factor F] [MESH ...]\n", argv[0]);
       return arg == "--help" ? 0 : 2;
     } else meshes.push_back(arg);
   }
@@ -101,6 +103,7 @@ int main(int argc, char** argv) {
       options.adaptive = adaptive;
       options.gap_update = update;
       options.refinement = refinement;
+      options.split_factor = split_factor;
       row.result = lrvd::maximal_poisson_disk_sampling(mesh, options);
       const lrvd::MpsResult& r = row.result;
       std::string checks = "-";

@@ -29,6 +29,7 @@ struct MpsCommandOptions {
   std::uint64_t seed = 1;
   std::string gap_update = "local";
   std::string split_to = "field";
+  double split_factor = MpsOptions{}.split_factor;
   std::string output, remesh, report;
   bool exact = false;
 };
@@ -47,6 +48,7 @@ int run_mps(const MpsCommandOptions& opt) {
   options.seed = opt.seed;
   options.gap_update = opt.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
   options.refinement = opt.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
+  options.split_factor = opt.split_factor;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   const MpsResult result = maximal_poisson_disk_sampling(input, options);
@@ -74,7 +76,8 @@ int run_mps(const MpsCommandOptions& opt) {
   if (loaded.repair.changed()) report["input"]["repair"] = loaded.repair.notes;
   report["refined"] = {{"triangles", result.mesh.triangle_count()},
                        {"max_edge_length", result.mesh.max_edge_length()},
-                       {"rule", opt.adaptive && opt.split_to == "field" ? "radius field" : "r_min"}};
+                       {"rule", options.refinement == MpsRefinement::MinRadius ? "r_min" : "radius field"},
+                       {"split_factor", options.refinement == MpsRefinement::MinRadius ? 1.0 : options.split_factor}};
   report["radius"] = {{"relative", opt.radius},
                       {"absolute", result.radius},
                       {"max_absolute", result.max_radius},
@@ -162,9 +165,13 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::IsMember({"local", "lrpd"}))
       ->capture_default_str();
   cmd->add_option("--split-to", opt->split_to,
-                  "Adaptive: split edges longer than the radius field at their ends (field, default) or longer "
-                  "than r_min everywhere (rmin: the paper's rule, more triangles); the same with a uniform radius")
+                  "Split edges longer than --split-factor times the radius at their ends (field, default) or "
+                  "longer than r_min everywhere (rmin: the paper's rule, about four times the triangles)")
       ->check(CLI::IsMember({"field", "rmin"}))
+      ->capture_default_str();
+  cmd->add_option("--split-factor", opt->split_factor,
+                  "With --split-to field: edges are split until no longer than this times the radius")
+      ->check(CLI::Range(0.125, 64.0))
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();

@@ -1,7 +1,7 @@
 // Maximal Poisson-disk sampling (paper §4.2): initialisation (radius field, edge splitting to
-// r_min or to the adaptive radius, area table), dart throwing with triangle-based conflict
-// checks, then gap detection with the LRPD and darts into the gaps until none is left. The
-// conflict rule is in docs/mps.md.
+// twice the radius or, as the paper does, to r_min; area table), dart throwing with
+// triangle-based conflict checks, then gap detection with the LRPD and darts into the gaps until
+// none is left. The conflict rule is in docs/mps.md.
 #include "remesh/mps.h"
 
 #include <algorithm>
@@ -222,6 +222,8 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options) {
   if (!(options.radius > 0) || !std::isfinite(options.radius))
     throw InputError(fmt::format("the Poisson-disk radius must be a positive number (got {})", options.radius));
+  if (!(options.split_factor > 0) || !std::isfinite(options.split_factor))
+    throw InputError(fmt::format("the split factor must be a positive number (got {})", options.split_factor));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);
@@ -238,25 +240,31 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
                                  "(limit {:.3g}); use a larger radius",
                                  options.radius, expected, options.max_expected_samples));
 
-  // Initialisation: split long edges so a triangle is smaller than the disks the radius field
-  // gives there (§4.2, first change; the paper splits to r_min everywhere, which the
-  // MinRadius rule keeps: with an adaptive radius up to r_max = 2·r_min it makes up to four times
-  // the triangles, and the LRPD, the darts' regions and the gap pieces cost by the triangle).
-  const bool split_to_field = options.adaptive && options.refinement == MpsRefinement::RadiusField;
-  progress(split_to_field
-               ? fmt::format("splitting edges longer than the radius at their ends (r_min = {:.4g})", r_min)
-               : fmt::format("splitting edges longer than r = {:.4g}", r_min));
+  // Initialisation: split long edges (§4.2, first change). The paper splits to r_min everywhere
+  // (MinRadius), so that a triangle holds at most one sample. The sampler keeps any number per
+  // triangle, and the LRPD, the darts' regions and the gap pieces cost by the triangle, so the
+  // default splits to split_factor times the radius at the edge's ends: a few triangles a sample.
+  const bool to_field = options.refinement == MpsRefinement::RadiusField;
+  const double factor = to_field ? options.split_factor : 1.0;
+  progress(to_field ? fmt::format("splitting edges longer than {:g} times the radius at their ends (r_min = {:.4g})",
+                                  factor, r_min)
+                    : fmt::format("splitting edges longer than r_min = {:.4g}", r_min));
   std::vector<double> vertex_radius;
   // The field is linear over each input triangle; the refinement carries it to the new vertices.
   if (options.adaptive) vertex_radius = adaptive_radius_field(mesh, r_min, options);
   // Not `result.mesh = refine ? refine_long_edges(...) : mesh`: that conditional is a const
   // prvalue, so the refined mesh would be copied into place rather than moved.
-  if (mesh.max_edge_length() <= r_min)
+  if (mesh.max_edge_length() <= factor * r_min) {
     result.mesh = mesh;
-  else if (split_to_field)
+  } else if (to_field && options.adaptive) {
+    // Scaled to the lengths and back: with a power of two for the factor (the default) the radii
+    // are exactly the field the refinement carries to the new vertices.
+    for (double& x : vertex_radius) x *= factor;
     result.mesh = refine_to_length_field(mesh, vertex_radius);
-  else
-    result.mesh = refine_long_edges(mesh, r_min, options.adaptive ? &vertex_radius : nullptr);
+    for (double& x : vertex_radius) x /= factor;
+  } else {
+    result.mesh = refine_long_edges(mesh, factor * r_min, options.adaptive ? &vertex_radius : nullptr);
+  }
   result.max_radius = options.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min;
   const SurfaceMesh& m = result.mesh;
   Sampler sampler(m, r_min, std::move(vertex_radius));

@@ -1,8 +1,8 @@
 // Maximal Poisson-disk sampling on a triangle mesh (paper §4.2, after Yan & Wonka 2013): edge
-// splitting to r_min (or to the adaptive radius), dart throwing with conflict checks through
-// triangles (no 3D grid), gap detection with the localized restricted power diagram (LRPD, §2.4,
-// §3.5) and gap filling until no gap is left; uniform or curvature-adaptive radius. Details and
-// the conflict rule: docs/mps.md.
+// splitting (to twice the radius, or to r_min as the paper does), dart throwing with conflict
+// checks through triangles (no 3D grid), gap detection with the localized restricted power diagram
+// (LRPD, §2.4, §3.5) and gap filling until no gap is left; uniform or curvature-adaptive radius.
+// Details and the conflict rule: docs/mps.md.
 #pragma once
 
 #include <cstdint>
@@ -21,10 +21,10 @@ enum class MpsGapUpdate {
   Lrpd    //!< the paper's loop: darts into the gaps until too many rejections, then a new LRPD
 };
 
-//! What the mesh's edges are split to before sampling (the two agree for a uniform radius).
+//! What the mesh's edges are split to before sampling.
 enum class MpsRefinement {
-  RadiusField,  //!< every edge no longer than the radius field at its ends (adaptive: up to r_max)
-  MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule, also for adaptive radii)
+  RadiusField,  //!< every edge no longer than split_factor times the radius field at its ends
+  MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule; split_factor is not used)
 };
 
 struct MpsOptions {
@@ -37,6 +37,10 @@ struct MpsOptions {
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
+  //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
+  //! a sample has about 2-3 triangles instead of 9-10 at 1, and the sampler takes about half the
+  //! time (docs/mps.md, "Session 11"); nothing in it needs a triangle smaller than a disk.
+  double split_factor = 2.0;
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
@@ -73,8 +77,9 @@ struct MpsResult {
 //! Maximal Poisson-disk samples of the surface: no sample lies in another sample's disk and the
 //! disks cover the surface (each cell of the samples' LRPD lies in its own disk).
 //! \pre options.radius > 0.
-//! \throw InputError when the radius is not a positive finite number, or so small for this mesh
-//!        that more than options.max_expected_samples samples would be needed.
+//! \throw InputError when the radius or the split factor is not a positive finite number, or the
+//!        radius is so small for this mesh that more than options.max_expected_samples samples
+//!        would be needed.
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options = {});
 
 //! The radius of the adaptive sampling at each vertex (absolute, paper §4.2's r(x) of a density):
