@@ -91,6 +91,7 @@ int run_mps(const MpsCommandOptions& opt) {
   report["lrpd_evaluations"] = result.lrpd_evaluations;
   report["gap_pieces"] = result.gap_pieces;
   report["dropped_gap_pieces"] = result.dropped_gap_pieces;
+  report["dust_samples"] = result.dust_samples;
   report["clamped_radii"] = result.clamped_radii;
   report["power_cell_exceptions"] = result.power_cell_exceptions;
   report["gaps_closed"] = result.gaps_closed;

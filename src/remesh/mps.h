@@ -67,6 +67,7 @@ struct MpsResult {
   int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
+  int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
   int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the
                                   //!< samples facing like them (none met it against all; docs/mps.md)

@@ -15,6 +15,7 @@ namespace {
 constexpr int kMaxBisections = 6;        // depth of the halving that tightens a loose piece polygon
 constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fraction of the polygon
 constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
+constexpr double kDustMargin = 1e-12;    // a dropped piece's corner this·w outside its owner's disk is tried
 constexpr double kVertexMargin = 1e-6;   // |d| <= this·w: decide a cell vertex's coverage exactly
 constexpr int kMaxRefusals = 64;         // darts a piece may see refused before it is given up
 
@@ -28,6 +29,7 @@ void GapSet::clear() {
   pieces_.clear();
   points_.clear();
   fenwick_.clear();
+  dust_.clear();
   total_ = 0;
   alive_ = 0;
   dead_since_rebuild_ = 0;
@@ -105,7 +107,7 @@ int GapSet::required_pieces() {
   if (deferred_.empty()) return required_pieces_;
   // Count as extract() would have: the pieces of (polygon minus the cell's ball), split by the
   // disks reaching t then; then put everything back as it was (pieces, lists, Fenwick tree, counts).
-  const size_t pieces = pieces_.size(), points = points_.size();
+  const size_t pieces = pieces_.size(), points = points_.size(), dust = dust_.size();
   const double total = total_;
   const int alive = alive_, created = created_, dropped = dropped_, dead = dead_since_rebuild_;
   std::vector<double> fenwick;
@@ -120,6 +122,7 @@ int GapSet::required_pieces() {
     points_.resize(points);
   }
   fenwick.swap(fenwick_);
+  dust_.resize(dust);
   total_ = total;
   alive_ = alive;
   created_ = created;
@@ -217,6 +220,19 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
     if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
       if (gap > 0) ++dropped_;
+      if (owner < 0) {
+        Vec3 c{};
+        for (const Vec3& y : q) c += y;
+        dust_.push_back({c / static_cast<double>(q.size()), t});
+        return;
+      }
+      const Vec3& x = disks_.center(owner);
+      const double w = disks_.weight(owner);
+      const Vec3* farthest = nullptr;
+      double outside = kDustMargin * w;
+      for (const Vec3& y : q)
+        if (squared_distance(y, x) - w > outside) outside = squared_distance(y, x) - w, farthest = &y;
+      if (farthest) dust_.push_back({*farthest, t});
       return;
     }
     if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -183,6 +184,17 @@ class GapSet {
   int created() const { return created_; }
   int dropped() const { return dropped_; }
 
+  //! A point of a dropped piece that may still be uncovered: a gap too small for its area to be
+  //! told from rounding (on a sliver triangle of a CAD mesh) can be real, and the verifier decides
+  //! coverage exactly. It is the corner of the piece's polygon farthest outside its owner's disk,
+  //! when that is more than rounding outside (the polygon's centroid for a piece without owner).
+  struct Dust {
+    Vec3 point;
+    int triangle;
+  };
+  //! The dust of the pieces dropped since the last call (or extract()), handed over.
+  std::vector<Dust> take_dust() { return std::exchange(dust_, {}); }
+
  private:
   struct Piece {
     int triangle = -1;
@@ -215,6 +227,7 @@ class GapSet {
   std::vector<int> head_;       // per triangle: first piece, -1 if none
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
+  std::vector<Dust> dust_;
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
