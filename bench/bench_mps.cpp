@@ -140,6 +140,8 @@ int main(int argc, char** argv) {
                      {"samples", r.samples.size()},
                      {"dart_samples", r.dart_samples},
                      {"gap_samples", r.gap_samples},
+                     {"dust_samples", r.dust_samples},
+                     {"split_factor", refinement == lrvd::MpsRefinement::MinRadius ? 1.0 : split_factor},
                      {"darts", r.darts},
                      {"lrpd_evaluations", r.lrpd_evaluations},
                      {"refined_triangles", r.mesh.triangle_count()},
