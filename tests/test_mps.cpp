@@ -535,6 +535,7 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
   CHECK(run(mesh + " --radius 0.1 --split-factor 0 -o " + dir + "bad.xyz") == 2);
+  CHECK(run(mesh + " --radius 0.1 --split-to rmin --split-factor 3 -o " + dir + "bad.xyz") == 2);  // one or the other
   CHECK(run(mesh + " --radius 0.1 --adaptive --split-to coarse -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius=-0.5 -o " + dir + "bad.xyz") == 2);

@@ -30,6 +30,7 @@ struct MpsCommandOptions {
   std::string gap_update = "local";
   std::string split_to = "field";
   double split_factor = MpsOptions{}.split_factor;
+  bool split_factor_given = false;  // set by the parser's callback below
   std::string output, remesh, report;
   bool exact = false;
 };
@@ -48,6 +49,8 @@ int run_mps(const MpsCommandOptions& opt) {
   options.seed = opt.seed;
   options.gap_update = opt.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
   options.refinement = opt.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
+  if (opt.split_factor_given && options.refinement == MpsRefinement::MinRadius)
+    throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
   options.split_factor = opt.split_factor;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
@@ -173,6 +176,7 @@ Action add_mps_command(CLI::App& app) {
   cmd->add_option("--split-factor", opt->split_factor,
                   "With --split-to field: edges are split until no longer than this times the radius")
       ->check(CLI::Range(0.125, 64.0))
+      ->each([opt](const std::string&) { opt->split_factor_given = true; })
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();
