@@ -472,10 +472,10 @@ TEST_CASE("The MPS coverage check decides slivers exactly: CGAL's mpi", "[mps][v
   REQUIRE_FALSE(cut.diagram_covers.passed);
 }
 
-TEST_CASE("MPS refuses a non-positive or absurdly small radius, and a non-positive split factor", "[mps][input]") {
+TEST_CASE("MPS refuses a non-positive or absurdly small radius, and a split factor below 1", "[mps][input]") {
   const SurfaceMesh sphere = test::icosphere(1);
   MpsOptions options;
-  options.split_factor = 0;
+  options.split_factor = 0.5;
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
   options.split_factor = std::nan("");
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
@@ -534,7 +534,7 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   const nlohmann::json one = nlohmann::json::parse(one_in);
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
-  CHECK(run(mesh + " --radius 0.1 --split-factor 0 -o " + dir + "bad.xyz") == 2);
+  CHECK(run(mesh + " --radius 0.1 --split-factor 0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-to rmin --split-factor 3 -o " + dir + "bad.xyz") == 2);  // one or the other
   CHECK(run(mesh + " --radius 0.1 --adaptive --split-to coarse -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0 -o " + dir + "bad.xyz") == 2);

@@ -175,7 +175,7 @@ Action add_mps_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--split-factor", opt->split_factor,
                   "With --split-to field: edges are split until no longer than this times the radius")
-      ->check(CLI::Range(0.125, 64.0))
+      ->check(CLI::Range(1.0, 64.0))
       ->each([opt](const std::string&) { opt->split_factor_given = true; })
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");

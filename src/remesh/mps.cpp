@@ -222,8 +222,8 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options) {
   if (!(options.radius > 0) || !std::isfinite(options.radius))
     throw InputError(fmt::format("the Poisson-disk radius must be a positive number (got {})", options.radius));
-  if (!(options.split_factor > 0) || !std::isfinite(options.split_factor))
-    throw InputError(fmt::format("the split factor must be a positive number (got {})", options.split_factor));
+  if (!(options.split_factor >= 1) || !std::isfinite(options.split_factor))
+    throw InputError(fmt::format("the split factor must be a number of at least 1 (got {})", options.split_factor));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);

@@ -78,8 +78,9 @@ struct MpsResult {
 //! Maximal Poisson-disk samples of the surface: no sample lies in another sample's disk and the
 //! disks cover the surface (each cell of the samples' LRPD lies in its own disk).
 //! \pre options.radius > 0.
-//! \throw InputError when the radius or the split factor is not a positive finite number, or the
-//!        radius is so small for this mesh that more than options.max_expected_samples samples
+//! \throw InputError when the radius is not a positive finite number, the split factor not a
+//!        finite number of at least 1 (below 1 it would only multiply the triangles), or the
+//!        radius so small for this mesh that more than options.max_expected_samples samples
 //!        would be needed.
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options = {});
 
