@@ -341,6 +341,55 @@ TEST_CASE("Darts into the gaps are uniform over the uncovered area", "[mps][stat
   CHECK(std::abs(z) < 4);
 }
 
+TEST_CASE("Gaps read only in the open triangles of a shapeless LRPD are the gaps of a full reading", "[mps]") {
+  // After a round of local updates every spot outside the open triangles lies in a disk reaching
+  // its triangle, so the next LRPD is given shapes, and read, only in those (mps.cpp). Here the
+  // open triangles are those of a first reading's pieces, one of which is given up.
+  using namespace mps_detail;
+  const SurfaceMesh square = test::grid(8, 8);
+  DiskIndex disks(square);
+  const double w = 0.2 * 0.2;
+  for (const Vec3& c : {Vec3{0.2, 0.25, 0}, Vec3{0.6, 0.3, 0}, Vec3{0.3, 0.75, 0}, Vec3{0.8, 0.8, 0}}) {
+    int tri = -1;
+    for (int f = 0; f < square.triangle_count() && tri < 0; ++f) {
+      const Vec3 b = barycentric_in_triangle(square, f, c);
+      const Triangle& v = square.triangle(f);
+      if (distance(b.x * square.position(v[0]) + b.y * square.position(v[1]) + b.z * square.position(v[2]), c) < 1e-12)
+        tri = f;
+    }
+    REQUIRE(tri >= 0);
+    disks.insert(c, tri, barycentric_in_triangle(square, tri, c), w, disks.grow(c, tri, w));
+  }
+  LrvdOptions options;
+  options.weighted = true;
+  const Diagram full_lrpd = compute_lrvd(square, disks.samples(), options);
+  GapSet full(square, disks, true, 1e-15);
+  full.extract(full_lrpd);
+  REQUIRE(full.alive() > 2);
+  const int pieces = full.alive();
+  const double area = full.gap_area();
+  // Give one piece up: its triangle stays open although the piece is gone.
+  Random random(3);
+  Vec3 q;
+  int tri = -1, piece = -1;
+  while (!full.draw(random, q, tri, piece)) {
+  }
+  for (int k = 0; k < 64; ++k) full.dart_refused(piece);
+  REQUIRE(full.given_up() == 1);
+  const std::vector<int> open = full.open_triangles();
+  CHECK(std::find(open.begin(), open.end(), tri) != open.end());
+  CHECK(static_cast<int>(open.size()) < square.triangle_count());
+
+  std::vector<char> focus(square.triangle_count(), 0), shapeless(square.triangle_count(), 1);
+  for (int t : open) focus[t] = 1, shapeless[t] = 0;
+  options.shapeless = &shapeless;
+  const Diagram lrpd = compute_lrvd(square, disks.samples(), options);
+  GapSet focused(square, disks, true, 1e-15);
+  focused.extract(lrpd, &focus);
+  CHECK(focused.alive() == pieces);  // every piece of the full reading, the given-up one too
+  CHECK(focused.gap_area() == Approx(area).epsilon(1e-12));
+}
+
 TEST_CASE("The MPS verification catches a close pair and an uncovered spot", "[mps][verification]") {
   const SurfaceMesh sphere = test::icosphere(2);
   MpsOptions options;

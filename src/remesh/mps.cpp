@@ -320,18 +320,23 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   lrpd_options.shapeless = &covered;
   Diagram lrpd;
   bool stale = true;  // the LRPD is not that of the current samples
+  // After a round with local updates, the triangles that may still hold a gap (open_triangles());
+  // empty: all of them.
+  std::vector<char> focus;
   for (int round = 0; round < options.max_gap_rounds; ++round) {
     if (stale) {
       progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
       lrpd = {};  // the last round's diagram goes before the next one is built, not after
-      // Gaps are looked for only in triangles that no disk covers (GapSet::extract): the other
-      // triangles' polygons need their cells, not their shapes. A covered triangle stays covered.
-      for (int t = 0; t < m.triangle_count(); ++t) covered[t] = sampler.disks().fully_covered(t);
+      // Gaps are looked for only in triangles that no disk covers (GapSet::extract), and after a
+      // round with local updates only in the open ones: the other triangles' polygons need their
+      // cells, not their shapes. A covered triangle stays covered.
+      for (int t = 0; t < m.triangle_count(); ++t)
+        covered[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
       lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
       ++result.lrpd_evaluations;
     }
     stale = true;
-    gaps.extract(lrpd);
+    gaps.extract(lrpd, focus.empty() ? nullptr : &focus);
     if (round == 0) result.gap_pieces = gaps.alive();
     // No piece left: every spot of the surface is in the ball of its LRPD cell or in a disk
     // reaching its triangle — also where the LRPD's cells alone do not show it (a polygon outside
@@ -372,7 +377,10 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       const int placed = result.dust_samples;
       for (const GapSet::Dust& d : dust) {
         ++result.darts;
-        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) continue;
+        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) {
+          gaps.note_open(d.triangle);
+          continue;
+        }
         ++result.gap_samples;
         ++result.dust_samples;
         gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());
@@ -381,10 +389,16 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     }
     // Local updates that emptied the gaps leave every spot covered by a disk reaching it, which
     // stays so. Pieces given up (darts refused for the adaptive radius) need another LRPD to see
-    // whether a disk has covered them since.
+    // whether a disk has covered them since; every spot outside the open triangles is covered
+    // for good, so that LRPD is read, and given shapes, only in those.
     if (local && gaps.empty() && gaps.given_up() == 0) {
       result.gaps_closed = true;
       break;
+    }
+    if (local) {
+      std::vector<char> open(m.triangle_count(), 0);
+      for (int t : gaps.open_triangles()) open[t] = 1;
+      focus = std::move(open);
     }
     // No progress: this LRPD is that of the final samples. Closed when the pieces no dart fits
     // are only where the balls of their LRPD cells cover (remote claims).

@@ -35,8 +35,9 @@ void GapSet::clear() {
   dead_since_rebuild_ = 0;
 }
 
-void GapSet::extract(const Diagram& lrpd) {
+void GapSet::extract(const Diagram& lrpd, const std::vector<char>* focus) {
   clear();
+  open_.clear();
   uncovered_polygons_ = 0;
   remote_claims_ = 0;
   given_up_ = 0;
@@ -53,6 +54,7 @@ void GapSet::extract(const Diagram& lrpd) {
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
     const int t = cp.triangle, i = cp.cell;
+    if (focus && !(*focus)[t]) continue;
     // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
     if (disks_.fully_covered(t)) continue;
     const Site& site = lrpd.sites[i];
@@ -394,7 +396,17 @@ void GapSet::dart_refused(int piece) {
   if (++pieces_[piece].refused >= kMaxRefusals) {
     kill(piece);
     ++given_up_;
+    open_.push_back(pieces_[piece].triangle);
   }
+}
+
+std::vector<int> GapSet::open_triangles() const {
+  std::vector<int> t(open_);
+  for (const Piece& p : pieces_)
+    if (p.alive) t.push_back(p.triangle);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
 }
 
 bool GapSet::draw(Random& random, Vec3& point, int& triangle, int& piece) {

@@ -149,7 +149,10 @@ class GapSet {
   //! its ball does not cover, minus that ball and every disk that reaches its triangle (also those
   //! of samples the LRPD lists as no candidate there). With local updates also the polygons only a
   //! *remote* ball covers (one whose disk does not reach the triangle), minus those disks.
-  void extract(const Diagram& lrpd);
+  //! `focus`, if given: only the triangles t with (*focus)[t] are looked at (the others' polygons
+  //! may be shapeless, LrvdOptions::shapeless), for an LRPD computed when every spot of the other
+  //! triangles is known to lie in a disk reaching its triangle (open_triangles()).
+  void extract(const Diagram& lrpd, const std::vector<char>* focus = nullptr);
   //! Of the last extract(), in the triangles no single disk covers: polygons their ball does not
   //! cover (the LRPD's gaps), and polygons covered by a remote ball.
   int uncovered_polygons() const { return uncovered_polygons_; }
@@ -168,6 +171,12 @@ class GapSet {
   //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
+  //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
+  //! the live pieces, of the pieces given up and of the dust that no dart took (note_open()).
+  //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
+  std::vector<int> open_triangles() const;
+  //! Triangle t keeps a spot that may be uncovered (a dropped piece whose dart was refused).
+  void note_open(int t) { open_.push_back(t); }
   //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
   //! cell or in a disk reaching it, which is what verify_mps calls maximal. Those of polygons of
@@ -228,6 +237,7 @@ class GapSet {
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
   std::vector<Dust> dust_;
+  std::vector<int> open_;  // triangles of pieces given up and of dust refused, since extract()
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
