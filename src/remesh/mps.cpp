@@ -387,6 +387,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       }
       if (result.dust_samples == placed) break;
     }
+    for (const GapSet::Dust& d : gaps.take_dust()) gaps.note_open(d.triangle);  // untried after the passes
     // Local updates that emptied the gaps leave every spot covered by a disk reaching it, which
     // stays so. Pieces given up (darts refused for the adaptive radius) need another LRPD to see
     // whether a disk has covered them since; every spot outside the open triangles is covered

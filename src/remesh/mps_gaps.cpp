@@ -222,6 +222,7 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
     if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
       if (gap > 0) ++dropped_;
+      if (q.empty()) return;
       if (owner < 0) {
         Vec3 c{};
         for (const Vec3& y : q) c += y;
