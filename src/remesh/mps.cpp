@@ -316,8 +316,8 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   GapSet gaps(m, sampler.disks(), local, 1e-15 * r_min * r_min);
   LrvdOptions lrpd_options;
   lrpd_options.weighted = true;
-  std::vector<char> covered(m.triangle_count());
-  lrpd_options.shapeless = &covered;
+  std::vector<char> shapeless(m.triangle_count());  // triangles whose LRPD polygons need no shape
+  lrpd_options.shapeless = &shapeless;
   Diagram lrpd;
   bool stale = true;  // the LRPD is not that of the current samples
   // After a round with local updates, the triangles that may still hold a gap (open_triangles());
@@ -331,7 +331,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       // round with local updates only in the open ones: the other triangles' polygons need their
       // cells, not their shapes. A covered triangle stays covered.
       for (int t = 0; t < m.triangle_count(); ++t)
-        covered[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
+        shapeless[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
       lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
       ++result.lrpd_evaluations;
     }
