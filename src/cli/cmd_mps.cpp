@@ -170,7 +170,7 @@ Action add_mps_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--split-to", opt->split_to,
                   "Split edges longer than --split-factor times the radius at their ends (field, default) or "
-                  "longer than r_min everywhere (rmin: the paper's rule, about four times the triangles)")
+                  "longer than r_min everywhere (rmin: the paper's rule, 3-9 times the triangles)")
       ->check(CLI::IsMember({"field", "rmin"}))
       ->capture_default_str();
   cmd->add_option("--split-factor", opt->split_factor,
