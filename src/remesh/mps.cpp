@@ -372,15 +372,14 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     // Pieces dropped as too small to tell from rounding can still be real gaps (a sliver triangle
     // a disk's rim barely misses): a dart at each one's corner outside its disk, decided exactly
     // like any dart. Insertions split pieces, which may drop more; a few passes take those too.
+    // The rest of such a piece is not tracked, so its triangle stays open (a dart or not).
     for (int pass = 0; pass < 4; ++pass) {
       const std::vector<GapSet::Dust> dust = gaps.take_dust();
       const int placed = result.dust_samples;
       for (const GapSet::Dust& d : dust) {
         ++result.darts;
-        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) {
-          gaps.note_open(d.triangle);
-          continue;
-        }
+        gaps.note_open(d.triangle);
+        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) continue;
         ++result.gap_samples;
         ++result.dust_samples;
         gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());

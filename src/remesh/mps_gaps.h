@@ -172,10 +172,10 @@ class GapSet {
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
-  //! the live pieces, of the pieces given up and of the dust that no dart took (note_open()).
+  //! the live pieces, of the pieces given up and of dropped pieces with dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
   std::vector<int> open_triangles() const;
-  //! Triangle t keeps a spot that may be uncovered (a dropped piece whose dart was refused).
+  //! Triangle t keeps a spot that may be uncovered (a dropped piece that left dust).
   void note_open(int t) { open_.push_back(t); }
   //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD
@@ -237,7 +237,7 @@ class GapSet {
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
   std::vector<Dust> dust_;
-  std::vector<int> open_;  // triangles of pieces given up and of dust refused, since extract()
+  std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
