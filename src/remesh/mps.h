@@ -38,8 +38,8 @@ struct MpsOptions {
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
   //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
-  //! a sample has about 2-3 triangles instead of 9-10 at 1, and the sampler takes about half the
-  //! time (docs/mps.md, "Session 11"); nothing in it needs a triangle smaller than a disk.
+  //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
+  //! half the time (docs/mps.md, "Session 11"); nothing in it needs a triangle smaller than a disk.
   double split_factor = 2.0;
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
