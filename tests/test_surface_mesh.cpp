@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "common/error.h"
 #include "mesh/stress.h"
@@ -194,6 +195,67 @@ TEST_CASE("Refinement to a length field splits each edge to the smaller length a
   REQUIRE_THROWS_AS(refine_to_length_field(mesh, bad), InputError);
   std::vector<double> wrong(mesh.vertex_count() - 1, 0.1);
   REQUIRE_THROWS(refine_to_length_field(mesh, wrong));
+}
+
+TEST_CASE("A spatially ordered refinement is the same surface with neighbours close in memory") {
+  // Two icospheres side by side, their triangles shuffled: the input order says nothing of where a
+  // triangle is. Both orders give the same triangles and carry a field alike; the spatial one
+  // numbers vertices and components by first use and keeps neighbours close in the arrays.
+  const SurfaceMesh spheres = test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0});
+  std::vector<Triangle> shuffled = spheres.triangles();
+  std::mt19937 random(7);
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
+  const SurfaceMesh mesh(spheres.positions(), shuffled);
+  auto f = [](const Vec3& p) { return 0.06 + 0.01 * p.x - 0.02 * p.z; };
+  std::vector<double> by_input, by_space;
+  for (const Vec3& p : mesh.positions()) by_input.push_back(f(p));
+  by_space = by_input;
+  const SurfaceMesh input = refine_to_length_field(mesh, by_input);
+  const SurfaceMesh spatial = refine_to_length_field(mesh, by_space, RefineOrder::Spatial);
+  REQUIRE(spatial.vertex_count() == input.vertex_count());
+  REQUIRE(spatial.triangle_count() == input.triangle_count());
+  REQUIRE(spatial.triangle_count() > 4 * mesh.triangle_count());
+  // The same triangles, as corner positions from the lowest corner on (orientation kept).
+  auto corners = [](const SurfaceMesh& m) {
+    std::vector<std::array<std::array<double, 3>, 3>> out;
+    for (const Triangle& tri : m.triangles()) {
+      std::array<std::array<double, 3>, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = {m.position(tri[k]).x, m.position(tri[k]).y, m.position(tri[k]).z};
+      std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+      out.push_back(c);
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  REQUIRE(corners(spatial) == corners(input));
+  for (int v = 0; v < spatial.vertex_count(); ++v) REQUIRE(by_space[v] == Approx(f(spatial.position(v))).margin(1e-12));
+  // Adjacency and components as the checking constructor finds them (components by first triangle).
+  const SurfaceMesh checked(spatial.positions(), spatial.triangles());
+  REQUIRE(spatial.component_count() == 2);
+  REQUIRE(spatial.triangle_components() == checked.triangle_components());
+  for (int t = 0; t < spatial.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) REQUIRE(spatial.neighbor(t, e) == checked.neighbor(t, e));
+  // Vertices in order of first use: each triangle's corners are at most one past those before it.
+  int next = 0;
+  for (const Triangle& tri : spatial.triangles())
+    for (int v : tri) {
+      REQUIRE(v <= next);
+      if (v == next) ++next;
+    }
+  // Neighbours' distance in the triangle array, on average over all edges: the pieces of one input
+  // triangle are consecutive in either order, but across input triangles the shuffled order jumps.
+  auto mean_gap = [](const SurfaceMesh& m) {
+    double sum = 0;
+    for (int t = 0; t < m.triangle_count(); ++t)
+      for (int e = 0; e < 3; ++e) sum += std::abs(m.neighbor(t, e) - t);
+    return sum / (3.0 * m.triangle_count());
+  };
+  INFO("mean neighbour gap: spatial " << mean_gap(spatial) << ", input " << mean_gap(input));
+  CHECK(mean_gap(spatial) * 10 < mean_gap(input));
+  // A mesh with no long edge is copied in either order, unsplit.
+  std::vector<double> long_lengths(mesh.vertex_count(), 10.0);
+  const SurfaceMesh same = refine_to_length_field(mesh, long_lengths, RefineOrder::Spatial);
+  REQUIRE(corners(same) == corners(mesh));
 }
 
 TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic work at its hub") {

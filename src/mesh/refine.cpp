@@ -2,6 +2,9 @@
 // a length field over the vertices) is split at its midpoint, longest first, until none is left.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
 #include <numeric>
 #include <queue>
 #include <array>
@@ -52,8 +55,51 @@ struct Refinement {
 
 // Splits every edge longer than max_length, or, when `values_are_lengths`, than the smaller of
 // its ends' values (max_length is then not used).
+// Each input triangle's place along a Morton curve through the centroids (21 bits an axis over
+// their bounding box; ties by index).
+std::vector<int> morton_rank(const SurfaceMesh& mesh) {
+  const int nt = mesh.triangle_count();
+  std::vector<Vec3> centroid(nt);
+  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity()};
+  Vec3 hi = -1.0 * lo;
+  for (int t = 0; t < nt; ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    centroid[t] = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], centroid[t][c]);
+      hi[c] = std::max(hi[c], centroid[t][c]);
+    }
+  }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double cells = (1 << 21) - 1;
+  // Spreads the low 21 bits of x to every third bit.
+  auto spread = [](std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  };
+  std::vector<std::pair<std::uint64_t, int>> keyed(nt);
+  for (int t = 0; t < nt; ++t) {
+    std::uint64_t code = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double u = extent > 0 ? (centroid[t][c] - lo[c]) / extent : 0.0;
+      code |= spread(static_cast<std::uint64_t>(std::clamp(u, 0.0, 1.0) * cells)) << c;
+    }
+    keyed[t] = {code, t};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> rank(nt);
+  for (int k = 0; k < nt; ++k) rank[keyed[k].second] = k;
+  return rank;
+}
+
 Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
-                            bool values_are_lengths) {
+                            bool values_are_lengths, RefineOrder order) {
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
   // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
@@ -169,25 +215,39 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   }
   // Freed before the copies below are made, which can then reuse the memory.
   queue = {};
-  // Each input triangle's pieces become consecutive, in the input's order, and the new vertices
-  // follow in the order those triangles first use them (the input's vertices keep their indices).
+  // Each input triangle's pieces become consecutive, in the input's order (or along a Morton
+  // curve), and the new vertices follow in the order those triangles first use them (the input's
+  // vertices keep their indices, or are numbered in that order too).
   // Pieces were appended at the end as they were split off: passes over a large refined mesh
   // (MPS's LRPD and darts) jumped across memory. Feline at r = 0.005 (405k triangles): its LRPD
   // takes about 20 % less time with the same instructions.
+  const bool spatial = order == RefineOrder::Spatial;
+  std::vector<int> rank;
+  if (spatial) {
+    rank = morton_rank(mesh);
+  } else {
+    rank.resize(mesh.triangle_count());
+    std::iota(rank.begin(), rank.end(), 0);
+  }
   const int nt = static_cast<int>(triangles.size());
   std::vector<int> new_triangle(nt), first_piece(mesh.triangle_count() + 1, 0);
-  for (int t = 0; t < nt; ++t) ++first_piece[origin[t] + 1];
+  for (int t = 0; t < nt; ++t) ++first_piece[rank[origin[t]] + 1];
   std::partial_sum(first_piece.begin(), first_piece.end(), first_piece.begin());
-  for (int t = 0; t < nt; ++t) new_triangle[t] = first_piece[origin[t]]++;
+  for (int t = 0; t < nt; ++t) new_triangle[t] = first_piece[rank[origin[t]]]++;
   std::vector<int> old_triangle(nt);
   for (int t = 0; t < nt; ++t) old_triangle[new_triangle[t]] = t;
   const int nv_input = mesh.vertex_count();
   std::vector<int> new_vertex(positions.size(), -1);
-  std::iota(new_vertex.begin(), new_vertex.begin() + nv_input, 0);
-  int next_vertex = nv_input;
+  int next_vertex = 0;
+  if (!spatial) {
+    std::iota(new_vertex.begin(), new_vertex.begin() + nv_input, 0);
+    next_vertex = nv_input;
+  }
   for (int t : old_triangle)
     for (int v : triangles[t])
       if (new_vertex[v] < 0) new_vertex[v] = next_vertex++;
+  for (int& v : new_vertex)  // input vertices no triangle uses
+    if (v < 0) v = next_vertex++;
   std::vector<Vec3> ordered_positions(positions.size());
   for (size_t v = 0; v < positions.size(); ++v) ordered_positions[new_vertex[v]] = positions[v];
   positions = {};
@@ -210,35 +270,41 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
       neighbors[t][e] = across < 0 ? -1 : new_triangle[across];
     }
   }
-  // Splitting keeps each input triangle's pieces edge-connected, and the pieces are in the input's
-  // order: the components, numbered by first triangle, are the input's.
-  std::vector<int> components(nt);
-  for (int t = 0; t < nt; ++t) components[t] = mesh.triangle_components()[origin[old_triangle[t]]];
+  // Splitting keeps each input triangle's pieces edge-connected: the components are the input's,
+  // numbered again by first triangle (in the input's order they already are).
+  std::vector<int> components(nt), renumbered(mesh.component_count(), -1);
+  int next_component = 0;
+  for (int t = 0; t < nt; ++t) {
+    int& c = renumbered[mesh.triangle_components()[origin[old_triangle[t]]]];
+    if (c < 0) c = next_component++;
+    components[t] = c;
+  }
   return {std::move(ordered_positions), std::move(ordered_triangles), std::move(neighbors),
           live_edges, std::move(components)};
 }
 
 }  // namespace
 
-SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values) {
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
+                              RefineOrder order) {
   if (!(max_length > 0))
     throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
   if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
     throw std::invalid_argument("refine_long_edges: one value per vertex expected");
   // The splitting's edge records, queue and unordered arrays are gone before the mesh builds its
   // vertex lists, which can then reuse some of that memory.
-  Refinement r = split_long_edges(mesh, max_length, vertex_values, false);
+  Refinement r = split_long_edges(mesh, max_length, vertex_values, false, order);
   return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
                      std::move(r.components), mesh.component_count());
 }
 
-SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths) {
+SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths, RefineOrder order) {
   if (static_cast<int>(vertex_lengths.size()) != mesh.vertex_count())
     throw std::invalid_argument("refine_to_length_field: one length per vertex expected");
   for (double length : vertex_lengths)
     if (!(length > 0) || !std::isfinite(length))
       throw InputError(fmt::format("refinement lengths must be positive (got {})", length));
-  Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true);
+  Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true, order);
   return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
                      std::move(r.components), mesh.component_count());
 }

@@ -24,6 +24,14 @@ struct BoundingBox {
 //!      duplicate triangles, every edge in at most two triangles with opposite directions,
 //!      every vertex's triangles form one fan, no unreferenced vertices.
 //! \throw InputError naming the first offending element when a precondition fails.
+//! The order of a refined mesh's triangles and vertices (refine_long_edges, refine_to_length_field).
+//! Each input triangle's pieces are consecutive either way.
+enum class RefineOrder {
+  Input,    //!< in the input triangles' order; the input's vertices keep their indices
+  Spatial,  //!< along a Morton curve through the input triangles' centroids; every vertex numbered
+            //!< in the order the triangles first use it (passes over the mesh stay local in memory)
+};
+
 class SurfaceMesh {
  public:
   SurfaceMesh() = default;
@@ -76,8 +84,8 @@ class SurfaceMesh {
   double max_edge_length() const;
 
  private:
-  friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*);
-  friend SurfaceMesh refine_to_length_field(const SurfaceMesh&, std::vector<double>&);
+  friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*, RefineOrder);
+  friend SurfaceMesh refine_to_length_field(const SurfaceMesh&, std::vector<double>&, RefineOrder);
   //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
   //! check is repeated (midpoints are rounded); the rest holds by construction. `components`:
   //! each triangle's component, numbered as finish_topology() would (by first triangle).
@@ -110,7 +118,8 @@ class SurfaceMesh {
 //! `vertex_values`, when given, holds one value per vertex of `mesh` and is extended to the new
 //! vertices, each taking the mean of its edge's end points: a field linear over each input
 //! triangle is carried over exactly (up to rounding), since every edge split lies in one of them.
-SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values = nullptr);
+SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values = nullptr,
+                              RefineOrder order = RefineOrder::Input);
 
 //! The same splitting with a length per vertex: every edge longer than the smaller of its ends'
 //! lengths is split. `vertex_lengths` (one per vertex of `mesh`, all positive) is carried to the
@@ -118,7 +127,8 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
 //! is smallest at an edge's ends, so each edge of the result is no longer than the field anywhere
 //! along it. Used by the adaptive MPS with its radius field.
 //! \throw InputError when a length is not positive.
-SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths);
+SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths,
+                                   RefineOrder order = RefineOrder::Input);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.

@@ -84,7 +84,9 @@ Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bar
 //! radius meets that against every sample around (a sheet thinner than r, a big disk across it)
 //! and the spot would otherwise stay uncovered, the condition is kept only against the samples on
 //! triangles facing like p's: the dart goes in, and a sample across may then lie outside its power
-//! cell (`power_cell_exceptions`).
+//! cell (`power_cell_exceptions`). Where even that leaves no radius (a sample past a sharp fold,
+//! on a triangle at right angles to p's, whose ball holds p but whose disk does not reach it), the
+//! condition is kept only against the samples local to p.
 class Sampler {
  public:
   Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
@@ -117,10 +119,12 @@ class Sampler {
     // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets.
     met_ = disks_.met(p, t, kScan * kScan * w);
     double hi = 0;
-    const Admission admitted = admit(p, t, w, false, hi);
+    const Admission admitted = admit(p, t, w, Against::All, hi);
     if (admitted == Admission::Rejected) return false;
     if (admitted == Admission::NoRadius) {
-      if (!allow_exceptions_ || admit(p, t, w, true, hi) != Admission::Radius) return false;
+      if (!allow_exceptions_) return false;
+      if (admit(p, t, w, Against::Facing, hi) != Admission::Radius && admit(p, t, w, Against::Local, hi) != Admission::Radius)
+        return false;
       ++power_cell_exceptions_;
     }
     if (hi < w) ++clamped_;
@@ -133,20 +137,24 @@ class Sampler {
   static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
 
   enum class Admission { Radius, NoRadius, Rejected };
+  //! The samples around p whose power cells p's radius must keep apart from its own.
+  enum class Against { All, Facing, Local };
   //! Adaptive: the largest weight `hi` ≤ w that p in triangle t may take against the samples
   //! around (met_): below the squared distance of every local sample within reach, and keeping
-  //! both in their power cells against every sample around, or with `facing_only` only against
-  //! those on triangles facing like t. Rejected: a local sample is closer than its own radius.
-  Admission admit(const Vec3& p, int t, double w, bool facing_only, double& hi) {
+  //! both in their power cells against every sample around (All), only against those on triangles
+  //! facing like t (Facing), or only against the samples local to p (Local: t lies in the sample's
+  //! region at radius max(r(p), r_j)). Rejected: a local sample is closer than its own radius.
+  Admission admit(const Vec3& p, int t, double w, Against against, double& hi) {
     double lo = r_min2_;  // the allowed range of p's weight
     hi = w;
     bool reject = false;
     for (int s : met_) {
       const bool faces = disks_.faces_like(s, t);
-      if (facing_only && !faces) continue;
+      if (against != Against::All && !faces) continue;
       disks_.for_each_center(s, [&](int j) {
         if (reject) return;
         const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
+        if (against == Against::Local && !disks_.reaches(disks_.center(j), s, std::max(w, wj), t)) return;
         hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
         lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
         if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
@@ -260,10 +268,11 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     // Scaled to the lengths and back: with a power of two for the factor (the default) the radii
     // are exactly the field the refinement carries to the new vertices.
     for (double& x : vertex_radius) x *= factor;
-    result.mesh = refine_to_length_field(mesh, vertex_radius);
+    result.mesh = refine_to_length_field(mesh, vertex_radius, options.refine_order);
     for (double& x : vertex_radius) x /= factor;
   } else {
-    result.mesh = refine_long_edges(mesh, factor * r_min, options.adaptive ? &vertex_radius : nullptr);
+    result.mesh = refine_long_edges(mesh, factor * r_min, options.adaptive ? &vertex_radius : nullptr,
+                                    options.refine_order);
   }
   result.max_radius = options.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min;
   const SurfaceMesh& m = result.mesh;

@@ -41,6 +41,10 @@ struct MpsOptions {
   //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
   //! half the time (docs/mps.md, "Session 11"); nothing in it needs a triangle smaller than a disk.
   double split_factor = 2.0;
+  //! The order of the refined mesh (MpsResult::mesh). Spatial keeps neighbouring triangles close in
+  //! memory, which every stage reads by the triangle: faster on meshes stored in no spatial order
+  //! (docs/mps.md, "Session 12"). The order changes where the darts land, not what is checked.
+  RefineOrder refine_order = RefineOrder::Spatial;
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
