@@ -53,8 +53,6 @@ struct Refinement {
   std::vector<int> components;
 };
 
-// Splits every edge longer than max_length, or, when `values_are_lengths`, than the smaller of
-// its ends' values (max_length is then not used).
 // Each input triangle's place along a Morton curve through the centroids (21 bits an axis over
 // their bounding box; ties by index).
 std::vector<int> morton_rank(const SurfaceMesh& mesh) {
@@ -98,6 +96,8 @@ std::vector<int> morton_rank(const SurfaceMesh& mesh) {
   return rank;
 }
 
+// Splits every edge longer than max_length, or, when `values_are_lengths`, than the smaller of
+// its ends' values (max_length is then not used); the result is numbered in `order`.
 Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
                             bool values_are_lengths, RefineOrder order) {
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
@@ -246,8 +246,6 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   for (int t : old_triangle)
     for (int v : triangles[t])
       if (new_vertex[v] < 0) new_vertex[v] = next_vertex++;
-  for (int& v : new_vertex)  // input vertices no triangle uses
-    if (v < 0) v = next_vertex++;
   std::vector<Vec3> ordered_positions(positions.size());
   for (size_t v = 0; v < positions.size(); ++v) ordered_positions[new_vertex[v]] = positions[v];
   positions = {};

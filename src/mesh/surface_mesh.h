@@ -13,6 +13,14 @@ namespace lrvd {
 
 using Triangle = std::array<int, 3>;
 
+//! The order of a refined mesh's triangles and vertices (refine_long_edges, refine_to_length_field).
+//! Each input triangle's pieces are consecutive either way.
+enum class RefineOrder {
+  Input,    //!< in the input triangles' order; the input's vertices keep their indices
+  Spatial,  //!< along a Morton curve through the input triangles' centroids; every vertex numbered
+            //!< in the order the triangles first use it (passes over the mesh stay local in memory)
+};
+
 struct BoundingBox {
   Vec3 min, max;
   double diagonal() const;
@@ -24,14 +32,6 @@ struct BoundingBox {
 //!      duplicate triangles, every edge in at most two triangles with opposite directions,
 //!      every vertex's triangles form one fan, no unreferenced vertices.
 //! \throw InputError naming the first offending element when a precondition fails.
-//! The order of a refined mesh's triangles and vertices (refine_long_edges, refine_to_length_field).
-//! Each input triangle's pieces are consecutive either way.
-enum class RefineOrder {
-  Input,    //!< in the input triangles' order; the input's vertices keep their indices
-  Spatial,  //!< along a Morton curve through the input triangles' centroids; every vertex numbered
-            //!< in the order the triangles first use it (passes over the mesh stay local in memory)
-};
-
 class SurfaceMesh {
  public:
   SurfaceMesh() = default;
