@@ -74,7 +74,8 @@ struct MpsResult {
   int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
   int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the
-                                  //!< samples facing like them (none met it against all; docs/mps.md)
+                                  //!< samples facing like them, or if that fails too, only against those local
+                                  //!< to them (none met it against all; docs/mps.md)
   bool gaps_closed = false;       //!< the sampler found no gap left (verify_mps checks it independently)
   MpsTimings time_s;
 };
