@@ -407,6 +407,81 @@ TEST_CASE("Gaps read only in the open triangles of a shapeless LRPD are the gaps
   CHECK(focused.gap_area() == Approx(area).epsilon(1e-12));
 }
 
+TEST_CASE("The LRPD of the part around a few triangles has the whole LRPD's polygons and gaps there", "[mps]") {
+  // A later gap round computes the LRPD only on the part of the mesh around its open triangles
+  // (compute_lrpd_around). On CGAL's elk (thin legs and antlers, where a part's rim can touch itself
+  // at a vertex) with every fifth sample of a maximal sampling left out, so that there are gaps:
+  // for sets of a few triangles, gap triangles and any, the part is a valid mesh, and on those
+  // triangles its polygons are the whole LRPD's, cell for cell and corner for corner, and so are
+  // the gaps.
+  using namespace mps_detail;
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  MpsOptions options;
+  options.radius = 0.01;
+  options.adaptive = true;
+  const MpsResult r = maximal_poisson_disk_sampling(elk, options);
+  const SurfaceMesh& m = r.mesh;
+  DiskIndex disks(m);
+  for (int i = 0; i < r.samples.size(); ++i) {
+    if (i % 5 == 0) continue;
+    const Vec3& c = r.samples.positions[i];
+    const int t = r.samples.triangles[i];
+    const double w = r.samples.weights[i];
+    disks.insert(c, t, r.samples.barycentric[i], w, disks.grow(c, t, w));
+  }
+  LrvdOptions lrpd_options;
+  lrpd_options.weighted = true;
+  const Diagram whole = compute_lrvd(m, disks.samples(), lrpd_options);
+  const SymbolicContext whole_ctx = whole.context(m);
+  const double min_area = 1e-15 * r.radius * r.radius;
+  GapSet all(m, disks, true, min_area);
+  all.extract(whole);
+  const std::vector<int> gap_triangles = all.open_triangles();
+  REQUIRE(gap_triangles.size() > 1000);
+
+  Random random(11);
+  auto pick = [&](int n) { return std::min(static_cast<int>(random.uniform() * n), n - 1); };
+  int compared = 0, pieces = 0;
+  for (int set = 0; set < 40; ++set) {
+    std::vector<int> triangles;
+    std::vector<char> focus(m.triangle_count(), 0);
+    for (int k = 0; k < 4; ++k) {
+      const int t = k < 3 ? gap_triangles[pick(static_cast<int>(gap_triangles.size()))] : pick(m.triangle_count());
+      if (!focus[t]) triangles.push_back(t), focus[t] = 1;
+    }
+    GapLrpd part;
+    REQUIRE(compute_lrpd_around(m, disks, triangles, focus, part));
+    REQUIRE(part.on_part);
+    CHECK(part.part.triangle_count() < m.triangle_count() / 4);
+    const SymbolicContext part_ctx = part.diagram.context(part.part);
+    for (int k = 0; k < part.part.triangle_count(); ++k) {
+      const int t = part.triangle_of[k];
+      if (!focus[t]) continue;
+      const int a = part.diagram.triangle_offsets[k], b = part.diagram.triangle_offsets[k + 1];
+      const int wa = whole.triangle_offsets[t], wb = whole.triangle_offsets[t + 1];
+      REQUIRE(b - a == wb - wa);
+      for (int p = 0; p < b - a; ++p) {
+        const CellPolygon& pp = part.diagram.polygons[a + p];
+        const CellPolygon& wp = whole.polygons[wa + p];
+        CHECK(part.sample_of[pp.cell] == wp.cell);
+        REQUIRE(pp.vertex_count == wp.vertex_count);
+        for (int c = 0; c < pp.vertex_count; ++c)
+          CHECK(position(part.diagram.polygon_vertices(pp)[c], part_ctx) ==
+                position(whole.polygon_vertices(wp)[c], whole_ctx));
+        ++compared;
+      }
+    }
+    GapSet from_part(m, disks, true, min_area), from_whole(m, disks, true, min_area);
+    from_part.extract(part, &focus);
+    from_whole.extract(whole, &focus);
+    CHECK(from_part.alive() == from_whole.alive());
+    CHECK(from_part.gap_area() == from_whole.gap_area());
+    pieces += from_whole.alive();
+  }
+  CHECK(compared > 100);
+  CHECK(pieces > 100);
+}
+
 TEST_CASE("The MPS verification catches a close pair and an uncovered spot", "[mps][verification]") {
   const SurfaceMesh sphere = test::icosphere(2);
   MpsOptions options;

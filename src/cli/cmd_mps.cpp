@@ -92,6 +92,7 @@ int run_mps(const MpsCommandOptions& opt) {
   report["gap_samples"] = result.gap_samples;
   report["darts"] = result.darts;
   report["lrpd_evaluations"] = result.lrpd_evaluations;
+  report["part_lrpd_triangles"] = result.part_lrpd_triangles;
   report["gap_pieces"] = result.gap_pieces;
   report["dropped_gap_pieces"] = result.dropped_gap_pieces;
   report["dust_samples"] = result.dust_samples;

@@ -327,21 +327,28 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   lrpd_options.weighted = true;
   std::vector<char> shapeless(m.triangle_count());  // triangles whose LRPD polygons need no shape
   lrpd_options.shapeless = &shapeless;
-  Diagram lrpd;
+  GapLrpd lrpd;
   bool stale = true;  // the LRPD is not that of the current samples
-  // After a round with local updates, the triangles that may still hold a gap (open_triangles());
-  // empty: all of them.
+  // After a round with local updates, the triangles that may still hold a gap (open_triangles()),
+  // as a mask and as a list; empty: all of them.
   std::vector<char> focus;
+  std::vector<int> open;
   for (int round = 0; round < options.max_gap_rounds; ++round) {
     if (stale) {
       progress(fmt::format("gap detection {}: LRPD of {} samples", round + 1, sampler.disks().size()));
       lrpd = {};  // the last round's diagram goes before the next one is built, not after
-      // Gaps are looked for only in triangles that no disk covers (GapSet::extract), and after a
-      // round with local updates only in the open ones: the other triangles' polygons need their
-      // cells, not their shapes. A covered triangle stays covered.
-      for (int t = 0; t < m.triangle_count(); ++t)
-        shapeless[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
-      lrpd = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
+      // After a round with local updates only the open triangles are looked at: a few, as a rule
+      // (pieces no dart fitted), for which the LRPD of the part of the mesh around them will do.
+      if (!focus.empty() && compute_lrpd_around(m, sampler.disks(), open, focus, lrpd)) {
+        result.part_lrpd_triangles += lrpd.part.triangle_count();
+      } else {
+        // Gaps are looked for only in triangles that no disk covers (GapSet::extract), and after a
+        // round with local updates only in the open ones: the other triangles' polygons need
+        // their cells, not their shapes. A covered triangle stays covered.
+        for (int t = 0; t < m.triangle_count(); ++t)
+          shapeless[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
+        lrpd.diagram = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
+      }
       ++result.lrpd_evaluations;
     }
     stale = true;
@@ -387,8 +394,14 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       const int placed = result.dust_samples;
       for (const GapSet::Dust& d : dust) {
         ++result.darts;
+        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) {
+          // A disk reaching the triangle covers the corner: the noise is at that disk's rim, and
+          // the triangle closes as it does when no piece was given up. Refused by the radius
+          // conditions instead: the corner may be a gap no dart fits.
+          if (!sampler.disks().in_some_disk(d.point, d.triangle)) gaps.note_open(d.triangle);
+          continue;
+        }
         gaps.note_open(d.triangle);
-        if (!sampler.try_insert(d.point, d.triangle, barycentric_in_triangle(m, d.triangle, d.point))) continue;
         ++result.gap_samples;
         ++result.dust_samples;
         gaps.update_after_insert(sampler.disks().size() - 1, sampler.last_region());
@@ -405,9 +418,9 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       break;
     }
     if (local) {
-      std::vector<char> open(m.triangle_count(), 0);
-      for (int t : gaps.open_triangles()) open[t] = 1;
-      focus = std::move(open);
+      open = gaps.open_triangles();
+      focus.assign(m.triangle_count(), 0);
+      for (int t : open) focus[t] = 1;
     }
     // No progress: this LRPD is that of the final samples. Closed when the pieces no dart fits
     // are only where the balls of their LRPD cells cover (remote claims).

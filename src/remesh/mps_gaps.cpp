@@ -36,6 +36,18 @@ void GapSet::clear() {
 }
 
 void GapSet::extract(const Diagram& lrpd, const std::vector<char>* focus) {
+  extract(lrpd, mesh_, nullptr, nullptr, focus);
+}
+
+void GapSet::extract(const GapLrpd& lrpd, const std::vector<char>* focus) {
+  if (lrpd.on_part)
+    extract(lrpd.diagram, lrpd.part, &lrpd.triangle_of, &lrpd.sample_of, focus);
+  else
+    extract(lrpd.diagram, mesh_, nullptr, nullptr, focus);
+}
+
+void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const std::vector<int>* triangle_of,
+                     const std::vector<int>* sample_of, const std::vector<char>* focus) {
   clear();
   open_.clear();
   uncovered_polygons_ = 0;
@@ -45,7 +57,7 @@ void GapSet::extract(const Diagram& lrpd, const std::vector<char>* focus) {
   deferred_.clear();
   deferred_points_.clear();
   extract_disks_ = disks_.size();
-  const SymbolicContext ctx = lrpd.context(mesh_);
+  const SymbolicContext ctx = lrpd.context(diagram_mesh);
   // Room for the pieces' corners at once: on a large mesh, growing into fresh memory step by step
   // costs more than the pieces themselves. The LRPD lists vertices only on the triangles no disk
   // covers (mps.cpp), and the pieces have fewer corners in all (Gargoyle, r = 0.005: 1.2M against
@@ -53,11 +65,12 @@ void GapSet::extract(const Diagram& lrpd, const std::vector<char>* focus) {
   points_.reserve(lrpd.vertices.size());
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
-    const int t = cp.triangle, i = cp.cell;
+    const int t = triangle_of ? (*triangle_of)[cp.triangle] : cp.triangle;
+    const int i = sample_of ? (*sample_of)[cp.cell] : cp.cell;
     if (focus && !(*focus)[t]) continue;
     // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
     if (disks_.fully_covered(t)) continue;
-    const Site& site = lrpd.sites[i];
+    const Site& site = lrpd.sites[cp.cell];
     polygon.resize(cp.vertex_count);
     bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
     for (int k = 0; k < cp.vertex_count; ++k) {

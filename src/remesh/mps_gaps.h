@@ -133,6 +133,28 @@ bool ball_meets_triangle(const SurfaceMesh& mesh, int t, const Vec3& p, double w
 //! Barycentric coordinates of p (a point of the plane of triangle t) in t, clamped to the triangle.
 Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
 
+//! An LRPD for gap detection: of the whole mesh, or of the part of it around some triangles
+//! (compute_lrpd_around), whose triangles and cells map back to the mesh's triangles and samples.
+struct GapLrpd {
+  Diagram diagram;
+  bool on_part = false;
+  SurfaceMesh part;              //!< on_part: the triangles the diagram covers, as a mesh of their own
+  std::vector<int> triangle_of;  //!< on_part: the mesh triangle of each part triangle
+  std::vector<int> sample_of;    //!< on_part: the sample of each part cell
+};
+
+//! The LRPD of the samples located on the part of the mesh around `triangles`: every triangle a
+//! ball of kPartReach times the largest radius reaching one of them meets (edge-connected to it),
+//! and the whole star of each vertex where those would touch at a point only. The cells of a
+//! maximal sampling are a few radii across, so on `triangles` the part's LRPD has the cells of the
+//! whole mesh's unless a cell there grows from beyond the part's rim; either way its polygons
+//! partition those triangles among cells of samples, which is all gap detection needs (the verifier
+//! judges maximality on the whole mesh's LRPD). `shaped`, per mesh triangle: the triangles whose
+//! polygons need shapes (LrvdOptions::shapeless). Returns false, leaving `out` alone, when the part
+//! would hold more than a quarter of the mesh or a component of it holds no sample.
+bool compute_lrpd_around(const SurfaceMesh& mesh, DiskIndex& disks, const std::vector<int>& triangles,
+                         const std::vector<char>& shaped, GapLrpd& out);
+
 //! The uncovered parts of the surface as pieces: a convex polygon Q in the plane of a triangle
 //! and the disk of an `owner` sample (or none); the piece's gap is Q minus that disk. At
 //! extraction the pieces' gaps are exactly the points of the LRPD's gaps (with local updates: and
@@ -153,6 +175,9 @@ class GapSet {
   //! may be shapeless, LrvdOptions::shapeless), for an LRPD computed when every spot of the other
   //! triangles is known to lie in a disk reaching its triangle (open_triangles()).
   void extract(const Diagram& lrpd, const std::vector<char>* focus = nullptr);
+  //! The same with an LRPD of the whole mesh or of a part of it (compute_lrpd_around), read only
+  //! in the part's triangles.
+  void extract(const GapLrpd& lrpd, const std::vector<char>* focus = nullptr);
   //! Of the last extract(), in the triangles no single disk covers: polygons their ball does not
   //! cover (the LRPD's gaps), and polygons covered by a remote ball.
   int uncovered_polygons() const { return uncovered_polygons_; }
@@ -216,6 +241,10 @@ class GapSet {
   };
 
   void clear();
+  //! extract() from a diagram of `diagram_mesh`, its triangles and cells mapped to the mesh's
+  //! triangles and samples (null: the same).
+  void extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const std::vector<int>* triangle_of,
+               const std::vector<int>* sample_of, const std::vector<char>* focus);
   //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
   void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
   //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
