@@ -144,7 +144,7 @@ struct GapLrpd {
 };
 
 //! The LRPD of the samples located on the part of the mesh around `triangles`: every triangle a
-//! ball of kPartReach times the largest radius reaching one of them meets (edge-connected to it),
+//! ball of four times the largest radius reaching one of them meets (edge-connected to it),
 //! and the whole star of each vertex where those would touch at a point only. The cells of a
 //! maximal sampling are a few radii across, so on `triangles` the part's LRPD has the cells of the
 //! whole mesh's unless a cell there grows from beyond the part's rim; either way its polygons
