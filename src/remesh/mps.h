@@ -69,7 +69,7 @@ struct MpsResult {
   int gap_samples = 0;            //!< samples placed into gaps
   std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)
   int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
-  int part_lrpd_triangles = 0;    //!< of those, the ones on a part of the mesh (later rounds): their triangles
+  int part_lrpd_triangles = 0;    //!< triangles of those computed on a part of the mesh (later rounds)
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
   int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
