@@ -388,7 +388,8 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     // Pieces dropped as too small to tell from rounding can still be real gaps (a sliver triangle
     // a disk's rim barely misses): a dart at each one's corner outside its disk, decided exactly
     // like any dart. Insertions split pieces, which may drop more; a few passes take those too.
-    // The rest of such a piece is not tracked, so its triangle stays open (a dart or not).
+    // The rest of such a piece is not tracked, so its triangle stays open, unless the corner lies
+    // in a disk reaching the triangle.
     for (int pass = 0; pass < 4; ++pass) {
       const std::vector<GapSet::Dust> dust = gaps.take_dust();
       const int placed = result.dust_samples;

@@ -65,6 +65,9 @@ class DiskIndex {
   bool faces_like(int s, int t) const { return dot(triangles_info_[s].normal, triangles_info_[t].normal) > kFacingCosine; }
   //! Unit normal of triangle t (mesh.triangle_normal(t)).
   const Vec3& normal(int t) const { return triangles_info_[t].normal; }
+  //! Bounding sphere of triangle t: its centroid and the distance from there to its farthest corner.
+  const Vec3& triangle_center(int t) const { return triangles_info_[t].center; }
+  double triangle_radius(int t) const { return triangles_info_[t].radius; }
   //! Area of each triangle (mesh.triangle_area(t): the normal's cross product gives both).
   const std::vector<double>& triangle_areas() const { return areas_; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
@@ -197,10 +200,11 @@ class GapSet {
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
-  //! the live pieces, of the pieces given up and of dropped pieces with dust (note_open()).
+  //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
   std::vector<int> open_triangles() const;
-  //! Triangle t keeps a spot that may be uncovered (a dropped piece that left dust).
+  //! Triangle t keeps a spot that may be uncovered (dust whose dart was placed, or refused by the
+  //! radius conditions rather than by a disk reaching t).
   void note_open(int t) { open_.push_back(t); }
   //! Of the last extract(): pieces of the LRPD polygons outside their cells' balls, minus those
   //! balls and every disk reaching their triangle. None: every spot is in the ball of its LRPD

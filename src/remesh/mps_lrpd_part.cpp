@@ -59,12 +59,8 @@ bool compute_lrpd_around(const SurfaceMesh& mesh, DiskIndex& disks, const std::v
     disks.for_each_disk(t, [&](int j) { w = std::max(w, disks.weight(j)); });
     disks.for_each_center(t, [&](int j) { w = std::max(w, disks.weight(j)); });
     if (w == 0) w = largest;
-    const Triangle& tri = mesh.triangle(t);
-    const Vec3 c = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
-    double extent = 0;
-    for (int v : tri) extent = std::max(extent, std::sqrt(squared_distance(c, mesh.position(v))));
-    const double reach = kPartReach * std::sqrt(w) + extent;
-    for (int s : disks.met(c, t, reach * reach)) {
+    const double reach = kPartReach * std::sqrt(w) + disks.triangle_radius(t);
+    for (int s : disks.met(disks.triangle_center(t), t, reach * reach)) {
       if (in_part[s]) continue;
       in_part[s] = 1;
       part.push_back(s);
