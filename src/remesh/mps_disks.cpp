@@ -3,6 +3,7 @@
 // disks that cover or reach each triangle, and the exact point-in-disk test.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mesh/closest_point.h"
 #include "predicates/exact.h"
@@ -52,6 +53,7 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
       vertex_stamp_(mesh.vertex_count(), 0),
       vertex_inside_(mesh.vertex_count(), 0),
       triangles_info_(mesh.triangle_count()),
+      normals_(mesh.triangle_count()),
       areas_(mesh.triangle_count()) {
   // A finished sampling lists each triangle in about 3-5 disks (edges split to twice the radius:
   // 4.2-5.2 on the Table 3 models at r = 0.005 and adaptive r_min = 0.004, 2.9-4.2 at r = 0.02):
@@ -65,19 +67,40 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh)
     const Vec3 n = cross(b - a, d - a);
     const double length = norm(n);
     areas_[t] = 0.5 * length;
+    normals_[t] = n / length;
     TriangleInfo& info = triangles_info_[t];
-    info.normal = n / length;
-    const Vec3 c = (a + b + d) / 3.0;
-    info.center = c;
-    info.radius = std::sqrt(std::max({squared_distance(c, a), squared_distance(c, b), squared_distance(c, d)}));
+    const Vec3 c = triangle_center(t);
+    for (int k = 0; k < 3; ++k) {
+      info.normal[k] = static_cast<float>(normals_[t][k]);
+      info.center[k] = static_cast<float>(c[k]);
+    }
+    // The radius about the float centre, rounded up: the sphere holds the triangle. A centre out of
+    // float range gives an infinite radius: a sphere that rejects nothing.
+    const Vec3 cf{info.center[0], info.center[1], info.center[2]};
+    const double radius = std::sqrt(std::max({squared_distance(cf, a), squared_distance(cf, b), squared_distance(cf, d)}));
+    info.radius = static_cast<float>(radius);
+    if (info.radius < radius) info.radius = std::nextafter(info.radius, std::numeric_limits<float>::infinity());
+    if (!std::isfinite(radius)) info.radius = std::numeric_limits<float>::infinity();
   }
+}
+
+Vec3 DiskIndex::triangle_center(int t) const {
+  const Triangle& tri = mesh_.triangle(t);
+  return (mesh_.position(tri[0]) + mesh_.position(tri[1]) + mesh_.position(tri[2])) / 3.0;
+}
+
+double DiskIndex::triangle_radius(int t) const {
+  const Triangle& tri = mesh_.triangle(t);
+  const Vec3 c = triangle_center(t);
+  return std::sqrt(std::max({squared_distance(c, mesh_.position(tri[0])), squared_distance(c, mesh_.position(tri[1])),
+                             squared_distance(c, mesh_.position(tri[2]))}));
 }
 
 inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   // Far outside the triangle's bounding sphere (with room for rounding): no closest point needed.
   const TriangleInfo& info = triangles_info_[t];
   const double reach = r + info.radius;
-  if (squared_distance(p, info.center) > reach * reach * (1 + 1e-9)) return false;
+  if (squared_distance(p, Vec3{info.center[0], info.center[1], info.center[2]}) > reach * reach * (1 + 1e-9)) return false;
   // ball_meets_triangle, its corner test inlined (it decides most calls).
   const Triangle& tri = mesh_.triangle(t);
   for (int c = 0; c < 3; ++c)
@@ -105,7 +128,7 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) 
   queue_.assign(1, t);
   triangles_info_[t].stamp = stamp_value_;
   if (f(t)) return true;
-  const Vec3 facing = triangles_info_[t].normal;
+  const Vec3 facing = normals_[t];
   const double r = std::sqrt(w);
   for (size_t k = 0; k < queue_.size(); ++k) {
     const int s = queue_[k];
@@ -115,10 +138,10 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) 
       TriangleInfo& info = triangles_info_[n];
       if (info.stamp == stamp_value_) continue;
       info.stamp = stamp_value_;
-      const bool faces = dot(info.normal, facing) > kFacingCosine;
-      if ((facing_only && !faces) || !meets(n, p, w, r)) continue;
+      const bool faces_t = faces(n, facing);
+      if ((facing_only && !faces_t) || !meets(n, p, w, r)) continue;
       queue_.push_back(n);
-      if (faces && f(n)) return true;
+      if (faces_t && f(n)) return true;
     }
   }
   return false;

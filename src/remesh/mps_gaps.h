@@ -62,12 +62,12 @@ class DiskIndex {
   //! way they face. Valid until the next call.
   const std::vector<int>& met(const Vec3& p, int t, double w);
   //! Triangles s and t face the same way (normals at less than 90°).
-  bool faces_like(int s, int t) const { return dot(triangles_info_[s].normal, triangles_info_[t].normal) > kFacingCosine; }
+  bool faces_like(int s, int t) const { return faces(s, normals_[t]); }
   //! Unit normal of triangle t (mesh.triangle_normal(t)).
-  const Vec3& normal(int t) const { return triangles_info_[t].normal; }
+  const Vec3& normal(int t) const { return normals_[t]; }
   //! Bounding sphere of triangle t: its centroid and the distance from there to its farthest corner.
-  const Vec3& triangle_center(int t) const { return triangles_info_[t].center; }
-  double triangle_radius(int t) const { return triangles_info_[t].radius; }
+  Vec3 triangle_center(int t) const;
+  double triangle_radius(int t) const;
   //! Area of each triangle (mesh.triangle_area(t): the normal's cross product gives both).
   const std::vector<double>& triangle_areas() const { return areas_; }
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
@@ -95,14 +95,27 @@ class DiskIndex {
   struct Link {
     int item, next;
   };
-  //! What region growing reads of a triangle, in one cache line: the unit normal, the bounding
-  //! sphere (centroid, distance to the farthest corner) and the last growth that visited it.
-  struct alignas(64) TriangleInfo {
-    Vec3 normal;
-    Vec3 center;
-    double radius = 0;
+  //! What region growing reads of a triangle, in half a cache line (the growth is bound by memory
+  //! reads): the unit normal and a bounding sphere in floats, and the last growth that visited it.
+  //! The sphere is the float centroid's with its radius rounded up, so it holds the triangle and
+  //! rejects only what the double one would; a facing test too close to call in floats reads the
+  //! double normal (faces()).
+  struct alignas(32) TriangleInfo {
+    float normal[3];
+    float center[3];
+    float radius;
     std::uint32_t stamp = 0;
   };
+  //! dot(normal of triangle s, facing) > kFacingCosine, decided as the double normals decide it.
+  bool faces(int s, const Vec3& facing) const {
+    const TriangleInfo& info = triangles_info_[s];
+    // Each float component is within 2^-24 (relative) of the double one; for unit vectors the
+    // dot product then differs by less than 1e-6 from the double one.
+    const double d = info.normal[0] * facing.x + info.normal[1] * facing.y + info.normal[2] * facing.z - kFacingCosine;
+    if (d > 1e-6) return true;
+    if (d < -1e-6) return false;
+    return dot(normals_[s], facing) > kFacingCosine;
+  }
   template <class F>
   bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
   //! ball_meets_triangle(t, p, w), r = √w, rejecting balls far from t's bounding sphere at once.
@@ -124,6 +137,7 @@ class DiskIndex {
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_;
   std::vector<TriangleInfo> triangles_info_;  // per triangle
+  std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
 };
 
