@@ -33,6 +33,8 @@ struct MpsCommandOptions {
   bool split_factor_given = false;  // set by the parser's callback below
   std::string output, remesh, report;
   bool exact = false;
+  bool features = false;
+  double feature_angle = MpsOptions{}.feature_angle;
 };
 
 int run_mps(const MpsCommandOptions& opt) {
@@ -52,6 +54,8 @@ int run_mps(const MpsCommandOptions& opt) {
   if (opt.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
   options.split_factor = opt.split_factor;
+  options.sample_features = opt.features;
+  options.feature_angle = opt.feature_angle;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   const MpsResult result = maximal_poisson_disk_sampling(input, options);
@@ -88,6 +92,8 @@ int run_mps(const MpsCommandOptions& opt) {
   report["seed"] = opt.seed;
   report["gap_update"] = opt.gap_update;
   report["samples"] = samples.size();
+  report["features"] = opt.features ? nlohmann::json{{"angle_deg", opt.feature_angle}, {"samples", result.feature_samples}}
+                                     : nlohmann::json(nullptr);
   report["dart_samples"] = result.dart_samples;
   report["gap_samples"] = result.gap_samples;
   report["darts"] = result.darts;
@@ -178,6 +184,14 @@ Action add_mps_command(CLI::App& app) {
                   "With --split-to field: edges are split until no longer than this times the radius")
       ->check(CLI::Range(1.0, 64.0))
       ->each([opt](const std::string&) { opt->split_factor_given = true; })
+      ->capture_default_str();
+  cmd->add_flag("--features", opt->features,
+                "Darts on the corners and feature edges first (the boundary, and edges sharper than --feature-angle): "
+                "the LRRT then keeps them; the samples there are not uniform");
+  cmd->add_option("--feature-angle", opt->feature_angle,
+                  "With --features: an edge is a feature when its triangles' normals are more than this many "
+                  "degrees apart")
+      ->check(CLI::Range(1.0, 179.0))
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();

@@ -107,12 +107,17 @@ class Sampler {
     return std::max(r * r, r_min2_);
   }
 
-  //! Inserts the dart if it is accepted; its local region is then last_region().
-  bool try_insert(const Vec3& p, int t, const Vec3& bary) {
+  //! Radius at vertex v of the mesh.
+  double radius_at(int v) const { return vertex_radius_.empty() ? std::sqrt(r_min2_) : std::max(vertex_radius_[v], std::sqrt(r_min2_)); }
+
+  //! Inserts the dart if it is accepted; its local region is then last_region(). A dart on a
+  //! feature (`all_sides`) registers its disk in every triangle its ball meets, whichever way they
+  //! face: the darts on the other side of a sharp edge then keep their distance from it too.
+  bool try_insert(const Vec3& p, int t, const Vec3& bary, bool all_sides = false) {
     if (disks_.in_some_disk(p, t)) return false;
     const double w = weight_at(t, bary);
     if (vertex_radius_.empty()) {
-      region_ = disks_.grow(p, t, w);
+      region_ = all_sides ? disks_.met(p, t, w) : disks_.grow(p, t, w);
       disks_.insert(p, t, bary, w, region_);
       return true;
     }
@@ -128,7 +133,7 @@ class Sampler {
       ++power_cell_exceptions_;
     }
     if (hi < w) ++clamped_;
-    region_ = disks_.grow(p, t, hi);
+    region_ = all_sides ? disks_.met(p, t, hi) : disks_.grow(p, t, hi);
     disks_.insert(p, t, bary, hi, region_);
     return true;
   }
@@ -180,6 +185,131 @@ class Sampler {
   int clamped_ = 0, power_cell_exceptions_ = 0;
   bool allow_exceptions_ = false;
 };
+
+//! Feature-first sampling: samples on the mesh's corners and along its feature lines (boundary
+//! edges, and edges whose triangles' normals are more than `angle` apart) before any dart on the
+//! surface (docs/mps.md, "Features"). Along a line between corners the samples are spread evenly
+//! at kFeatureSpacing times the local radius: two neighbours on a line less than √2 r apart meet
+//! at their midpoint whatever sample lies off the line (one at least r from both is farther from
+//! it), so each feature sample's cell reaches its neighbours' along the line and the LRRT follows
+//! it. Every one goes through the sampler's own test, so the minimum distance holds as for any
+//! other sample; a line too short for the spacing keeps the gap for the surface's darts. Returns
+//! the samples placed.
+constexpr double kFeatureSpacing = 1.2;
+constexpr double kFeatureSlide = 0.5, kFeatureSlideStep = 0.05;  // in radii
+int sample_features(const SurfaceMesh& m, Sampler& sampler, double angle_deg) {
+  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
+  const DiskIndex& disks = sampler.disks();
+  struct Edge {
+    int t, e, a, b;
+  };
+  std::vector<Edge> edges;
+  std::vector<std::vector<int>> at_vertex(m.vertex_count());  // the feature edges at each vertex
+  for (int t = 0; t < m.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int n = m.neighbor(t, e);
+      if (n >= 0 && (n < t || dot(disks.normal(t), disks.normal(n)) >= cos_limit)) continue;
+      const Triangle& tri = m.triangle(t);
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      at_vertex[a].push_back(static_cast<int>(edges.size()));
+      at_vertex[b].push_back(static_cast<int>(edges.size()));
+      edges.push_back({t, e, a, b});
+    }
+  if (edges.empty()) return 0;
+  const int before = disks.size();
+  // A point of edge k at `u` from its end a to its end b.
+  auto insert_on = [&](int k, double u) {
+    const Edge& g = edges[k];
+    Vec3 bary;
+    bary[g.e] = 1 - u;
+    bary[(g.e + 1) % 3] = u;
+    return sampler.try_insert((1 - u) * m.position(g.a) + u * m.position(g.b), g.t, bary, true);
+  };
+  // Corners, the sharpest first: a vertex with other than two feature edges, or with two that
+  // turn by more than the feature angle.
+  std::vector<char> corner(m.vertex_count(), 0);
+  std::vector<std::pair<double, int>> corners;  // (cosine of the angle between the two edges, vertex)
+  for (int v = 0; v < m.vertex_count(); ++v) {
+    if (at_vertex[v].empty()) continue;
+    double c = 1;
+    if (at_vertex[v].size() == 2) {
+      Vec3 dir[2];
+      for (int k = 0; k < 2; ++k) {
+        const Edge& g = edges[at_vertex[v][k]];
+        const Vec3 d = m.position(g.a == v ? g.b : g.a) - m.position(v);
+        dir[k] = d / norm(d);
+      }
+      c = dot(dir[0], dir[1]);
+      if (c <= -cos_limit) continue;  // nearly straight on
+    }
+    corner[v] = 1;
+    corners.push_back({-c, v});
+  }
+  std::sort(corners.begin(), corners.end());
+  for (const auto& [c, v] : corners) insert_on(at_vertex[v][0], edges[at_vertex[v][0]].a == v ? 0.0 : 1.0);
+  // The lines: from each corner along each of its edges to the next corner, then the closed loops
+  // without one. Each is cut into pieces of kFeatureSpacing radii, the radius linear along edges.
+  std::vector<char> used(edges.size(), 0);
+  std::vector<std::pair<int, bool>> line;  // edges, and whether each is walked from b to a
+  auto walk = [&](int v, int k) {
+    line.clear();
+    while (!used[k]) {
+      used[k] = 1;
+      const bool reverse = edges[k].b == v;
+      line.push_back({k, reverse});
+      v = reverse ? edges[k].a : edges[k].b;
+      if (corner[v] || at_vertex[v].size() != 2) break;
+      k = at_vertex[v][0] == k ? at_vertex[v][1] : at_vertex[v][0];
+    }
+    // Length in radii of each edge: the integral of 1/r, r linear from r0 to r1.
+    std::vector<double> span(line.size());
+    double total = 0;
+    for (size_t i = 0; i < line.size(); ++i) {
+      const Edge& g = edges[line[i].first];
+      const double r0 = sampler.radius_at(g.a), r1 = sampler.radius_at(g.b);
+      const double length = distance(m.position(g.a), m.position(g.b));
+      span[i] = std::abs(r1 - r0) > 1e-12 * r0 ? length * std::log(r1 / r0) / (r1 - r0) : length / r0;
+      total += span[i];
+    }
+    const bool closed = !corner[v];  // a loop back to its first vertex, which is no corner
+    // The point `at` radii along the line, by the same integral inverted in its edge.
+    auto insert_at = [&](double at) {
+      size_t i = 0;
+      double start = 0;  // radii walked before edge i
+      while (i + 1 < line.size() && start + span[i] < at) start += span[i++];
+      const Edge& g = edges[line[i].first];
+      const double x = std::clamp(at - start, 0.0, span[i]);
+      const double r0 = sampler.radius_at(line[i].second ? g.b : g.a), r1 = sampler.radius_at(line[i].second ? g.a : g.b);
+      const double length = distance(m.position(g.a), m.position(g.b));
+      double f = x / span[i];  // fraction of the edge, from its walked start
+      if (std::abs(r1 - r0) > 1e-12 * r0) f = r0 * std::expm1(x * (r1 - r0) / length) / (r1 - r0);
+      f = std::clamp(f, 0.0, 1.0);
+      return insert_on(line[i].first, line[i].second ? 1 - f : f);
+    };
+    // One sample after the other, each at an even share of what is left; one refused (too close
+    // to a sample of another line at a sharp corner) slides on by small steps.
+    double at = 0;
+    if (closed) insert_at(0);
+    for (;;) {
+      const double left = total - at;
+      const long pieces = std::lround(left / kFeatureSpacing);
+      if (pieces <= 1) break;
+      const double target = at + left / static_cast<double>(pieces);
+      at = target;
+      for (double slide = 0; slide <= kFeatureSlide; slide += kFeatureSlideStep)
+        if (insert_at(target + slide)) {
+          at = target + slide;
+          break;
+        }
+    }
+  };
+  for (const auto& [c, v] : corners)
+    for (int k : at_vertex[v])
+      if (!used[k]) walk(v, k);
+  for (int k = 0; k < static_cast<int>(edges.size()); ++k)
+    if (!used[k]) walk(edges[k].a, k);
+  return disks.size() - before;
+}
 
 }  // namespace
 
@@ -285,6 +415,11 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   // Dart throwing until too many consecutive rejections.
   progress("dart throwing");
   const auto dart_start = Clock::now();
+  if (options.sample_features) {
+    progress(fmt::format("darts on the corners and feature edges (normals more than {:g}° apart, and the boundary)",
+                         options.feature_angle));
+    result.feature_samples = sample_features(m, sampler, options.feature_angle);
+  }
   const double sample_cap = 4 * expected + 1000;
   for (int rejections = 0; rejections < options.max_consecutive_rejections && sampler.disks().size() < sample_cap;) {
     const int t = by_area.pick(random);

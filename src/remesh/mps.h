@@ -45,6 +45,12 @@ struct MpsOptions {
   //! memory, which every stage reads by the triangle: faster on meshes stored in no spatial order
   //! (docs/mps.md, "Session 12"). The order changes where the darts land, not what is checked.
   RefineOrder refine_order = RefineOrder::Spatial;
+  //! Darts on the corners and feature edges (boundary edges, and edges whose triangles' normals
+  //! are more than feature_angle degrees apart) before the surface's: the samples then follow the
+  //! features, which the LRRT needs at sharp edges and boundary corners (docs/mps.md, "Features").
+  //! Off by default: the samples on the features are not uniform over the surface.
+  bool sample_features = false;
+  double feature_angle = 60;             //!< degrees, for sample_features
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
@@ -65,7 +71,8 @@ struct MpsResult {
   double scale = 0;               //!< longest side of the input's bounding box (the unit-cube normalisation)
   double radius = 0;              //!< absolute r (r_min when adaptive)
   double max_radius = 0;          //!< absolute largest radius of the radius field
-  int dart_samples = 0;           //!< samples placed by the initial dart throwing
+  int feature_samples = 0;        //!< samples placed on corners and feature edges (MpsOptions::sample_features)
+  int dart_samples = 0;           //!< samples placed by the initial dart throwing (feature samples included)
   int gap_samples = 0;            //!< samples placed into gaps
   std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)
   int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
