@@ -226,6 +226,51 @@ TEST_CASE("Adaptive MPS fills a spot past a sharp fold that a sample's ball hold
   check_sampling(man, r, false);
 }
 
+TEST_CASE("MPS with features samples the corners and feature lines first, and its LRRT keeps them", "[mps][features]") {
+  // Without features a sample near a boundary corner can have a cell that borders one other cell
+  // only (a vertex in no LRRT triangle), and three cells around a sharp edge can meet once on each
+  // face (the same triangle twice): docs/mps.md, "Features".
+  const SurfaceMesh square = test::grid(1, 1);
+  const SurfaceMesh right_triangle({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  const SurfaceMesh cube({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                         {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                          {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}});
+  const SurfaceMesh octahedron = test::octahedron();
+  struct Case {
+    const char* name;
+    const SurfaceMesh* mesh;
+    int corners;
+  };
+  for (const Case& c : {Case{"square", &square, 4}, Case{"right triangle", &right_triangle, 3}, Case{"cube", &cube, 8},
+                        Case{"octahedron", &octahedron, 6}})
+    for (bool adaptive : {false, true})
+      for (double radius : {0.1, 0.05})
+        for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+          INFO(c.name << (adaptive ? " adaptive" : " uniform") << ", r = " << radius << ", seed " << seed);
+          MpsOptions options;
+          options.radius = radius;
+          options.adaptive = adaptive;
+          options.seed = seed;
+          options.sample_features = true;
+          const MpsResult r = maximal_poisson_disk_sampling(*c.mesh, options);
+          REQUIRE(r.feature_samples > c.corners);
+          // The corners come first, where the mesh has them.
+          for (int i = 0; i < c.corners; ++i) {
+            const int t = r.samples.triangles[i];
+            const Vec3& b = r.samples.barycentric[i];
+            const int k = b.x == 1 ? 0 : (b.y == 1 ? 1 : (b.z == 1 ? 2 : -1));
+            REQUIRE(k >= 0);
+            CHECK(r.samples.positions[i] == r.mesh.position(r.mesh.triangle(t)[k]));
+          }
+          // Every feature sample lies on a mesh edge: one barycentric coordinate is zero.
+          for (int i = 0; i < r.feature_samples; ++i) {
+            const Vec3& b = r.samples.barycentric[i];
+            CHECK((b.x == 0 || b.y == 0 || b.z == 0));
+          }
+          check_sampling(*c.mesh, r, true);
+        }
+}
+
 TEST_CASE("The adaptive radius field stays within [r_min, r_max] and changes gradually", "[mps]") {
   const SurfaceMesh elk = cgal_mesh("elk.off");
   MpsOptions options;
@@ -617,7 +662,7 @@ TEST_CASE("The MPS coverage check decides slivers exactly: CGAL's mpi", "[mps][v
   REQUIRE_FALSE(cut.diagram_covers.passed);
 }
 
-TEST_CASE("MPS refuses a non-positive or absurdly small radius, and a split factor below 1", "[mps][input]") {
+TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor below 1, a feature angle out of range", "[mps][input]") {
   const SurfaceMesh sphere = test::icosphere(1);
   MpsOptions options;
   options.split_factor = 0.5;
@@ -632,6 +677,12 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, and a split fact
   options.radius = std::nan("");
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
   options.radius = 1e-6;  // about 10^13 samples
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.radius = 0.1;
+  options.sample_features = true;
+  options.feature_angle = 180;
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.feature_angle = std::nan("");
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
 }
 
@@ -679,6 +730,20 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   const nlohmann::json one = nlohmann::json::parse(one_in);
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
+  CHECK(j["features"].is_null());
+  // --features: corners and feature lines first; on an open square the LRRT keeps its corners.
+  const std::string square = dir + "square.off", feature_report = dir + "report_features.json";
+  write_mesh(square, test::grid(1, 1));
+  std::remove(feature_report.c_str());
+  REQUIRE(run(square + " --radius 0.1 --features --feature-angle 45 -o " + dir + "samples5.xyz --remesh " + dir +
+              "remesh5.off --report " + feature_report) == 0);
+  std::ifstream feature_in(feature_report);
+  const nlohmann::json features = nlohmann::json::parse(feature_in);
+  CHECK(features["features"]["angle_deg"].get<double>() == 45);
+  CHECK(features["features"]["samples"].get<int>() > 4);
+  CHECK(features["verification"]["passed"].get<bool>());
+  CHECK(run(square + " --radius 0.1 --feature-angle 45 -o " + dir + "bad.xyz") == 2);  // without --features
+  CHECK(run(square + " --radius 0.1 --features --feature-angle 0 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-factor 0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-to rmin --split-factor 3 -o " + dir + "bad.xyz") == 2);  // one or the other
   CHECK(run(mesh + " --radius 0.1 --adaptive --split-to coarse -o " + dir + "bad.xyz") == 2);

@@ -92,6 +92,23 @@ class LocalRegions {
   bool reaches(const Vec3& x, int t, double w, int target) {
     return search(x, t, w, [&](int n) { return n == target; });
   }
+  //! The triangles sample i lies on: its own, and with barycentric coordinates that put it exactly
+  //! on an edge or a corner, the other triangles there (SurfaceMesh::triangles_at). Its ball's
+  //! region grows from each: a sample on a sharp edge reaches both faces.
+  const std::vector<int>& seeds(const Samples& s, int i) {
+    seeds_.clear();
+    if (s.barycentric.size() == static_cast<size_t>(s.size()))
+      mesh_.triangles_at(s.triangles[i], s.barycentric[i], seeds_);
+    else
+      seeds_.push_back(s.triangles[i]);
+    return seeds_;
+  }
+  //! Whether `target` is in the region of sample i's ball at weight w.
+  bool sample_reaches(const Samples& s, int i, double w, int target) {
+    for (int t : std::vector<int>(seeds(s, i)))
+      if (reaches(s.positions[i], t, w, target)) return true;
+    return false;
+  }
 
  private:
   // Whether the ball B(x, r), w = r², meets triangle t: the distance from x to t's closest point
@@ -116,7 +133,7 @@ class LocalRegions {
   };
   const SurfaceMesh& mesh_;
   std::vector<TriangleInfo> info_;
-  std::vector<int> queue_;
+  std::vector<int> queue_, seeds_;
   int epoch_ = 0;
 };
 
@@ -132,12 +149,15 @@ struct SampleDisks {
     std::vector<int> found, first(s.size()), count(s.size());
     for (int i : order) {
       first[i] = static_cast<int>(found.size());
-      regions.search(s.positions[i], s.triangles[i], s.weights[i], [&](int n) {
-        found.push_back(n);
-        return false;
-      });
-      count[i] = static_cast<int>(found.size()) - first[i];
+      const std::vector<int> seeds = regions.seeds(s, i);
+      for (int t : seeds)
+        regions.search(s.positions[i], t, s.weights[i], [&](int n) {
+          found.push_back(n);
+          return false;
+        });
       std::sort(found.begin() + first[i], found.end());
+      if (seeds.size() > 1) found.erase(std::unique(found.begin() + first[i], found.end()), found.end());
+      count[i] = static_cast<int>(found.size()) - first[i];
     }
     offset.assign(s.size() + 1, 0);
     for (int i = 0; i < s.size(); ++i) offset[i + 1] = offset[i] + count[i];
@@ -176,8 +196,8 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
           continue;
         }
         ++out.min_distance.checked;
-        const bool local = (s.weights[j] <= w || regions.reaches(x, ti, rho2, t)) &&
-                           regions.reaches(s.positions[j], t, rho2, ti);
+        const bool local = (s.weights[j] <= w || regions.sample_reaches(s, i, rho2, t)) &&
+                           regions.sample_reaches(s, j, rho2, ti);
         if (!local) {
           ++out.one_sided_close_pairs;
           continue;

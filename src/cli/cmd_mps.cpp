@@ -35,6 +35,7 @@ struct MpsCommandOptions {
   bool exact = false;
   bool features = false;
   double feature_angle = MpsOptions{}.feature_angle;
+  bool feature_angle_given = false;  // set by the parser's callback below
 };
 
 int run_mps(const MpsCommandOptions& opt) {
@@ -54,6 +55,7 @@ int run_mps(const MpsCommandOptions& opt) {
   if (opt.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
   options.split_factor = opt.split_factor;
+  if (opt.feature_angle_given && !opt.features) throw InputError("--feature-angle applies to --features");
   options.sample_features = opt.features;
   options.feature_angle = opt.feature_angle;
   options.on_progress = [](const std::string& message) { progress(message); };
@@ -192,6 +194,7 @@ Action add_mps_command(CLI::App& app) {
                   "With --features: an edge is a feature when its triangles' normals are more than this many "
                   "degrees apart")
       ->check(CLI::Range(1.0, 179.0))
+      ->each([opt](const std::string&) { opt->feature_angle_given = true; })
       ->capture_default_str();
   cmd->add_flag("--repair", opt->repair, "Weld, clean, orient and stitch a triangle soup before use");
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();

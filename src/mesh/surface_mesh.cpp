@@ -80,6 +80,21 @@ void SurfaceMesh::build_topology() {
   finish_topology();
 }
 
+void SurfaceMesh::triangles_at(int t, const Vec3& bary, std::vector<int>& out) const {
+  out.push_back(t);
+  const int zeros = (bary.x == 0) + (bary.y == 0) + (bary.z == 0);
+  if (zeros == 2) {
+    const int v = triangles_[t][bary.x != 0 ? 0 : (bary.y != 0 ? 1 : 2)];
+    for (const int* s = vertex_triangles_begin(v); s != vertex_triangles_end(v); ++s)
+      if (*s != t) out.push_back(*s);
+  } else if (zeros == 1) {
+    // Edge e joins corners e and e + 1: the one without corner k is k + 1.
+    const int k = bary.x == 0 ? 0 : (bary.y == 0 ? 1 : 2);
+    const int across = neighbor(t, (k + 1) % 3);
+    if (across >= 0) out.push_back(across);
+  }
+}
+
 void SurfaceMesh::build_vertex_triangles() {
   const int nt = triangle_count(), nv = vertex_count();
 

@@ -48,6 +48,10 @@ class SurfaceMesh {
   int neighbor(int t, int e) const { return neighbors_[t][e]; }
   //! Which edge of triangle `across` is the edge e of t (valid only when neighbor(t,e) >= 0).
   int neighbor_edge(int t, int e) const;
+  //! The triangles a point of triangle t with barycentric coordinates `bary` lies on, appended to
+  //! `out`: t, and where one coordinate is exactly 0 the triangle across that edge, where two are
+  //! every other triangle around the vertex.
+  void triangles_at(int t, const Vec3& bary, std::vector<int>& out) const;
   //! Triangles incident to vertex v.
   const int* vertex_triangles_begin(int v) const { return vt_triangles_.data() + vt_offsets_[v]; }
   const int* vertex_triangles_end(int v) const { return vt_triangles_.data() + vt_offsets_[v + 1]; }

@@ -110,14 +110,12 @@ class Sampler {
   //! Radius at vertex v of the mesh.
   double radius_at(int v) const { return vertex_radius_.empty() ? std::sqrt(r_min2_) : std::max(vertex_radius_[v], std::sqrt(r_min2_)); }
 
-  //! Inserts the dart if it is accepted; its local region is then last_region(). A dart on a
-  //! feature (`all_sides`) registers its disk in every triangle its ball meets, whichever way they
-  //! face: the darts on the other side of a sharp edge then keep their distance from it too.
-  bool try_insert(const Vec3& p, int t, const Vec3& bary, bool all_sides = false) {
+  //! Inserts the dart if it is accepted; its local region is then last_region().
+  bool try_insert(const Vec3& p, int t, const Vec3& bary) {
     if (disks_.in_some_disk(p, t)) return false;
     const double w = weight_at(t, bary);
     if (vertex_radius_.empty()) {
-      region_ = all_sides ? disks_.met(p, t, w) : disks_.grow(p, t, w);
+      region_of(p, t, bary, w);
       disks_.insert(p, t, bary, w, region_);
       return true;
     }
@@ -133,13 +131,29 @@ class Sampler {
       ++power_cell_exceptions_;
     }
     if (hi < w) ++clamped_;
-    region_ = all_sides ? disks_.met(p, t, hi) : disks_.grow(p, t, hi);
+    region_of(p, t, bary, hi);
     disks_.insert(p, t, bary, hi, region_);
     return true;
   }
 
  private:
   static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
+
+  //! region_ = the local region of (p, w): grown from t and, for a point on an edge or a corner
+  //! (a barycentric coordinate exactly 0: a dart on a feature), from every other triangle it lies
+  //! on, so that on a sharp edge or corner the darts on every face around keep their distance.
+  void region_of(const Vec3& p, int t, const Vec3& bary, double w) {
+    region_ = disks_.grow(p, t, w);
+    seeds_.clear();
+    mesh_.triangles_at(t, bary, seeds_);
+    if (seeds_.size() == 1) return;
+    for (size_t k = 1; k < seeds_.size(); ++k) {
+      const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
+      region_.insert(region_.end(), more.begin(), more.end());
+    }
+    std::sort(region_.begin(), region_.end());
+    region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
+  }
 
   enum class Admission { Radius, NoRadius, Rejected };
   //! The samples around p whose power cells p's radius must keep apart from its own.
@@ -159,13 +173,13 @@ class Sampler {
       disks_.for_each_center(s, [&](int j) {
         if (reject) return;
         const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
-        if (against == Against::Local && !disks_.reaches(disks_.center(j), s, std::max(w, wj), t)) return;
+        if (against == Against::Local && !disks_.sample_reaches(j, std::max(w, wj), t)) return;
         hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
         lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
         if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
         // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j) (on p's
         // side, meeting the ball and facing alike is taken as enough: cutting more is safe).
-        if (!disks_.reaches(disks_.center(j), disks_.triangle(j), std::max(hi, wj), t)) return;
+        if (!disks_.sample_reaches(j, std::max(hi, wj), t)) return;
         if (inside_disk(p, disks_.center(j), wj)) {
           reject = true;  // closer than r_j: no radius for p helps
           return;
@@ -180,6 +194,7 @@ class Sampler {
   const SurfaceMesh& mesh_;
   double r_min2_;
   std::vector<double> vertex_radius_;
+  std::vector<int> seeds_;  // region_of()'s triangles to grow from
   DiskIndex disks_;
   std::vector<int> region_, met_;
   int clamped_ = 0, power_cell_exceptions_ = 0;
@@ -217,13 +232,14 @@ int sample_features(const SurfaceMesh& m, Sampler& sampler, double angle_deg) {
     }
   if (edges.empty()) return 0;
   const int before = disks.size();
-  // A point of edge k at `u` from its end a to its end b.
+  // A point of edge k at `u` from its end a to its end b (exactly on the edge: its region grows on
+  // both sides, Sampler::region_of).
   auto insert_on = [&](int k, double u) {
     const Edge& g = edges[k];
     Vec3 bary;
     bary[g.e] = 1 - u;
     bary[(g.e + 1) % 3] = u;
-    return sampler.try_insert((1 - u) * m.position(g.a) + u * m.position(g.b), g.t, bary, true);
+    return sampler.try_insert((1 - u) * m.position(g.a) + u * m.position(g.b), g.t, bary);
   };
   // Corners, the sharpest first: a vertex with other than two feature edges, or with two that
   // turn by more than the feature angle.
@@ -362,6 +378,8 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     throw InputError(fmt::format("the Poisson-disk radius must be a positive number (got {})", options.radius));
   if (!(options.split_factor >= 1) || !std::isfinite(options.split_factor))
     throw InputError(fmt::format("the split factor must be a number of at least 1 (got {})", options.split_factor));
+  if (options.sample_features && !(options.feature_angle > 0 && options.feature_angle < 180))
+    throw InputError(fmt::format("the feature angle must be between 0 and 180 degrees (got {})", options.feature_angle));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);

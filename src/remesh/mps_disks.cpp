@@ -165,6 +165,14 @@ bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
   return search(p, t, w, true, [&](int n) { return n == target; });
 }
 
+bool DiskIndex::sample_reaches(int i, double w, int target) {
+  seeds_.clear();
+  mesh_.triangles_at(triangles_[i], barycentric_[i], seeds_);
+  for (int s : seeds_)
+    if (reaches(center(i), s, w, target)) return true;
+  return false;
+}
+
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {
   const int i = size();
   disk_records_.push_back({p, w});

@@ -73,6 +73,9 @@ class DiskIndex {
   //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
   //! not met()'s).
   bool reaches(const Vec3& p, int t, double w, int target);
+  //! Whether `target` is in the local region of sample i's ball at weight w, grown from every
+  //! triangle the sample lies on (SurfaceMesh::triangles_at).
+  bool sample_reaches(int i, double w, int target);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
   int insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region);
@@ -135,7 +138,7 @@ class DiskIndex {
   std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
   std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
   std::uint32_t vertex_stamp_value_ = 0;
-  std::vector<int> region_, queue_;
+  std::vector<int> region_, queue_, seeds_;
   std::vector<TriangleInfo> triangles_info_;  // per triangle
   std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
