@@ -297,6 +297,7 @@ int sample_features(const SurfaceMesh& m, Sampler& sampler, double angle_deg) {
       const double x = std::clamp(at - start, 0.0, span[i]);
       const double r0 = sampler.radius_at(line[i].second ? g.b : g.a), r1 = sampler.radius_at(line[i].second ? g.a : g.b);
       const double length = distance(m.position(g.a), m.position(g.b));
+      if (!(span[i] > 0)) return insert_on(line[i].first, line[i].second ? 1.0 : 0.0);  // an edge of length 0
       double f = x / span[i];  // fraction of the edge, from its walked start
       if (std::abs(r1 - r0) > 1e-12 * r0) f = r0 * std::expm1(x * (r1 - r0) / length) / (r1 - r0);
       f = std::clamp(f, 0.0, 1.0);
