@@ -95,12 +95,22 @@ class LocalRegions {
   //! The triangles sample i lies on: its own, and with barycentric coordinates that put it exactly
   //! on an edge or a corner, the other triangles there (SurfaceMesh::triangles_at). Its ball's
   //! region grows from each: a sample on a sharp edge reaches both faces.
+  //! The coordinates are taken only where they give the sample's position back (to rounding), so
+  //! that they cannot place a sample on an edge it is not on.
   const std::vector<int>& seeds(const Samples& s, int i) {
     seeds_.clear();
-    if (s.barycentric.size() == static_cast<size_t>(s.size()))
-      mesh_.triangles_at(s.triangles[i], s.barycentric[i], seeds_);
-    else
-      seeds_.push_back(s.triangles[i]);
+    const int t = s.triangles[i];
+    if (s.barycentric.size() == static_cast<size_t>(s.size())) {
+      const Vec3& b = s.barycentric[i];
+      const Triangle& tri = mesh_.triangle(t);
+      const Vec3 q = b.x * mesh_.position(tri[0]) + b.y * mesh_.position(tri[1]) + b.z * mesh_.position(tri[2]);
+      const double scale = info_[t].radius + norm(info_[t].center);
+      if (squared_distance(q, s.positions[i]) <= 1e-24 * scale * scale) {
+        mesh_.triangles_at(t, b, seeds_);
+        return seeds_;
+      }
+    }
+    seeds_.push_back(t);
     return seeds_;
   }
   //! Whether `target` is in the region of sample i's ball at weight w.
