@@ -115,7 +115,7 @@ class LocalRegions {
   }
   //! Whether `target` is in the region of sample i's ball at weight w.
   bool sample_reaches(const Samples& s, int i, double w, int target) {
-    for (int t : std::vector<int>(seeds(s, i)))
+    for (int t : seeds(s, i))  // search() leaves seeds_ alone
       if (reaches(s.positions[i], t, w, target)) return true;
     return false;
   }
@@ -159,7 +159,7 @@ struct SampleDisks {
     std::vector<int> found, first(s.size()), count(s.size());
     for (int i : order) {
       first[i] = static_cast<int>(found.size());
-      const std::vector<int> seeds = regions.seeds(s, i);
+      const std::vector<int>& seeds = regions.seeds(s, i);  // search() leaves it alone
       for (int t : seeds)
         regions.search(s.positions[i], t, s.weights[i], [&](int n) {
           found.push_back(n);

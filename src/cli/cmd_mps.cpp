@@ -188,7 +188,7 @@ Action add_mps_command(CLI::App& app) {
       ->each([opt](const std::string&) { opt->split_factor_given = true; })
       ->capture_default_str();
   cmd->add_flag("--features", opt->features,
-                "Darts on the corners and feature edges first (the boundary, and edges sharper than --feature-angle): "
+                "Samples on the corners and feature lines first (the boundary, and edges sharper than --feature-angle): "
                 "the LRRT then keeps them; the samples there are not uniform");
   cmd->add_option("--feature-angle", opt->feature_angle,
                   "With --features: an edge is a feature when its triangles' normals are more than this many "

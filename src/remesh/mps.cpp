@@ -435,7 +435,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   progress("dart throwing");
   const auto dart_start = Clock::now();
   if (options.sample_features) {
-    progress(fmt::format("darts on the corners and feature edges (normals more than {:g}° apart, and the boundary)",
+    progress(fmt::format("samples on the corners and feature lines (edges with normals more than {:g}° apart, and the boundary)",
                          options.feature_angle));
     result.feature_samples = sample_features(m, sampler, options.feature_angle);
   }

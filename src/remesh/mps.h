@@ -45,8 +45,8 @@ struct MpsOptions {
   //! memory, which every stage reads by the triangle: faster on meshes stored in no spatial order
   //! (docs/mps.md, "Session 12"). The order changes where the darts land, not what is checked.
   RefineOrder refine_order = RefineOrder::Spatial;
-  //! Darts on the corners and feature edges (boundary edges, and edges whose triangles' normals
-  //! are more than feature_angle degrees apart) before the surface's: the samples then follow the
+  //! Samples on the corners and feature lines (boundary edges, and edges whose triangles' normals
+  //! are more than feature_angle degrees apart) before the surface's darts: the samples then follow the
   //! features, which the LRRT needs at sharp edges and boundary corners (docs/mps.md, "Features").
   //! Off by default: the samples on the features are not uniform over the surface.
   bool sample_features = false;
