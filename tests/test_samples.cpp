@@ -166,6 +166,30 @@ TEST_CASE("Points are located on the mesh by closest point") {
   }
 }
 
+TEST_CASE("Closest-point queries answer alike at any scale of the mesh") {
+  // The BVH is in floats: at 1e20 its squared distances overflowed (no triangle was found) and at
+  // 1e-25 they vanished. It sees the mesh scaled by a power of two, so the triangle found is the
+  // same and the point and distance scale with the mesh exactly.
+  const SurfaceMesh mesh = test::icosphere(3);
+  const ClosestPointIndex index(mesh);
+  const Samples truth = sample_uniform(mesh, 100, 6);
+  for (int k : {-90, -40, 40, 70}) {
+    const double s = std::ldexp(1.0, k);
+    std::vector<Vec3> scaled = mesh.positions();
+    for (Vec3& p : scaled) p = s * p;
+    const ClosestPointIndex big(SurfaceMesh(scaled, mesh.triangles()));
+    for (int i = 0; i < truth.size(); ++i)
+      for (double off : {1.0, 1.2, 0.9}) {
+        const ClosestPoint a = index.query(off * truth.positions[i]);
+        const ClosestPoint b = big.query(s * off * truth.positions[i]);
+        INFO("2^" << k << " sample " << i);
+        REQUIRE(b.triangle == a.triangle);
+        REQUIRE(b.point == s * a.point);
+        REQUIRE(b.distance == s * a.distance);
+      }
+  }
+}
+
 TEST_CASE("A hinted closest-point query gives the unhinted answer") {
   // Points near and far from the surface, each with a hint nearby (its own triangle, a moved
   // point's old triangle) and one far away: the triangle and the point must not change, ties

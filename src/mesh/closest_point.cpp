@@ -84,6 +84,10 @@ ClosestPoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3&
 struct ClosestPointIndex::Impl {
   std::vector<Vec3> positions;
   std::vector<std::array<int, 3>> triangles;
+  // Embree works in floats: it sees the mesh times this power of two, which brings the largest
+  // coordinate into [1, 2), so that squared distances neither overflow nor vanish whatever the
+  // model's unit. Scaling by a power of two is exact, so the traversal is the same at any scale.
+  double scale = 1;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
 };
@@ -108,6 +112,7 @@ void triangle_bounds(const RTCBoundsFunctionArguments* args) {
       lo[c] = std::min(lo[c], impl->positions[tri[k]][c]);
       hi[c] = std::max(hi[c], impl->positions[tri[k]][c]);
     }
+  lo = impl->scale * lo, hi = impl->scale * hi;
   RTCBounds* box = args->bounds_o;
   box->lower_x = round_down(lo.x), box->lower_y = round_down(lo.y), box->lower_z = round_down(lo.z);
   box->upper_x = round_up(hi.x), box->upper_y = round_up(hi.y), box->upper_z = round_up(hi.z);
@@ -116,7 +121,7 @@ void triangle_bounds(const RTCBoundsFunctionArguments* args) {
 struct QueryState {
   const ClosestPointIndex::Impl* impl;
   Vec3 p;
-  double query_offset;  // |p - float(p)|: the BVH measures from the rounded query point
+  double query_offset;  // |p - float(p)| in Embree's units: the BVH measures from the rounded query point
   const int* group;     // if not null: only triangles t with group[t] == group_id count
   int group_id;
   ClosestPoint best;
@@ -131,7 +136,7 @@ bool visit_triangle(RTCPointQueryFunctionArguments* args) {
   if (state->best.triangle >= 0 && !(c.distance < state->best.distance)) return false;
   c.triangle = static_cast<int>(args->primID);
   state->best = c;
-  args->query->radius = round_up((c.distance + state->query_offset) * (1 + 1e-12));
+  args->query->radius = round_up((state->impl->scale * c.distance + state->query_offset) * (1 + 1e-12));
   return true;
 }
 
@@ -142,6 +147,9 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
     : impl_(std::make_unique<Impl>()) {
   impl_->positions = positions;
   impl_->triangles = triangles;
+  double largest = 0;
+  for (const Vec3& p : positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  if (largest > 0 && std::isfinite(largest)) impl_->scale = std::ldexp(1.0, -std::ilogb(largest));
   impl_->device = rtcNewDevice("threads=1");
   if (!impl_->device) throw std::runtime_error("Embree device could not be created");
   impl_->scene = rtcNewScene(impl_->device);
@@ -168,9 +176,10 @@ ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const { return qu
 
 ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, int g, int hint) const {
   RTCPointQuery q;
-  q.x = static_cast<float>(p.x), q.y = static_cast<float>(p.y), q.z = static_cast<float>(p.z);
+  const Vec3 scaled = impl_->scale * p;
+  q.x = static_cast<float>(scaled.x), q.y = static_cast<float>(scaled.y), q.z = static_cast<float>(scaled.z);
   const Vec3 rounded{q.x, q.y, q.z};
-  QueryState state{impl_.get(), p, distance(p, rounded), group, g, {}};
+  QueryState state{impl_.get(), p, distance(scaled, rounded), group, g, {}};
   q.time = 0;
   q.radius = std::numeric_limits<float>::infinity();
   if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size()) && (!group || group[hint] == g)) {
@@ -180,7 +189,7 @@ ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, in
     const auto& tri = impl_->triangles[hint];
     const auto& pos = impl_->positions;
     const double d = closest_point_on_triangle(p, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
-    q.radius = round_up((d + state.query_offset) * (1 + 1e-12));
+    q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 1e-12));
   }
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
