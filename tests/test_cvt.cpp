@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
@@ -111,6 +112,28 @@ TEST_CASE("The CVT stops on relative changes: a model 1024 times smaller is opti
   REQUIRE(b.iterations == a.iterations);
   const double drop_a = a.energy / a.energy_history.front(), drop_b = b.energy / b.energy_history.front();
   REQUIRE(drop_b == Approx(drop_a).epsilon(0.01));
+}
+
+TEST_CASE("Remeshing and sampling refuse a model too large or too small for doubles, naming its size", "[cvt][remesh]") {
+  const SurfaceMesh unit = test::icosphere(2);
+  for (double s : {1e-200, 1e40, 1e200}) {
+    std::vector<Vec3> scaled = unit.positions();
+    for (Vec3& p : scaled) p = s * p;
+    const SurfaceMesh mesh(scaled, unit.triangles());
+    REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, sample_uniform(mesh, 20, 1)),
+                        Catch::Contains("across") && Catch::Contains("scale the model first"));
+    REQUIRE_THROWS_AS(quality_metrics(mesh, mesh.positions(), mesh.triangles()), InputError);
+  }
+  // Inside the range the models work: 1e-25 and 1e25 across.
+  for (double s : {1e-25, 1e25}) {
+    std::vector<Vec3> scaled = unit.positions();
+    for (Vec3& p : scaled) p = s * p;
+    const SurfaceMesh mesh(scaled, unit.triangles());
+    const RemeshResult r = remesh_cvt(mesh, mesh, sample_uniform(mesh, 40, 1));
+    const RemeshVerification check = verify_remesh(mesh, r.dual.positions, r.dual.triangles, 40);
+    INFO(s << "\n" << check.summary());
+    REQUIRE(check.passed);
+  }
 }
 
 TEST_CASE("A CVT given the diagram of its start computes no diagram twice and ends where it would without it", "[cvt]") {

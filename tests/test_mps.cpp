@@ -302,6 +302,27 @@ TEST_CASE("MPS is reproducible from its seed", "[mps]") {
   CHECK(!(c.samples.positions[0] == a.samples.positions[0]));
 }
 
+TEST_CASE("MPS is the same at any scale of the model: the icosphere scaled by 2^-60 and 2^60", "[mps]") {
+  // The radius is relative to the model's size and every test scales with it: a power-of-two
+  // scaling (exact) gives the same samples, times the factor, uniform and adaptive.
+  const SurfaceMesh sphere = test::icosphere(2);
+  for (bool adaptive : {false, true}) {
+    MpsOptions options;
+    options.radius = 0.08;
+    options.adaptive = adaptive;
+    const MpsResult base = maximal_poisson_disk_sampling(sphere, options);
+    for (int k : {-60, 60}) {
+      const double s = std::ldexp(1.0, k);
+      std::vector<Vec3> scaled = sphere.positions();
+      for (Vec3& p : scaled) p = s * p;
+      const MpsResult r = maximal_poisson_disk_sampling(SurfaceMesh(scaled, sphere.triangles()), options);
+      INFO((adaptive ? "adaptive" : "uniform") << " 2^" << k);
+      REQUIRE(r.samples.size() == base.samples.size());
+      for (int i = 0; i < r.samples.size(); ++i) REQUIRE(r.samples.positions[i] == s * base.samples.positions[i]);
+    }
+  }
+}
+
 TEST_CASE("MPS darts are unbiased: uniform by area over a very uneven triangulation", "[mps][statistics]") {
   // The unit square with columns at x = (i/n)²: triangles 60 times narrower on the left than on
   // the right. The first darts of a run are hardly ever rejected, so they are (nearly)
@@ -684,6 +705,13 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor b
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
   options.feature_angle = std::nan("");
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  // A model whose areas would overflow or vanish in doubles.
+  options.sample_features = false;
+  for (double s : {1e-100, 1e100}) {
+    std::vector<Vec3> scaled = sphere.positions();
+    for (Vec3& p : scaled) p = s * p;
+    CHECK_THROWS_AS(maximal_poisson_disk_sampling(SurfaceMesh(scaled, sphere.triangles()), options), InputError);
+  }
 }
 
 TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
@@ -751,4 +779,18 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(run(mesh + " --radius=-0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 1e-7 -o " + dir + "bad.xyz") == 2);  // would need ~10^14 samples
   CHECK(run(dir + "missing.off --radius 0.1 -o " + dir + "bad.xyz") == 2);
+  // One disk covers the whole triangle: the LRRT of one sample has no triangles. The remesh fails
+  // its checks (exit 3) and has no quality to measure; the report says so.
+  const std::string one_triangle = dir + "triangle.off", lone_report = dir + "report_lone.json";
+  write_mesh(one_triangle, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
+  std::remove(lone_report.c_str());
+  REQUIRE(run(one_triangle + " --radius 2 -o " + dir + "lone.xyz --remesh " + dir + "lone.off --report " + lone_report) ==
+          3);
+  std::ifstream lone_in(lone_report);
+  REQUIRE(lone_in.good());
+  const nlohmann::json lone = nlohmann::json::parse(lone_in);
+  CHECK(lone["samples"].get<int>() == 1);
+  CHECK(lone["maximal"].get<bool>());
+  CHECK(lone["quality"].is_null());
+  CHECK(!lone["verification"]["passed"].get<bool>());
 }

@@ -124,16 +124,24 @@ int run_mps(const MpsCommandOptions& opt) {
     const DualMesh dual = compute_dual(lrpd, result.mesh, samples);
     write_mesh(opt.remesh, dual.positions, dual.triangles);
     const RemeshVerification remesh_check = verify_remesh(input, dual.positions, dual.triangles, samples.size());
-    const QualityMetrics quality = quality_metrics(input, dual.positions, dual.triangles);
-    report["quality"] = remesh_quality_json(quality, remesh_check);
+    // An LRRT without triangles (a sample or two on the whole surface) fails the checks and has
+    // nothing to measure.
+    const bool measurable = !dual.triangles.empty();
+    const QualityMetrics quality =
+        measurable ? quality_metrics(input, dual.positions, dual.triangles) : QualityMetrics{};
+    report["quality"] = measurable ? remesh_quality_json(quality, remesh_check) : nlohmann::json(nullptr);
     report["verification"] = remesh_check.to_json();
     report["remesh"] = {{"path", opt.remesh}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
     remesh_ok = remesh_check.passed;
     std::printf("remesh (LRRT): %zu vertices, %zu triangles -> %s; verification: %s\n", dual.positions.size(),
                 dual.triangles.size(), opt.remesh.c_str(), remesh_ok ? "passed" : "FAILED");
     if (!remesh_ok) std::fputs(remesh_check.summary().c_str(), stdout);
-    std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% angles < 30 deg, Hausdorff %.3f%%\n", quality.q_min,
-                quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_angles_below_30, quality.hausdorff_pct);
+    if (measurable)
+      std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% angles < 30 deg, Hausdorff %.3f%%\n",
+                  quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_angles_below_30,
+                  quality.hausdorff_pct);
+    else
+      std::printf("quality: not measured (the remesh has no triangles)\n");
   }
   report["predicates"] = predicates_json();
   if (!opt.report.empty()) write_json(opt.report, report);

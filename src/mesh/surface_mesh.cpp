@@ -371,4 +371,16 @@ double SurfaceMesh::max_edge_length() const {
   return longest;
 }
 
+void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+  // Measured without squaring the extents, which would overflow or vanish outside the range.
+  const BoundingBox box = mesh.bounding_box();
+  const Vec3 extent = box.max - box.min;
+  const double largest = std::max({extent.x, extent.y, extent.z});
+  const double diagonal = largest > 0 ? largest * norm(extent / largest) : 0.0;
+  if (!(diagonal >= kSmallestModel && diagonal <= kLargestModel))
+    throw InputError(fmt::format("the model is {:.3g} across (bounding-box diagonal); {} works with sizes from {:g} to "
+                                 "{:g}: scale the model first",
+                                 diagonal, task, kSmallestModel, kLargestModel));
+}
+
 }  // namespace lrvd

@@ -134,6 +134,14 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
 SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths,
                                    RefineOrder order = RefineOrder::Input);
 
+//! Sizes (bounding-box diagonals) the remesher, the sampler and the quality metrics work with:
+//! their areas, energies and squared distances are doubles, and stay far from overflow and
+//! underflow over this range (remesh and MPS measured valid from 1e-28 to 1e42 on the elk).
+constexpr double kSmallestModel = 1e-30, kLargestModel = 1e30;
+//! \throw InputError, saying to scale the model, when its diagonal is outside
+//! [kSmallestModel, kLargestModel]; `task` names what needs it ("remeshing").
+void require_workable_size(const SurfaceMesh& mesh, const char* task);
+
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.
 double suggested_refinement_length(const SurfaceMesh& mesh, int n);

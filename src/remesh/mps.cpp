@@ -382,6 +382,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   if (options.sample_features && !(options.feature_angle > 0 && options.feature_angle < 180))
     throw InputError(fmt::format("the feature angle must be between 0 and 180 degrees (got {})", options.feature_angle));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
+  require_workable_size(mesh, "Poisson-disk sampling");
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);
   };

@@ -328,6 +328,7 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
 
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options) {
+  require_workable_size(reference, "remeshing");
   const auto start = std::chrono::steady_clock::now();
   const bool components_cross = components_intersect(reference);
   const ClosestPointIndex index(mesh);  // one for every CVT and repair round
