@@ -114,6 +114,31 @@ TEST_CASE("The CVT stops on relative changes: a model 1024 times smaller is opti
   REQUIRE(drop_b == Approx(drop_a).epsilon(0.01));
 }
 
+TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 2^30", "[cvt][remesh]") {
+  // L-BFGS's first step moves the sites one unit of its variables: in the model's own unit, the
+  // elk 516 took 95 evaluations at 2^5 its size (Qmin 0.561) and failed its line searches at 2^-40.
+  // Its variables are now in a power of two of the cell size, so a power-of-two scaling of the
+  // model scales the whole run exactly: the same triangles, every vertex times the factor.
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  const Samples start = sample_uniform(elk, 516, 1);
+  const RemeshResult base = remesh_cvt(elk, elk, start);
+  REQUIRE(base.repair_rounds > 0);  // the case goes through the repair rounds and the fitting
+  for (int k : {-30, 30}) {
+    const double s = std::ldexp(1.0, k);
+    std::vector<Vec3> scaled = elk.positions();
+    for (Vec3& p : scaled) p = s * p;
+    const SurfaceMesh mesh(scaled, elk.triangles());
+    Samples moved = start;
+    for (Vec3& p : moved.positions) p = s * p;
+    const RemeshResult r = remesh_cvt(mesh, mesh, moved);
+    INFO("2^" << k);
+    REQUIRE(r.diagram_evaluations == base.diagram_evaluations);
+    REQUIRE(r.dual.triangles == base.dual.triangles);
+    REQUIRE(r.dual.positions.size() == base.dual.positions.size());
+    for (size_t v = 0; v < r.dual.positions.size(); ++v) REQUIRE(r.dual.positions[v] == s * base.dual.positions[v]);
+  }
+}
+
 TEST_CASE("Remeshing and sampling refuse a model too large or too small for doubles, naming its size", "[cvt][remesh]") {
   const SurfaceMesh unit = test::icosphere(2);
   for (double s : {1e-200, 1e40, 1e200}) {

@@ -195,9 +195,16 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     // solver computes exactly, so a model whose energy stays above 1 takes the same steps.
     const int exponent = current.energy > 0 && std::isfinite(current.energy) ? std::ilogb(current.energy) : 30;
     const double scale = std::ldexp(1.0, std::clamp(30 - exponent, 0, 600));
+    // The solver's variables are the positions in a unit tied to the mean cell size h: its first
+    // step moves the sites by one unit, so in the model's own unit the run would depend on the
+    // unit (elk 516 scaled by 2^5: 95 evaluations, Qmin 0.561; by 2^-40: failed line searches,
+    // Qmin 0.464). A power of two between h/16 and h/8 scales exactly: the run is the same at any
+    // scale of the model (docs/results.md, "The model's unit").
+    const double cell_size = std::sqrt(mesh.area() / n);
+    const double unit = cell_size > 0 && std::isfinite(cell_size) ? std::ldexp(1.0, std::ilogb(cell_size) - 3) : 1.0;
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
       ++lbfgs_evaluations;
-      const std::vector<Vec3> points = to_points(x);
+      const std::vector<Vec3> points = to_points(x * unit);
       const bool at_start = lbfgs_evaluations == 1 && points == start_points;
       project(index, points, samples, false, &mesh, &cells);
       const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh, samples, options.diagram, density);
@@ -205,7 +212,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
       if (!at_start) ++result.diagram_evaluations;
       grad.resize(3 * n);
       for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) grad[3 * i + c] = scale * e.gradient[i][c];
+        for (int c = 0; c < 3; ++c) grad[3 * i + c] = scale * unit * e.gradient[i][c];
       if (e.energy < best_energy) {
         best_energy = e.energy;
         best = samples;
@@ -213,8 +220,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
       return scale * e.energy;
     };
     LBFGSpp::LBFGSParam<double> param;
-    const double cell_size = std::sqrt(mesh.area() / n);
-    param.epsilon = options.relative_gradient * scale * current.energy / cell_size;
+    param.epsilon = options.relative_gradient * scale * unit * current.energy / cell_size;
     param.epsilon_rel = 0;
     param.past = 1;
     param.delta = options.relative_energy_change;
@@ -223,7 +229,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     LBFGSpp::LBFGSSolver<double> solver(param);
     Eigen::VectorXd x(3 * n);
     for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) x[3 * i + c] = samples.positions[i][c];
+      for (int c = 0; c < 3; ++c) x[3 * i + c] = samples.positions[i][c] / unit;
     double fx = 0;
     int lbfgs_iterations = 0;
     try {

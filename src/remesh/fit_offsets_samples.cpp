@@ -51,7 +51,7 @@ void signed_offset(const Vec3& to, const Vec3& from, const Vec3& normal, double&
   const double length = norm(u);
   const double sign = dot(u, normal) >= 0 ? 1.0 : -1.0;
   d = sign * length;
-  direction = length > 1e-12 * (norm(to) + norm(from) + 1) ? (sign / length) * u : normal;
+  direction = length > 1e-12 * (norm(to) + norm(from)) ? (sign / length) * u : normal;
 }
 
 }  // namespace
