@@ -149,7 +149,8 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
   impl_->triangles = triangles;
   double largest = 0;
   for (const Vec3& p : positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  if (largest > 0 && std::isfinite(largest)) impl_->scale = std::ldexp(1.0, -std::ilogb(largest));
+  // (A subnormal largest coordinate would need a factor beyond the doubles: it gets 2^1000.)
+  if (largest > 0 && std::isfinite(largest)) impl_->scale = std::ldexp(1.0, std::min(-std::ilogb(largest), 1000));
   impl_->device = rtcNewDevice("threads=1");
   if (!impl_->device) throw std::runtime_error("Embree device could not be created");
   impl_->scene = rtcNewScene(impl_->device);

@@ -199,7 +199,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     // step moves the sites by one unit, so in the model's own unit the run would depend on the
     // unit (elk 516 scaled by 2^5: 95 evaluations, Qmin 0.561; by 2^-40: failed line searches,
     // Qmin 0.464). A power of two between h/16 and h/8 scales exactly: the run is the same at any
-    // scale of the model (docs/results.md, "The model's unit").
+    // scale of the model (docs/results.md, "Session 16: the same table in any unit").
     const double cell_size = std::sqrt(mesh.area() / n);
     const double unit = cell_size > 0 && std::isfinite(cell_size) ? std::ldexp(1.0, std::ilogb(cell_size) - 3) : 1.0;
     auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
