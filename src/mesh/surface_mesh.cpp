@@ -372,11 +372,10 @@ double SurfaceMesh::max_edge_length() const {
 }
 
 void require_workable_size(const SurfaceMesh& mesh, const char* task) {
-  // Measured without squaring the extents, which would overflow or vanish outside the range.
+  // std::hypot, not BoundingBox::diagonal(): squaring the extents would overflow or vanish outside the range.
   const BoundingBox box = mesh.bounding_box();
   const Vec3 extent = box.max - box.min;
-  const double largest = std::max({extent.x, extent.y, extent.z});
-  const double diagonal = largest > 0 ? largest * norm(extent / largest) : 0.0;
+  const double diagonal = std::hypot(extent.x, extent.y, extent.z);
   if (!(diagonal >= kSmallestModel && diagonal <= kLargestModel))
     throw InputError(fmt::format("the model is {:.3g} across (bounding-box diagonal); {} works with sizes from {:g} to "
                                  "{:g}: scale the model first",
