@@ -2,6 +2,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "common/error.h"
 #include "mesh/mesh_io.h"
@@ -121,8 +125,22 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
   // model scales the whole run exactly: the same triangles, every vertex times the factor.
   const SurfaceMesh elk = cgal_mesh("elk.off");
   const Samples start = sample_uniform(elk, 516, 1);
-  const RemeshResult base = remesh_cvt(elk, elk, start);
+  RemeshOptions options;
+  std::vector<std::string> lines;
+  options.on_progress = [&](const std::string& line) { lines.push_back(line); };
+  const RemeshResult base = remesh_cvt(elk, elk, start, options);
   REQUIRE(base.repair_rounds > 0);  // the case goes through the repair rounds and the fitting
+  // The progress lines tell each step: the first CVT's defects, each round before and after, the
+  // fitting.
+  REQUIRE(lines.size() == 2 + 2 * static_cast<size_t>(base.repair_rounds));
+  CHECK_THAT(lines.front(), Catch::StartsWith("CVT: ") && Catch::Contains("topological defects"));
+  for (int k = 1; k <= base.repair_rounds; ++k) {
+    CHECK_THAT(lines[2 * k - 1], Catch::StartsWith(fmt::format("repair round {} of {}: density x{} around", k,
+                                                               options.repair_rounds, options.repair_factor)));
+    CHECK_THAT(lines[2 * k], Catch::StartsWith(fmt::format("repair round {}: ", k)) && Catch::Contains("the dual has"));
+  }
+  CHECK_THAT(lines[2 * base.repair_rounds], Catch::EndsWith("the dual has no defect"));
+  CHECK(lines.back() == "fitting the vertices to the surface");
   for (int k : {-30, 30}) {
     const double s = std::ldexp(1.0, k);
     std::vector<Vec3> scaled = elk.positions();

@@ -52,9 +52,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
   cvt.iterations = opt.iterations;
   remesh.fit = !opt.no_fit;
-  cvt.on_iteration = [](int iteration, double energy) {
-    if (iteration % 10 == 0) progress(fmt::format("iteration {}: energy {:.6g}", iteration, energy));
-  };
+  remesh.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
   const RemeshResult remeshed = remesh_cvt(input.loaded.mesh, input.mesh, input.samples, remesh);

@@ -5,8 +5,11 @@
 #include <chrono>
 #include <numeric>
 #include <set>
+#include <string>
 #include <tuple>
 #include <unordered_map>
+
+#include <fmt/format.h>
 
 #include "mesh/closest_point.h"
 #include "metrics/self_intersections.h"
@@ -324,6 +327,19 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   return moved;
 }
 
+// "no defect", or the defects the dual has left, by kind.
+std::string describe(const DualDefects& d) {
+  if (d.empty()) return "no defect";
+  std::vector<std::string> parts;
+  if (!d.topological.empty()) parts.push_back(fmt::format("{} samples at topological defects", d.topological.size()));
+  if (!d.crossing.empty()) parts.push_back(fmt::format("{} at crossing triangles", d.crossing.size()));
+  if (!d.euler_ok) parts.push_back(fmt::format("the wrong Euler characteristic ({} cells not disks or sharing two arcs)",
+                                               d.cell_topology.size()));
+  std::string out = parts[0];
+  for (size_t k = 1; k < parts.size(); ++k) out += ", " + parts[k];
+  return out;
+}
+
 }  // namespace
 
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
@@ -332,6 +348,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   const auto start = std::chrono::steady_clock::now();
   const bool components_cross = components_intersect(reference);
   const ClosestPointIndex index(mesh);  // one for every CVT and repair round
+  auto progress = [&](const std::string& message) {
+    if (options.on_progress) options.on_progress(message);
+  };
   // A dual whose only defect is crossings is fitted and untangled; the crossings left, if any, are
   // the ones to act on.
   auto settle = [&](RemeshResult& r, DualDefects& d) {
@@ -367,6 +386,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                                    : std::vector<double>(mesh.triangle_count(), 1.0);
     DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
     settle(result, defects);
+    progress(fmt::format("{}CVT: {} iterations, {} diagrams, energy {:.6g}; the dual has {}",
+                         keep_to_sheets ? "second run, " : "", result.cvt.iterations, result.cvt.diagram_evaluations,
+                         result.cvt.energy, describe(defects)));
     RemeshResult best = result;
     best_defects = defects;
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
@@ -374,6 +396,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
       raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
+      progress(fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours", round + 1,
+                           options.repair_rounds, options.repair_factor, defects.where_to_act().size()));
       // The second run also moves samples into the defect cells (the first, whose raised density
       // suffices on the models of docs/results.md, leaves them to the CVT).
       const bool moved = keep_to_sheets &&
@@ -389,6 +413,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.fit = {};
       result.untangle = {};
       settle(result, defects);
+      progress(fmt::format("repair round {}: {} iterations, energy {:.6g}; the dual has {}", round + 1,
+                           result.cvt.iterations, result.cvt.energy, describe(defects)));
       if (defects.fewer_than(best_defects)) {
         best_defects = defects;
         best = result;
@@ -405,6 +431,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
   // surface to it is often on the other side: samples drain from one side to the other there).
   if (!defects.empty() && options.keep_to_sheets_retry) {
+    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
+                         result.repair_rounds));
     DualDefects again_defects;
     RemeshResult again = optimise_and_repair(true, again_defects);
     again.repair_rounds += result.repair_rounds;
@@ -420,6 +448,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.diagram_evaluations = again.diagram_evaluations;
     }
   }
+  if (!result.fitted && options.fit) progress("fitting the vertices to the surface");
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).
     if (options.fit)

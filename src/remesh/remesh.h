@@ -3,6 +3,8 @@
 // there through a locally raised density.
 #pragma once
 
+#include <functional>
+#include <string>
 #include <tuple>
 
 #include "remesh/cvt.h"
@@ -31,6 +33,10 @@ struct RemeshOptions {
   //! samples with CvtOptions::keep_to_sheets, each round also moving samples into the defect
   //! cells, and keep the run with fewer defects
   bool keep_to_sheets_retry = true;
+  //! Called with one line on each step of the run: the first CVT's outcome, each repair round
+  //! (before: where the density goes up; after: the defects left), the second run, the fitting;
+  //! for progress output.
+  std::function<void(const std::string&)> on_progress;
 };
 
 struct RemeshResult {
