@@ -136,12 +136,7 @@ int run_mps(const MpsCommandOptions& opt) {
     std::printf("remesh (LRRT): %zu vertices, %zu triangles -> %s; verification: %s\n", dual.positions.size(),
                 dual.triangles.size(), opt.remesh.c_str(), remesh_ok ? "passed" : "FAILED");
     if (!remesh_ok) std::fputs(remesh_check.summary().c_str(), stdout);
-    if (measurable)
-      std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% angles < 30 deg, Hausdorff %.3f%%\n",
-                  quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_angles_below_30,
-                  quality.hausdorff_pct);
-    else
-      std::printf("quality: not measured (the remesh has no triangles)\n");
+    print_quality(measurable ? &quality : nullptr, true);
   }
   report["predicates"] = predicates_json();
   if (!opt.report.empty()) write_json(opt.report, report);

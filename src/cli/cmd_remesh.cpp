@@ -105,12 +105,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
 
   std::printf("remesh (%s): %zu vertices, %zu triangles, %d iterations, %.3f s -> %s\n", opt.kind.c_str(),
               dual.positions.size(), dual.triangles.size(), remeshed.total_iterations, remeshed.time_s, opt.output.c_str());
-  if (measurable)
-    std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%%\n",
-                quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
-                quality.hausdorff_pct);
-  else
-    std::printf("quality: not measured (the remesh has no triangles)\n");
+  print_quality(measurable ? &quality : nullptr, false);
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
   return check.passed ? kOk : kCheckFailed;

@@ -150,6 +150,17 @@ void write_json(const std::string& path, const nlohmann::json& report) {
   if (!out) throw InputError(fmt::format("failed writing report '{}'", path));
 }
 
+void print_quality(const QualityMetrics* quality, bool of_angles) {
+  if (!quality) {
+    std::printf("quality: not measured (the remesh has no triangles)\n");
+    return;
+  }
+  std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% %s < 30 deg, Hausdorff %.3f%%\n", quality->q_min,
+              quality->q_avg, quality->theta_min, quality->theta_max,
+              of_angles ? quality->pct_angles_below_30 : quality->pct_triangles_below_30, of_angles ? "angles" : "triangles",
+              quality->hausdorff_pct);
+}
+
 void progress(const std::string& message) {
   static const bool enabled = isatty(STDERR_FILENO) || std::getenv("LRVD_PROGRESS");
   if (enabled) std::fprintf(stderr, "lrvd: %s\n", message.c_str());

@@ -44,6 +44,9 @@ nlohmann::json predicates_json();
 //! self_intersections from the remesh check.
 nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check);
 void write_json(const std::string& path, const nlohmann::json& report);
+//! The console line of a remesh's quality, or that it was not measured (null: the remesh has no
+//! triangles). The share under 30 degrees is of the angles (`of_angles`) or of the triangles.
+void print_quality(const QualityMetrics* quality, bool of_angles);
 
 //! Progress on stderr for long work (only when stderr is a terminal or LRVD_PROGRESS is set).
 void progress(const std::string& message);
