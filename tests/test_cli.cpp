@@ -12,6 +12,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "mesh/mesh_io.h"
+
 using nlohmann::json;
 
 namespace {
@@ -22,19 +24,25 @@ const std::string kOut = std::string(LRVD_BINARY_DIR) + "/test_cli_";
 
 struct Run {
   int status;
-  std::string err;
+  std::string err, out;
 };
 
-Run run(const std::string& args) {
-  // CTest runs test cases in parallel, each in its own process: one stderr file per process.
-  const std::string err_path = kOut + "stderr_" + std::to_string(getpid()) + ".txt";
-  const int raw = std::system((kCli + " " + args + " > /dev/null 2> " + err_path).c_str());
-  std::ifstream in(err_path);
+std::string take_file(const std::string& path) {
+  std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   in.close();
-  std::remove(err_path.c_str());
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
+  std::remove(path.c_str());
+  return text.str();
+}
+
+Run run(const std::string& args) {
+  // CTest runs test cases in parallel, each in its own process: one stderr and stdout file per process.
+  const std::string err_path = kOut + "stderr_" + std::to_string(getpid()) + ".txt";
+  const std::string out_path = kOut + "stdout_" + std::to_string(getpid()) + ".txt";
+  const int raw = std::system((kCli + " " + args + " > " + out_path + " 2> " + err_path).c_str());
+  const std::string err = take_file(err_path), out = take_file(out_path);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, err, out};
 }
 
 json read_json(const std::string& path) {
@@ -118,6 +126,28 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   REQUIRE(j["kept_to_sheets"].is_boolean());  // both runs failed; the one with fewer defects is written
   std::ifstream written(out);
   REQUIRE(written.good());
+  // Where the repair gave up: output vertices whose samples lie on the comb, named in the report and
+  // in the console's last line.
+  const json& left = j["defects_left"];
+  const int count = left["topological"]["count"].get<int>() + left["crossing"]["count"].get<int>() +
+                    left["cell_topology"]["count"].get<int>();
+  REQUIRE((count > 0 || left["euler_characteristic_ok"] == false));
+  const lrvd::BoundingBox box = lrvd::read_mesh(comb).mesh.bounding_box();
+  const double slack = 1e-9 * box.diagonal();  // samples lie on the surface up to the closest point's rounding
+  for (const char* kind : {"topological", "crossing", "cell_topology"}) {
+    REQUIRE(left[kind]["first"].size() <= 10);
+    REQUIRE(left[kind]["first"].size() <= left[kind]["count"].get<size_t>());
+    for (const json& d : left[kind]["first"]) {
+      REQUIRE(d["vertex"].get<int>() >= 0);
+      REQUIRE(d["vertex"].get<int>() < 100);
+      for (int c = 0; c < 3; ++c) {
+        REQUIRE(d["position"][c].get<double>() >= box.min[c] - slack);
+        REQUIRE(d["position"][c].get<double>() <= box.max[c] + slack);
+      }
+    }
+  }
+  REQUIRE(r.out.find("repair: ") != std::string::npos);
+  REQUIRE(r.out.find(left["summary"].get<std::string>()) != std::string::npos);
 }
 
 TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the checks, not a crash", "[cli][remesh]") {

@@ -26,6 +26,26 @@ struct RemeshCommandOptions {
   std::string output, report;
 };
 
+// What the repair left (RemeshResult::defects), by kind: the count and the first few samples, each
+// the output's vertex of the same index, with its place on the input surface (where a thin part or
+// a handle was not caught).
+nlohmann::json defects_json(const DualDefects& defects, const Samples& samples) {
+  constexpr size_t kListed = 10;
+  auto kind = [&](const std::vector<int>& ids) {
+    nlohmann::json first = nlohmann::json::array();
+    for (size_t k = 0; k < ids.size() && k < kListed; ++k) {
+      const Vec3& p = samples.positions[ids[k]];
+      first.push_back({{"vertex", ids[k]}, {"position", {p.x, p.y, p.z}}});
+    }
+    return nlohmann::json{{"count", ids.size()}, {"first", first}};
+  };
+  return {{"summary", defects.describe()},
+          {"euler_characteristic_ok", defects.euler_ok},
+          {"topological", kind(defects.topological)},
+          {"crossing", kind(defects.crossing)},
+          {"cell_topology", kind(defects.cell_topology)}};
+}
+
 int run_remesh(const RemeshCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
@@ -82,6 +102,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["diagram_evaluations"] = remeshed.diagram_evaluations;
   // The repair ended with defects and the second run, samples kept to their own sheets, did better.
   report["kept_to_sheets"] = remeshed.kept_to_sheets;
+  report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.
   const double diagonal = input.loaded.mesh.bounding_box().diagonal();
@@ -108,6 +129,17 @@ int run_remesh(const RemeshCommandOptions& opt) {
   print_quality(measurable ? &quality : nullptr, false);
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
+  if (!check.passed && !remeshed.defects.empty()) {
+    // Where the repair gave up, on the input surface: a thin part or a handle too small for the cells.
+    const DualDefects& left = remeshed.defects;
+    const int first = left.where_to_act().empty() ? -1 : left.where_to_act().front();
+    std::string where;
+    if (first >= 0) {
+      const Vec3& p = result.samples.positions[first];
+      where = fmt::format("; the first at vertex {}, ({:.6g}, {:.6g}, {:.6g})", first, p.x, p.y, p.z);
+    }
+    std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
+  }
   return check.passed ? kOk : kCheckFailed;
 }
 

@@ -327,20 +327,21 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   return moved;
 }
 
-// "no defect", or the defects the dual has left, by kind.
-std::string describe(const DualDefects& d) {
-  if (d.empty()) return "no defect";
+}  // namespace
+
+std::string DualDefects::describe() const {
+  if (empty()) return "no defect";
   std::vector<std::string> parts;
-  if (!d.topological.empty()) parts.push_back(fmt::format("{} samples at topological defects", d.topological.size()));
-  if (!d.crossing.empty()) parts.push_back(fmt::format("{} at crossing triangles", d.crossing.size()));
-  if (!d.euler_ok) parts.push_back(fmt::format("the wrong Euler characteristic ({} cells not disks or sharing two arcs)",
-                                               d.cell_topology.size()));
+  auto count = [](size_t n, const char* noun) { return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s"); };
+  if (!topological.empty()) parts.push_back(count(topological.size(), "sample") + " at topological defects");
+  if (!crossing.empty()) parts.push_back(fmt::format("{} at crossing triangles", crossing.size()));
+  if (!euler_ok)
+    parts.push_back(fmt::format("the wrong Euler characteristic ({} {})", count(cell_topology.size(), "cell"),
+                                cell_topology.size() == 1 ? "not a disk or sharing two arcs" : "not disks or sharing two arcs"));
   std::string out = parts[0];
   for (size_t k = 1; k < parts.size(); ++k) out += ", " + parts[k];
   return out;
 }
-
-}  // namespace
 
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options) {
@@ -388,7 +389,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     settle(result, defects);
     progress(fmt::format("{}CVT: {} iterations, {} diagrams, energy {:.6g}; the dual has {}",
                          keep_to_sheets ? "second run, " : "", result.cvt.iterations, result.cvt.diagram_evaluations,
-                         result.cvt.energy, describe(defects)));
+                         result.cvt.energy, defects.describe()));
     RemeshResult best = result;
     best_defects = defects;
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
@@ -414,7 +415,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.untangle = {};
       settle(result, defects);
       progress(fmt::format("repair round {}: {} iterations, energy {:.6g}; the dual has {}", round + 1,
-                           result.cvt.iterations, result.cvt.energy, describe(defects)));
+                           result.cvt.iterations, result.cvt.energy, defects.describe()));
       if (defects.fewer_than(best_defects)) {
         best_defects = defects;
         best = result;
@@ -473,6 +474,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   result.untangled_from = {};
+  result.defects = std::move(defects);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -39,20 +39,6 @@ struct RemeshOptions {
   std::function<void(const std::string&)> on_progress;
 };
 
-struct RemeshResult {
-  CvtResult cvt;            //!< the final CVT (samples, diagram, energy, iterations of the last run)
-  DualMesh dual;            //!< the output mesh: one vertex per sample
-  int total_iterations = 0; //!< over the first optimisation and every repair round
-  int diagram_evaluations = 0;  //!< diagrams computed, over the first optimisation and every repair round
-  int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
-  FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
-  UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
-  bool fitted = false;      //!< `dual` is fitted and untangled already
-  DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
-  bool kept_to_sheets = false;  //!< the result is the second run's (RemeshOptions::keep_to_sheets_retry)
-  double time_s = 0;
-};
-
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
 //! triangle, and triangles that intersect each other (but for crossings between
@@ -77,11 +63,31 @@ struct DualDefects {
     if (!crossing.empty()) return crossing;
     return cell_topology;
   }
+  //! "no defect", or the defects by kind with their counts, for progress lines and messages.
+  std::string describe() const;
   bool fewer_than(const DualDefects& o) const {
     return std::make_tuple(topological.size(), !euler_ok, crossing.size(), cell_topology.size()) <
            std::make_tuple(o.topological.size(), !o.euler_ok, o.crossing.size(), o.cell_topology.size());
   }
 };
+
+struct RemeshResult {
+  CvtResult cvt;            //!< the final CVT (samples, diagram, energy, iterations of the last run)
+  DualMesh dual;            //!< the output mesh: one vertex per sample
+  int total_iterations = 0; //!< over the first optimisation and every repair round
+  int diagram_evaluations = 0;  //!< diagrams computed, over the first optimisation and every repair round
+  int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
+  FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
+  UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
+  bool fitted = false;      //!< `dual` is fitted and untangled already
+  DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
+  bool kept_to_sheets = false;  //!< the result is the second run's (RemeshOptions::keep_to_sheets_retry)
+  //! What the repair left in `dual` as the rounds saw it, before the final fitting and untangling
+  //! (the crossings those leave are in `untangle.remaining`): where a failed check comes from.
+  DualDefects defects;
+  double time_s = 0;
+};
+
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
                               bool input_closed, bool input_components_cross);
 
