@@ -21,6 +21,11 @@ namespace lrvd {
 
 namespace {
 
+// Splitting every edge longer than L at its midpoint, longest first, leaves triangles of about
+// L^2 / 6.5 in area on average (6.5 on feline, ChineseDragon-10kv and the elk): edges end between
+// L/2 and L, so the triangles are smaller than equilateral ones of side L (L^2 / 2.31).
+constexpr double kSplitAreaDivisor = 6.5;
+
 // An undirected edge during the splitting and the one or two triangles using it, in the order
 // they took it (the order decides which side of a split edge is cut first, so it is kept as the
 // splitting has always had it). Each triangle knows the records of its three edges: every look-up
@@ -103,7 +108,7 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
   // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
-  // about max_length² / 6.5 in area (6.5 on feline and ChineseDragon-10kv), a closed mesh gains a
+  // about max_length² / kSplitAreaDivisor in area, a closed mesh gains a
   // vertex per two triangles, and the queue holds at most about a third as many edges as there are
   // triangles at the end (0.32 on ChineseDragon-10kv). The reservations have room to spare; beyond
   // them, the arrays still grow as needed. Only memory depends on this guess, not the refinement.
@@ -117,7 +122,7 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
     }
   }
   const double expected_triangles =
-      std::min(1.1 * (static_cast<double>(mesh.triangle_count()) + 6.5 * per_length_squared), 5e8);
+      std::min(1.1 * (static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared), 5e8);
   const double expected_vertices = mesh.vertex_count() + 0.5 * (expected_triangles - mesh.triangle_count());
   std::vector<Vec3> positions;
   positions.reserve(static_cast<size_t>(expected_vertices));
@@ -309,8 +314,9 @@ SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>&
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
   if (mesh.triangle_count() >= 2 * n) return 0;
-  // Equilateral triangles of side a have area sqrt(3)/4 a^2: 4n of them cover the area.
-  return std::sqrt(4.0 * mesh.area() / (std::sqrt(3.0) * 4.0 * n));
+  // Splitting to edges no longer than L leaves triangles of about L^2 / kSplitAreaDivisor in area
+  // (edges between L/2 and L, not equilateral triangles of side L): 4n of them cover the area.
+  return std::sqrt(kSplitAreaDivisor * mesh.area() / (4.0 * n));
 }
 
 }  // namespace lrvd
