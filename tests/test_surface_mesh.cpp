@@ -87,6 +87,24 @@ TEST_CASE("The constructor refuses what the algorithms cannot handle") {
   REQUIRE_THROWS_WITH(SurfaceMesh(bow, {{0, 1, 2}, {0, 3, 4}}), Catch::Contains("vertex 0 joins 2 separate fans"));
 }
 
+TEST_CASE("The suggested refinement gives about four triangles a sample") {
+  // README promises it for --refine auto: a mesh with fewer than two triangles a sample is split to
+  // about four (splitting to length L leaves triangles of about L^2 / 6.5, not equilateral ones).
+  const std::pair<SurfaceMesh, int> cases[] = {{test::octahedron(), 100},
+                                               {test::icosphere(1), 500},
+                                               {test::grid(4, 3), 1000},
+                                               {make_stress_mesh("thin_tube", 1.0), 20000}};
+  for (const auto& [mesh, n] : cases) {
+    INFO(mesh.triangle_count() << " triangles, " << n << " samples");
+    const double length = suggested_refinement_length(mesh, n);
+    REQUIRE(length > 0);
+    const SurfaceMesh fine = refine_long_edges(mesh, length);
+    REQUIRE(fine.triangle_count() >= 3 * n);
+    REQUIRE(fine.triangle_count() <= 6 * n);
+    REQUIRE(suggested_refinement_length(fine, n) == 0);  // two or more a sample: left alone
+  }
+}
+
 TEST_CASE("Refinement bounds every edge and keeps the surface") {
   const SurfaceMesh mesh = test::octahedron();
   for (double length : {1.0, 0.3, 0.11}) {

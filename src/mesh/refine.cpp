@@ -22,8 +22,8 @@ namespace lrvd {
 namespace {
 
 // Splitting every edge longer than L at its midpoint, longest first, leaves triangles of about
-// L^2 / 6.5 in area on average (6.5 on feline, ChineseDragon-10kv and the elk): edges end between
-// L/2 and L, so the triangles are smaller than equilateral ones of side L (L^2 / 2.31).
+// L^2 / 6.5 in area on average (6.5 on feline and ChineseDragon-10kv, 6.2-7.1 on the elk): edges
+// end between L/2 and L, so the triangles are smaller than equilateral ones of side L (L^2 / 2.31).
 constexpr double kSplitAreaDivisor = 6.5;
 
 // An undirected edge during the splitting and the one or two triangles using it, in the order
