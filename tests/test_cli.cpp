@@ -88,6 +88,8 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
         "compute " + kData + "/elk.off -n 10 --refine banana", "remesh " + kData + "/elk.off -n 10",
         // The elk is a torus: no triangle mesh of it has fewer than 7 vertices.
         "remesh " + kData + "/elk.off -n 6 -o " + kOut + "elk_6.off",
+        // More than memory allows: refused before sampling or refining, not an exhausted machine.
+        "compute " + kData + "/elk.off -n 100000000", "compute " + kData + "/elk.off -n 1000 --refine 0.001",
         std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand")}) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);

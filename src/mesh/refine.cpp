@@ -312,6 +312,11 @@ SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>&
                      std::move(r.components), mesh.component_count());
 }
 
+double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_length) {
+  if (!(max_length > 0) || mesh.max_edge_length() <= max_length) return mesh.triangle_count();
+  return mesh.triangle_count() + kSplitAreaDivisor * mesh.area() / (max_length * max_length);
+}
+
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
   if (mesh.triangle_count() >= 2 * n) return 0;
   // Splitting to edges no longer than L leaves triangles of about L^2 / kSplitAreaDivisor in area
