@@ -176,7 +176,7 @@ Action add_remesh_command(CLI::App& app) {
       ->check(CLI::IsMember({"lrvd", "rvd"}))
       ->capture_default_str();
   cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
-  cmd->add_option("--iterations", opt->iterations, "Iteration cap")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--iterations", opt->iterations, "Iteration cap")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--density", opt->density, "uniform or curvature")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();

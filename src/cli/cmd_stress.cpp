@@ -79,9 +79,9 @@ Action add_stress_command(CLI::App& app) {
   cmd->add_flag("--list", opt->list, "List the stress meshes");
   cmd->add_option("name", opt->name, "Stress mesh to write");
   cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)");
-  cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")->check(CLI::PositiveNumber);
+  cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")->check(CLI::Range(0.05, 10.0));
   cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR");
-  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::PositiveNumber);
+  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::Range(1, 100));
   return [opt]() -> int {
     if (!opt->report_dir.empty()) return write_stress_report(opt->report_dir, opt->scale, opt->seeds);
     if (opt->list) {
