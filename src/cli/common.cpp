@@ -34,11 +34,13 @@ void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
 
 namespace {
 
-// What one diagram of a mesh costs in memory: about 0.6 KB a triangle (the elk refined to 10.7M
-// triangles for a million samples peaked at 6 GB), so these limits keep a diagram under 16 GB.
-// A larger sampling is refused with a one-line error instead of exhausting memory.
+// What a diagram of a mesh costs in memory, at its peak: about 0.6-0.75 KB a triangle to compute
+// it, 2.5 KB a triangle with its exact verification (`lrvd compute` of the elk at 500,000 samples,
+// refined to 1.9M triangles: 1.4 GB without the verification, 4.9 GB with it). These limits keep a
+// verified diagram near 15 GB; a larger sampling is refused with a one-line error instead of
+// exhausting memory.
 constexpr int kMaxSamples = 5'000'000;
-constexpr double kMaxRefinedTriangles = 2.5e7;
+constexpr double kMaxRefinedTriangles = 6e6;
 
 std::vector<double> read_weights(const std::string& path) {
   std::ifstream in(path);
