@@ -113,6 +113,22 @@ TEST_CASE("Without the connectivity restoration the fixpoint alone can leave a c
   REQUIRE(cases > 0);
 }
 
+TEST_CASE("Cells with stray pieces in each other's regions are restored one round at a time", "[lrvd]") {
+  // CGAL's diplodocus, 80,000 samples (seed 1) on the refined mesh: two cells near a fold have
+  // stray pieces in each other's regions. Removed in one round, both grew back onto their
+  // forbidden triangles, were pinned there and stayed in two pieces each (connected failed, every
+  // other property passed). Taken in separate rounds, each home piece joins its stray one.
+  const SurfaceMesh mesh = for_samples(cgal_mesh("diplodocus.off"), 80000);
+  const Samples samples = sample_uniform(mesh, 80000, 1);
+  const Diagram d = compute_lrvd(mesh, samples);
+  REQUIRE(d.stats.connectivity_rounds >= 2);  // the case this test is about
+  REQUIRE(d.stats.pinned_labels > 0);
+  REQUIRE(disconnected_cells(d, mesh) == 0);
+  const DiagramVerification v = verify_diagram(mesh, samples, d);
+  INFO(describe(v));
+  REQUIRE(v.passed);
+}
+
 namespace {
 
 // Where every restricted Voronoi cell is connected, the LRVD is the RVD: the same polygons in the

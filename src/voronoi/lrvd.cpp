@@ -437,6 +437,12 @@ class LrvdBuilder {
 
   // Removes each cell from the triangles of its pieces that do not hold its sample. Returns
   // whether anything was removed.
+  //
+  // Cells whose stray pieces lie near each other's are taken in separate rounds, the least cell
+  // first: two cells with stray pieces in each other's regions, both removed at once, each grow
+  // back onto the triangles the other was forbidden in, and the pins that follow
+  // (settle_stuck_conflicts) can leave both in two pieces for good. Taken one at a time, the
+  // first one's removal lets the second grow onto its own stray piece, which then joins it.
   bool forbid_stray_pieces(const Diagram& diagram) {
     const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
@@ -444,24 +450,51 @@ class LrvdBuilder {
       const CellPolygon& poly = diagram.polygons[p];
       if (poly.triangle == home_[poly.cell]) home_component[poly.cell] = comps.polygon_component[p];
     }
-    bool changed = false;
-    std::vector<int> emptied;
+    // (cell, triangle) of every stray piece's polygon, by cell.
+    std::vector<std::pair<int, int>> stray;
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
       const int k = poly.cell;
       if (comps.count[k] <= 1) continue;
       // A cell whose sample lost its own polygon keeps its first piece.
       const int keep = home_component[k] >= 0 ? home_component[k] : 0;
-      if (comps.polygon_component[p] == keep) continue;
-      TrianglePolygons& st = state_[poly.triangle];
-      if (st.pins(k)) continue;
-      if (!remove_label(poly.triangle, k)) continue;
-      insert_sorted(st.extra().forbidden, k);
-      ++stats_.forbidden_labels;
-      activate(poly.triangle);
-      if (st.labels.empty()) emptied.push_back(poly.triangle);
-      changed = true;
+      if (comps.polygon_component[p] != keep) stray.emplace_back(k, poly.triangle);
     }
+    if (stray.empty()) return false;
+    std::sort(stray.begin(), stray.end());
+    near_removal_.resize(mesh_.triangle_count(), 0);
+    std::vector<int> marked, emptied;
+    bool changed = false;
+    for (size_t begin = 0, end; begin < stray.size(); begin = end) {
+      const int k = stray[begin].first;
+      end = begin;
+      bool deferred = false;
+      for (; end < stray.size() && stray[end].first == k; ++end) deferred = deferred || near_removal_[stray[end].second];
+      if (deferred) continue;
+      bool removed = false;
+      for (size_t a = begin; a < end; ++a) {
+        const int t = stray[a].second;
+        TrianglePolygons& st = state_[t];
+        if (st.pins(k)) continue;
+        if (!remove_label(t, k)) continue;
+        insert_sorted(st.extra().forbidden, k);
+        ++stats_.forbidden_labels;
+        activate(t);
+        if (st.labels.empty()) emptied.push_back(t);
+        removed = true;
+      }
+      if (!removed) continue;
+      changed = true;
+      const size_t first_mark = marked.size();
+      for (size_t a = begin; a < end; ++a) {
+        const int t = stray[a].second;
+        marked.push_back(t);
+        for (int e = 0; e < 3; ++e)
+          if (mesh_.neighbor(t, e) >= 0) marked.push_back(mesh_.neighbor(t, e));
+      }
+      for (size_t m = first_mark; m < marked.size(); ++m) near_removal_[marked[m]] = 1;
+    }
+    for (int t : marked) near_removal_[t] = 0;
     refill(emptied);
     return changed;
   }
@@ -567,6 +600,7 @@ class LrvdBuilder {
   std::vector<VertexEntry>& heap_;
   std::vector<VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
+  std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };
