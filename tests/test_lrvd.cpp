@@ -243,7 +243,8 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
   // polygon onto an edge across which its cell is forbidden; before those conflicts were settled
   // (the cell let back in and pinned there) 3 edges did not conform. Seed 37: a cell taken out of a
   // triangle kept a polygon reaching that triangle's edge from the neighbour, which nothing
-  // re-examined; edge (2264, 2327) did not conform until removals re-checked the neighbours.
+  // re-examined; edge (2264, 2327) did not conform until removals re-checked the neighbours. Since
+  // stray pieces near each other are removed in separate rounds, seed 37 needs no pin.
   const SurfaceMesh dragon = cgal_mesh("ChineseDragon-10kv.off");
   for (const auto& [seed, count] : {std::pair{10, 17303}, std::pair{37, 17375}}) {
     MpsOptions options;
@@ -260,7 +261,8 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
     const Diagram d = compute_lrvd(dragon, samples, lrpd);
     const DiagramVerification v = verify_diagram(dragon, samples, d);
     INFO(describe(v));
-    CHECK(d.stats.pinned_labels > 0);  // the case this test is about
+    CHECK(d.stats.forbidden_labels > 0);  // the cases this test is about
+    if (seed == 10) CHECK(d.stats.pinned_labels > 0);
     CHECK(v.conforming.passed);
     CHECK(v.connected.passed);
     CHECK(v.cells_with_multiple_components == 0);
