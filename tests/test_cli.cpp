@@ -65,7 +65,8 @@ TEST_CASE("lrvd compute writes cells and a report with the promised keys", "[cli
   REQUIRE(r.status == 0);
   const json j = read_json(report);
   for (const char* key : {"vertices", "triangles", "area", "bbox_diagonal"}) REQUIRE(j["input"].contains(key));
-  for (const char* key : {"kind", "samples", "polygons", "cells_with_multiple_components", "time_s"})
+  for (const char* key : {"kind", "samples", "polygons", "cells_with_multiple_components", "time_s",
+                          "connectivity_rounds", "forbidden_labels", "pinned_labels"})
     REQUIRE(j["diagram"].contains(key));
   for (const char* key : {"calls", "filter_failures", "exact", "perturbations"}) REQUIRE(j["predicates"].contains(key));
   REQUIRE(j["verification"]["passed"] == true);

@@ -49,7 +49,8 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
                        {"time_s", diagram.stats.time_s},
                        {"clipped_triangles", diagram.stats.clipped_triangles},
                        {"connectivity_rounds", diagram.stats.connectivity_rounds},
-                       {"forbidden_labels", diagram.stats.forbidden_labels}};
+                       {"forbidden_labels", diagram.stats.forbidden_labels},
+                       {"pinned_labels", diagram.stats.pinned_labels}};
   report["predicates"] = predicates_json();
 
   if (write_cells && !opt.output.empty()) write_cells_ply(opt.output, diagram_polygon_mesh(diagram, input.mesh));
