@@ -114,10 +114,10 @@ TEST_CASE("Without the connectivity restoration the fixpoint alone can leave a c
 }
 
 TEST_CASE("Cells with stray pieces in each other's regions are restored one round at a time", "[lrvd]") {
-  // CGAL's diplodocus, 80,000 samples (seed 1) on the refined mesh: two cells near a fold have
-  // stray pieces in each other's regions. Removed in one round, both grew back onto their
-  // forbidden triangles, were pinned there and stayed in two pieces each (connected failed, every
-  // other property passed). Taken in separate rounds, each home piece joins its stray one.
+  // CGAL's diplodocus, 80,000 samples (seed 1) on the refined mesh. With every stray piece removed
+  // in one round, two cells stayed in two pieces each, as the elk's did at 500,000 samples, where
+  // two cells with stray pieces in each other's regions grew back onto their forbidden triangles
+  // and were pinned there (docs/verification.md). Taken in separate rounds, they end connected.
   const SurfaceMesh mesh = for_samples(cgal_mesh("diplodocus.off"), 80000);
   const Samples samples = sample_uniform(mesh, 80000, 1);
   const Diagram d = compute_lrvd(mesh, samples);
