@@ -99,6 +99,10 @@ TEST_CASE("The suggested refinement gives about four triangles a sample") {
     const double length = suggested_refinement_length(mesh, n);
     REQUIRE(length > 0);
     const SurfaceMesh fine = refine_long_edges(mesh, length);
+    // The estimate the CLI's size limit reads: with its margin, never below the count.
+    const double expected = expected_refined_triangle_count(mesh, length);
+    CHECK(kRefinedTriangleMargin * expected >= fine.triangle_count());
+    CHECK(expected <= 1.5 * fine.triangle_count());
     REQUIRE(fine.triangle_count() >= 3 * n);
     REQUIRE(fine.triangle_count() <= 6 * n);
     REQUIRE(suggested_refinement_length(fine, n) == 0);  // two or more a sample: left alone

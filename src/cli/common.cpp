@@ -37,7 +37,8 @@ namespace {
 // What a diagram of a mesh costs in memory, at its peak: about 0.6-0.75 KB a triangle to compute
 // it, 2.5 KB a triangle with its exact verification (`lrvd compute` of the elk at 500,000 samples,
 // refined to 1.9M triangles: 1.4 GB without the verification, 4.9 GB with it). These limits keep a
-// verified diagram near 15 GB; a larger sampling is refused with a one-line error instead of
+// verified diagram under about 15 GB (the refinement's estimate taken with its margin,
+// kRefinedTriangleMargin); a larger sampling is refused with a one-line error instead of
 // exhausting memory.
 constexpr int kMaxSamples = 5'000'000;
 constexpr double kMaxRefinedTriangles = 6e6;
@@ -103,9 +104,10 @@ Input load_input(const InputOptions& opt) {
   }
   if (length > 0 && input.loaded.mesh.max_edge_length() > length) {
     const double expected = expected_refined_triangle_count(input.loaded.mesh, length);
-    if (expected > kMaxRefinedTriangles)
-      throw InputError(fmt::format("refining to edges of {:.6g} would make about {:.3g} triangles (limit {:.3g}): use {}",
-                                   length, expected, kMaxRefinedTriangles,
+    if (kRefinedTriangleMargin * expected > kMaxRefinedTriangles)
+      throw InputError(fmt::format("refining to edges of {:.6g} would make about {:.3g} triangles, up to {:.3g} (limit "
+                                   "{:.3g}): use {}",
+                                   length, expected, kRefinedTriangleMargin * expected, kMaxRefinedTriangles,
                                    opt.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
     progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
     input.refined_from = input.loaded.mesh.triangle_count();

@@ -146,9 +146,14 @@ void require_workable_size(const SurfaceMesh& mesh, const char* task);
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.
 double suggested_refinement_length(const SurfaceMesh& mesh, int n);
 
-//! About how many triangles refine_long_edges(mesh, max_length) gives, without refining, from
-//! above (5-18 % above the count on the elk at 2000 to a million samples' lengths): to refuse a
-//! refinement that would not fit in memory.
+//! About how many triangles refine_long_edges(mesh, max_length) gives, without refining: to refuse
+//! a refinement that would not fit in memory. The count was 0.59-1.11 times this on the stress
+//! meshes and CGAL's at 1,000-200,000 samples' lengths, and up to kRefinedTriangleMargin times it
+//! where every edge is just longer than max_length (an octahedron at 100 samples: 1.25).
 double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_length);
+//! How far the count can exceed that estimate: when every edge is just longer than max_length,
+//! every triangle splits into quarters of about equilateral shape and side max_length / 2, of area
+//! max_length^2 / 9.24 against the estimate's max_length^2 / 6.5.
+constexpr double kRefinedTriangleMargin = 9.24 / 6.5;
 
 }  // namespace lrvd
