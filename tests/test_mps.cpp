@@ -618,11 +618,12 @@ TEST_CASE("MPS of CGAL's ChineseDragon is maximal where the LRPD's cells miss sp
   // pin cells back into triangles they had been forbidden in, seed 17 until the refinement kept each
   // input triangle's pieces together and a cell removed from a triangle was re-checked across its edges,
   // seed 40 until the edges were split to twice the radius, seed 16 until the refined mesh was put in
-  // spatial order; of seeds 1-130, seeds 92 and 108 show it now.)
+  // spatial order, seeds 92 and 108 until the first LRPD of local updates skipped the connectivity
+  // restoration; of seeds 1-160, seeds 54, 146 and 147 show it now.)
   const SurfaceMesh dragon = cgal_mesh("ChineseDragon-10kv.off");
   MpsOptions options;
   options.radius = 0.01;
-  options.seed = 92;
+  options.seed = 54;
   for (MpsGapUpdate update : {MpsGapUpdate::Local, MpsGapUpdate::Lrpd}) {
     options.gap_update = update;
     INFO((update == MpsGapUpdate::Local ? "local gap updates" : "the paper's gap loop"));

@@ -484,6 +484,13 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   lrpd_options.shapeless = &shapeless;
   GapLrpd lrpd;
   bool stale = true;  // the LRPD is not that of the current samples
+  // With local updates the first LRPD only shows where the gaps are: the darts then close them
+  // in disks reaching their triangles, which is coverage whatever cell a spot is in, so that LRPD
+  // is computed without the connectivity restoration (on dragon_100k one or two rounds of it, each
+  // a pass over the whole mesh). Only a round that places no sample decides through the cells
+  // themselves (remote claims: spots in the ball of their cell), as verify_mps does on the
+  // connected LRPD; such a decision is made only on an LRPD whose cells are connected.
+  bool connected_cells = true;  // the LRPD's cells went through the connectivity restoration
   // After a round with local updates, the triangles that may still hold a gap (open_triangles()),
   // as a mask and as a list; empty: all of them.
   std::vector<char> focus;
@@ -502,8 +509,10 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
         // their cells, not their shapes. A covered triangle stays covered.
         for (int t = 0; t < m.triangle_count(); ++t)
           shapeless[t] = sampler.disks().fully_covered(t) || (!focus.empty() && !focus[t]);
+        lrpd_options.restore_connectivity = !(local && round == 0);
         lrpd.diagram = compute_lrvd(m, sampler.disks().samples(), lrpd_options);
       }
+      connected_cells = lrpd_options.restore_connectivity || lrpd.on_part;
       ++result.lrpd_evaluations;
     }
     stale = true;
@@ -581,6 +590,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     // No progress: this LRPD is that of the final samples. Closed when the pieces no dart fits
     // are only where the balls of their LRPD cells cover (remote claims).
     if (sampler.disks().size() == before) {
+      if (!connected_cells) continue;  // the next LRPD (of the open triangles' part) decides
       // Adaptive, spots no dart fits: outside their cells' balls, where the power-cell condition
       // against a sample across (another sheet, a big disk past a fold) leaves no radius. Once, the
       // required pieces of this same LRPD are tried again with that condition kept only against
