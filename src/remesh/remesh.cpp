@@ -449,9 +449,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.diagram_evaluations = again.diagram_evaluations;
     }
   }
-  if (!result.fitted && options.fit) progress("fitting the vertices to the surface");
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).
+    if (options.fit) progress("fitting the vertices to the surface");
     if (options.fit)
       result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, &defects.crossing_pairs);
     if (options.untangle) {
