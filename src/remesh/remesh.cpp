@@ -451,9 +451,10 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   }
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).
-    if (options.fit) progress("fitting the vertices to the surface");
-    if (options.fit)
+    if (options.fit) {
+      progress("fitting the vertices to the surface");
       result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, &defects.crossing_pairs);
+    }
     if (options.untangle) {
       result.untangled_from = result.dual;
       result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options,
