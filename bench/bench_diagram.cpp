@@ -1,0 +1,71 @@
+// The cost of one CVT evaluation's diagram: samples part way through a CVT on one of CGAL's models
+// (the samples a remesh evaluates most of its diagrams on), then the LRVD and its cell integrals
+// computed again and again on one thread. Prints the shape of the diagram (polygons per triangle,
+// predicate calls) and the CPU time per diagram and per integration, minimum and mean.
+// Usage: bench_diagram [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]   (default: elk 516 300 20)
+// Exit status 1 when the timed diagram fails verification.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <string>
+
+#include <tbb/global_control.h>
+
+#include "bench_util.h"
+#include "mesh/mesh_io.h"
+#include "predicates/predicates.h"
+#include "remesh/cvt.h"
+#include "verification/diagram_check.h"
+#include "voronoi/lrvd.h"
+#include "voronoi/samples.h"
+
+using namespace lrvd;
+
+int main(int argc, char** argv) {
+  const std::string model = argc > 1 ? argv[1] : "elk";
+  const int n = argc > 2 ? std::atoi(argv[2]) : 516;
+  const int repetitions = argc > 3 ? std::atoi(argv[3]) : 300;
+  const int cvt_iterations = argc > 4 ? std::atoi(argv[4]) : 20;
+  if (n < 1 || repetitions < 1 || cvt_iterations < 0) {
+    std::fprintf(stderr, "usage: %s [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]\n", argv[0]);
+    return 2;
+  }
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const SurfaceMesh mesh = read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + model + ".off").mesh;
+  CvtOptions options;
+  options.iterations = cvt_iterations;
+  const Samples samples = optimize_cvt(mesh, sample_uniform(mesh, n, 1), options).samples;
+
+  Diagram diagram = compute_lrvd(mesh, samples);
+  const DiagramVerification check = verify_diagram(mesh, samples, diagram);
+  std::map<int, int> histogram;  // polygons in a triangle -> triangles
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    ++histogram[diagram.triangle_offsets[t + 1] - diagram.triangle_offsets[t]];
+  std::printf("%s, %d samples after %d CVT iterations: %d triangles, %zu polygons, %zu polygon vertices, %s\n",
+              model.c_str(), n, cvt_iterations, mesh.triangle_count(), diagram.polygons.size(),
+              diagram.vertices.size(), check.passed ? "verified" : ("FAILED: " + check.summary()).c_str());
+  for (const auto& [polygons, triangles] : histogram)
+    std::printf("  triangles with %d polygon%s: %d\n", polygons, polygons == 1 ? "" : "s", triangles);
+
+  reset_predicate_stats();
+  double best_diagram = 1e30, best_integrals = 1e30, sum_diagram = 0, sum_integrals = 0, energy = 0;
+  for (int r = 0; r < repetitions; ++r) {
+    const double t0 = bench::cpu_seconds();
+    diagram = compute_lrvd(mesh, samples);
+    const double t1 = bench::cpu_seconds();
+    energy += integrate_cells(diagram, mesh, samples).total_energy;
+    const double t2 = bench::cpu_seconds();
+    best_diagram = std::min(best_diagram, t1 - t0);
+    best_integrals = std::min(best_integrals, t2 - t1);
+    sum_diagram += t1 - t0;
+    sum_integrals += t2 - t1;
+  }
+  const PredicateStats stats = predicate_stats();
+  std::printf("diagram %.3f ms (mean %.3f), integrals %.3f ms (mean %.3f), %.0f predicate calls per diagram, "
+              "energy %.6g\n",
+              1e3 * best_diagram, 1e3 * sum_diagram / repetitions, 1e3 * best_integrals,
+              1e3 * sum_integrals / repetitions, static_cast<double>(stats.total.calls) / repetitions,
+              energy / repetitions);
+  return check.passed ? 0 : 1;
+}
