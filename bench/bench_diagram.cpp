@@ -1,7 +1,7 @@
 // The cost of one CVT evaluation's diagram: samples part way through a CVT on one of CGAL's models
 // (the samples a remesh evaluates most of its diagrams on), then the LRVD and its cell integrals
 // computed again and again on one thread. Prints the shape of the diagram (polygons per triangle,
-// predicate calls) and the CPU time per diagram and per integration, minimum and mean.
+// clippings, predicate calls) and the CPU time per diagram and per integration, minimum and mean.
 // Usage: bench_diagram [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]   (default: elk 516 300 20)
 // Exit status 1 when the timed diagram fails verification.
 #include <algorithm>
@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   std::printf("%s, %d samples after %d CVT iterations: %d triangles, %zu polygons, %zu polygon vertices, %s\n",
               model.c_str(), n, cvt_iterations, mesh.triangle_count(), diagram.polygons.size(),
               diagram.vertices.size(), check.passed ? "verified" : ("FAILED: " + check.summary()).c_str());
+  std::printf("  %d triangle clippings (a triangle clipped again counts again), %d connectivity rounds\n",
+              diagram.stats.clipped_triangles, diagram.stats.connectivity_rounds);
   for (const auto& [polygons, triangles] : histogram)
     std::printf("  triangles with %d polygon%s: %d\n", polygons, polygons == 1 ? "" : "s", triangles);
 
