@@ -6,6 +6,7 @@
 #include <random>
 
 #include "common/error.h"
+#include "mesh/spatial_order.h"
 #include "mesh/stress.h"
 #include "mesh/surface_mesh.h"
 #include "test_meshes.h"
@@ -305,4 +306,33 @@ TEST_CASE("The fewest vertices a mesh of the same topology can have") {
   REQUIRE(test::grid(3, 3).minimum_vertex_count() == 3);    // a disk: one triangle
   REQUIRE(test::merge(test::octahedron(), test::grid(2, 2), Vec3{5, 0, 0}).minimum_vertex_count() == 7);
   REQUIRE(make_stress_mesh("knot_tube").minimum_vertex_count() == 7);  // a torus
+}
+
+TEST_CASE("A Morton order visits each octant of the bounding cube in one run with x fastest") {
+  // Eight clusters of points at the corners of a cube, each a few points in random order.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(0.0, 0.1);
+  std::vector<Vec3> points;
+  std::vector<int> octant;
+  for (int k = 0; k < 80; ++k) {
+    const int o = static_cast<int>(random() % 8);
+    points.push_back({(o & 1) + jitter(random), (o >> 1 & 1) + jitter(random), (o >> 2 & 1) + jitter(random)});
+    octant.push_back(o);
+  }
+  // A duplicate of point 0 after it: equal codes keep the index order.
+  points.push_back(points[0]);
+  octant.push_back(octant[0]);
+  const std::vector<int> order = morton_order(points);
+  REQUIRE(order.size() == points.size());
+  std::vector<int> sorted = order;
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == static_cast<int>(i));
+  // The octant number x + 2y + 4z never decreases along the order.
+  for (size_t k = 1; k < order.size(); ++k) REQUIRE(octant[order[k - 1]] <= octant[order[k]]);
+  const auto first = std::find(order.begin(), order.end(), 0);
+  REQUIRE(first != order.end());
+  REQUIRE(first + 1 != order.end());
+  REQUIRE(*(first + 1) == static_cast<int>(points.size()) - 1);
+  REQUIRE(morton_order({}).empty());
+  REQUIRE(morton_order({{1, 2, 3}}) == std::vector<int>{0});
 }

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "mesh/spatial_order.h"
 #include "mesh/surface_mesh.h"
 
 namespace lrvd {
@@ -58,46 +59,17 @@ struct Refinement {
   std::vector<int> components;
 };
 
-// Each input triangle's place along a Morton curve through the centroids (21 bits an axis over
-// their bounding box; ties by index).
+// Each input triangle's place along a Morton curve through the centroids (morton_order).
 std::vector<int> morton_rank(const SurfaceMesh& mesh) {
   const int nt = mesh.triangle_count();
   std::vector<Vec3> centroid(nt);
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi = -1.0 * lo;
   for (int t = 0; t < nt; ++t) {
     const Triangle& tri = mesh.triangle(t);
     centroid[t] = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], centroid[t][c]);
-      hi[c] = std::max(hi[c], centroid[t][c]);
-    }
   }
-  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-  const double cells = (1 << 21) - 1;
-  // Spreads the low 21 bits of x to every third bit.
-  auto spread = [](std::uint64_t x) {
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-  };
-  std::vector<std::pair<std::uint64_t, int>> keyed(nt);
-  for (int t = 0; t < nt; ++t) {
-    std::uint64_t code = 0;
-    for (int c = 0; c < 3; ++c) {
-      const double u = extent > 0 ? (centroid[t][c] - lo[c]) / extent : 0.0;
-      code |= spread(static_cast<std::uint64_t>(std::clamp(u, 0.0, 1.0) * cells)) << c;
-    }
-    keyed[t] = {code, t};
-  }
-  std::sort(keyed.begin(), keyed.end());
+  const std::vector<int> order = morton_order(centroid);
   std::vector<int> rank(nt);
-  for (int k = 0; k < nt; ++k) rank[keyed[k].second] = k;
+  for (int k = 0; k < nt; ++k) rank[order[k]] = k;
   return rank;
 }
 

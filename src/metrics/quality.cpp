@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
+#include "mesh/spatial_order.h"
 #include "predicates/predicates.h"
 #include "voronoi/samples.h"
 
@@ -78,12 +79,26 @@ void append_area_samples(const std::vector<Vec3>& positions, const std::vector<T
 }
 
 //! Distance from each point to the indexed surface, one slot per point (parallel, deterministic).
+//! The points are taken along a Morton curve (copied in that order first: read in place, each
+//! query would wait on its point), each query hinted by the closest triangle of the point before
+//! it: a nearby point's answer bounds the search at once. A hint leaves the answer as it is
+//! (ClosestPointIndex::query), so the distances are those of plain queries.
 std::vector<double> distances_to(const ClosestPointIndex& index, const std::vector<Vec3>& points) {
-  std::vector<double> d(points.size());
+  const std::vector<int> order = morton_order(points);
+  std::vector<Vec3> along(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) along[k] = points[order[k]];
+  std::vector<double> d_along(points.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) d[i] = index.query(points[i]).distance;
+                      int hint = -1;
+                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+                        const ClosestPoint c = index.query(along[k], hint);
+                        d_along[k] = c.distance;
+                        hint = c.triangle;
+                      }
                     });
+  std::vector<double> d(points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) d[order[k]] = d_along[k];
   return d;
 }
 

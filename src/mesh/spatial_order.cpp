@@ -1,0 +1,52 @@
+#include "mesh/spatial_order.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <utility>
+
+namespace lrvd {
+
+namespace {
+
+// Spreads the low 21 bits of x to every third bit.
+std::uint64_t spread(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+}  // namespace
+
+std::vector<int> morton_order(const std::vector<Vec3>& points) {
+  const int n = static_cast<int>(points.size());
+  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+          std::numeric_limits<double>::infinity()};
+  Vec3 hi = -1.0 * lo;
+  for (const Vec3& p : points)
+    for (int c = 0; c < 3; ++c) {
+      lo[c] = std::min(lo[c], p[c]);
+      hi[c] = std::max(hi[c], p[c]);
+    }
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  const double cells = (1 << 21) - 1;
+  std::vector<std::pair<std::uint64_t, int>> keyed(n);
+  for (int i = 0; i < n; ++i) {
+    std::uint64_t code = 0;
+    for (int c = 0; c < 3; ++c) {
+      const double u = extent > 0 ? (points[i][c] - lo[c]) / extent : 0.0;
+      code |= spread(static_cast<std::uint64_t>(std::clamp(u, 0.0, 1.0) * cells)) << c;
+    }
+    keyed[i] = {code, i};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = keyed[k].second;
+  return order;
+}
+
+}  // namespace lrvd
