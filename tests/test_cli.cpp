@@ -118,6 +118,21 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
   REQUIRE(read_json(quality)["quality"]["Qmin"] == j["quality"]["Qmin"]);
 }
 
+TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cli]") {
+  const std::string square = kOut + "square.off";
+  {
+    std::ofstream file(square);
+    file << "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";
+  }
+  const Run open = run("quality " + square + " " + square);
+  REQUIRE(open.status == 0);
+  REQUIRE(open.out.find("manifold (open, as the reference): yes") != std::string::npos);
+  REQUIRE(open.out.find("closed manifold") == std::string::npos);
+  const Run closed = run("quality " + kData + "/ellipsoid.off " + kData + "/ellipsoid.off");
+  REQUIRE(closed.status == 0);
+  REQUIRE(closed.out.find("closed manifold: yes") != std::string::npos);
+}
+
 TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails a check", "[cli][remesh]") {
   // The comb's fingers at 100 vertices: too few samples to wrap every finger (paper Fig. 13).
   const std::string comb = kOut + "comb.off", out = kOut + "comb_100.off", report = kOut + "comb.json";
