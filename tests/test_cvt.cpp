@@ -179,6 +179,18 @@ TEST_CASE("Remeshing and sampling refuse a model too large or too small for doub
   }
 }
 
+TEST_CASE("The quality metrics refuse a remesh too large for doubles instead of giving inf and NaN", "[quality]") {
+  const SurfaceMesh unit = test::icosphere(2);
+  std::vector<Vec3> huge = unit.positions();
+  for (Vec3& p : huge) p = 1e200 * p;
+  REQUIRE_THROWS_WITH(quality_metrics(unit, huge, unit.triangles()),
+                      Catch::Contains("the remesh is") && Catch::Contains("across"));
+  // The same remesh at the reference's size is measured.
+  const QualityMetrics m = quality_metrics(unit, unit.positions(), unit.triangles());
+  REQUIRE(std::isfinite(m.q_avg));
+  REQUIRE(m.hausdorff_pct < 1e-9);  // points drawn on a triangle are on it up to rounding
+}
+
 TEST_CASE("A CVT given the diagram of its start computes no diagram twice and ends where it would without it", "[cvt]") {
   const SurfaceMesh mesh = cgal_mesh("knot.off");
   CvtOptions options;

@@ -371,15 +371,25 @@ double SurfaceMesh::max_edge_length() const {
   return longest;
 }
 
-void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task) {
+  if (positions.empty()) return;
+  BoundingBox box{positions.front(), positions.front()};
+  for (const Vec3& p : positions)
+    for (int c = 0; c < 3; ++c) {
+      box.min[c] = std::min(box.min[c], p[c]);
+      box.max[c] = std::max(box.max[c], p[c]);
+    }
   // std::hypot, not BoundingBox::diagonal(): squaring the extents would overflow or vanish outside the range.
-  const BoundingBox box = mesh.bounding_box();
   const Vec3 extent = box.max - box.min;
   const double diagonal = std::hypot(extent.x, extent.y, extent.z);
   if (!(diagonal >= kSmallestModel && diagonal <= kLargestModel))
-    throw InputError(fmt::format("the model is {:.3g} across (bounding-box diagonal); {} works with sizes from {:g} to "
+    throw InputError(fmt::format("{} is {:.3g} across (bounding-box diagonal); {} works with sizes from {:g} to "
                                  "{:g}: scale the model first",
-                                 diagonal, task, kSmallestModel, kLargestModel));
+                                 what, diagonal, task, kSmallestModel, kLargestModel));
+}
+
+void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+  require_workable_size(mesh.positions(), "the model", task);
 }
 
 }  // namespace lrvd

@@ -141,6 +141,8 @@ constexpr double kSmallestModel = 1e-30, kLargestModel = 1e30;
 //! \throw InputError, saying to scale the model, when its diagonal is outside
 //! [kSmallestModel, kLargestModel]; `task` names what needs it ("remeshing").
 void require_workable_size(const SurfaceMesh& mesh, const char* task);
+//! The same for any point set (a remesh read as a soup), named `what` in the message ("the remesh").
+void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.

@@ -169,6 +169,8 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   if (triangles.empty()) throw InputError("the remesh has no triangles: no distance to the reference");
   if (reference.triangle_count() == 0) throw InputError("the reference mesh has no triangles");
   require_workable_size(reference, "measuring the quality");
+  // A remesh far larger than that has areas and distances beyond the doubles (inf and NaN metrics).
+  require_workable_size(positions, "the remesh", "measuring the quality");
 
   // Zero-area triangles are left out of sampling and of the index: they add no surface, and a
   // triangle with coincident corners has no well-defined closest-point regions.
