@@ -1,3 +1,4 @@
+// Morton order of a point set (spatial_order.h).
 #include "mesh/spatial_order.h"
 
 #include <algorithm>
@@ -38,8 +39,9 @@ std::vector<int> morton_order(const std::vector<Vec3>& points) {
   for (int i = 0; i < n; ++i) {
     std::uint64_t code = 0;
     for (int c = 0; c < 3; ++c) {
+      // Written so that a NaN (an infinite extent) lands in cell 0 instead of an undefined cast.
       const double u = extent > 0 ? (points[i][c] - lo[c]) / extent : 0.0;
-      code |= spread(static_cast<std::uint64_t>(std::clamp(u, 0.0, 1.0) * cells)) << c;
+      code |= spread(static_cast<std::uint64_t>(u > 0 ? (u < 1 ? u * cells : cells) : 0.0)) << c;
     }
     keyed[i] = {code, i};
   }
