@@ -1,5 +1,5 @@
 // The cost of one CVT evaluation's diagram: samples part way through a CVT on one of CGAL's models
-// (the samples a remesh evaluates most of its diagrams on), then the LRVD and its cell integrals
+// (like those a remesh evaluates most of its diagrams on), then the LRVD and its cell integrals
 // computed again and again on one thread. Prints the shape of the diagram (polygons per triangle,
 // clippings, predicate calls) and the CPU time per diagram and per integration, minimum and mean.
 // Usage: bench_diagram [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]   (default: elk 516 300 20)

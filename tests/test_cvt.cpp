@@ -185,8 +185,10 @@ TEST_CASE("The quality metrics refuse a remesh too large for doubles instead of 
   for (Vec3& p : huge) p = 1e200 * p;
   REQUIRE_THROWS_WITH(quality_metrics(unit, huge, unit.triangles()),
                       Catch::Contains("the remesh is") && Catch::Contains("across"));
-  // The same remesh at the reference's size is measured.
-  const QualityMetrics m = quality_metrics(unit, unit.positions(), unit.triangles());
+  // The same remesh at the reference's size is measured, also with a far vertex no triangle uses.
+  std::vector<Vec3> with_unused = unit.positions();
+  with_unused.push_back({1e200, 0, 0});
+  const QualityMetrics m = quality_metrics(unit, with_unused, unit.triangles());
   REQUIRE(std::isfinite(m.q_avg));
   REQUIRE(m.hausdorff_pct < 1e-9);  // points drawn on a triangle are on it up to rounding
 }

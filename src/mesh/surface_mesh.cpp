@@ -353,15 +353,17 @@ Vec3 SurfaceMesh::triangle_normal(int t) const {
   return n / norm(n);
 }
 
-BoundingBox SurfaceMesh::bounding_box() const {
-  BoundingBox box{positions_.front(), positions_.front()};
-  for (const Vec3& p : positions_)
+BoundingBox bounding_box(const std::vector<Vec3>& points) {
+  BoundingBox box{points.front(), points.front()};
+  for (const Vec3& p : points)
     for (int c = 0; c < 3; ++c) {
       box.min[c] = std::min(box.min[c], p[c]);
       box.max[c] = std::max(box.max[c], p[c]);
     }
   return box;
 }
+
+BoundingBox SurfaceMesh::bounding_box() const { return lrvd::bounding_box(positions_); }
 
 double SurfaceMesh::max_edge_length() const {
   double longest = 0;
@@ -373,12 +375,7 @@ double SurfaceMesh::max_edge_length() const {
 
 void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task) {
   if (positions.empty()) return;
-  BoundingBox box{positions.front(), positions.front()};
-  for (const Vec3& p : positions)
-    for (int c = 0; c < 3; ++c) {
-      box.min[c] = std::min(box.min[c], p[c]);
-      box.max[c] = std::max(box.max[c], p[c]);
-    }
+  const BoundingBox box = bounding_box(positions);
   // std::hypot, not BoundingBox::diagonal(): squaring the extents would overflow or vanish outside the range.
   const Vec3 extent = box.max - box.min;
   const double diagonal = std::hypot(extent.x, extent.y, extent.z);

@@ -25,6 +25,8 @@ struct BoundingBox {
   Vec3 min, max;
   double diagonal() const;
 };
+//! The bounding box of a point set (not empty).
+BoundingBox bounding_box(const std::vector<Vec3>& points);
 
 //! An oriented 2-manifold triangle mesh, with or without boundary.
 //! Edge e of triangle t joins corners e and (e+1)%3; neighbor(t, e) is the triangle across it.
@@ -141,7 +143,8 @@ constexpr double kSmallestModel = 1e-30, kLargestModel = 1e30;
 //! \throw InputError, saying to scale the model, when its diagonal is outside
 //! [kSmallestModel, kLargestModel]; `task` names what needs it ("remeshing").
 void require_workable_size(const SurfaceMesh& mesh, const char* task);
-//! The same for any point set (a remesh read as a soup), named `what` in the message ("the remesh").
+//! The same for any point set (the vertices a remesh's triangles use), named `what` in the message
+//! ("the remesh").
 void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four

@@ -169,8 +169,11 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   if (triangles.empty()) throw InputError("the remesh has no triangles: no distance to the reference");
   if (reference.triangle_count() == 0) throw InputError("the reference mesh has no triangles");
   require_workable_size(reference, "measuring the quality");
-  // A remesh far larger than that has areas and distances beyond the doubles (inf and NaN metrics).
-  require_workable_size(positions, "the remesh", "measuring the quality");
+  // Each surface's points start with its (used) vertices. A remesh whose used vertices span far
+  // more than the workable sizes has areas and distances beyond the doubles (inf and NaN metrics);
+  // a vertex no triangle uses is not on the surface and does not count.
+  std::vector<Vec3> remesh_points = used_vertices(positions, triangles);
+  require_workable_size(remesh_points, "the remesh", "measuring the quality");
 
   // Zero-area triangles are left out of sampling and of the index: they add no surface, and a
   // triangle with coincident corners has no well-defined closest-point regions.
@@ -179,9 +182,8 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
     if (!predicates::collinear(positions[f[0]], positions[f[1]], positions[f[2]])) proper.push_back(f);
   if (proper.empty()) throw InputError("every triangle of the remesh has collinear corners: it has no surface");
 
-  // Each surface's points: its (used) vertices, then samples by area. The reference gets a
-  // different seed so that its points are not drawn with the same random sequence.
-  std::vector<Vec3> remesh_points = used_vertices(positions, triangles);
+  // Then samples by area. The reference gets a different seed so that its points are not drawn
+  // with the same random sequence.
   append_area_samples(positions, proper, options.samples_per_surface, options.seed, remesh_points);
   std::vector<Vec3> reference_points = reference.positions();
   append_area_samples(reference.positions(), reference.triangles(), options.samples_per_surface,
