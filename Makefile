@@ -28,5 +28,11 @@ demo: build
 	$(BUILD)/lrvd compute $(BUILD)/cgal-data/elk.off -n 300 --seed 1 \
 	  -o $(BUILD)/demo/elk_lrvd_cells.ply --report $(BUILD)/demo/elk_lrvd_report.json
 
+# The 20-row CVT remeshing table (four CGAL models, N = 300 ... 4000), LRVD only, one thread:
+# about a minute. docs/results.md and bench/README.md give the full tables and how to read them.
+bench: build
+	mkdir -p $(BUILD)/bench
+	$(BUILD)/bench_remesh --lrvd-only --threads 1 --out $(BUILD)/bench/remesh.md --json $(BUILD)/bench/remesh.json
+
 clean:
 	rm -rf $(BUILD)

@@ -9,7 +9,7 @@ failed: the failed checks are listed); anything else is a crash and is listed fi
     bench/cgal_sweep.py --lrvd build/lrvd --counts 200 --jobs 2 --out sweep.md
     bench/cgal_sweep.py --lrvd build/lrvd --counts 500,1000 --only cow,bull,bones --out sweep.md
 
-The meshes come from /usr/share/doc/libcgal-demo/data.tar.gz (package libcgal-demo), extracted
+The meshes come from /usr/share/doc/libcgal-dev/data.tar.gz (package libcgal-demo), extracted
 into --data (default: a temporary directory). Results: docs/results.md, "CGAL's data set".
 """
 import argparse
@@ -22,7 +22,7 @@ import tarfile
 import tempfile
 import time
 
-ARCHIVE = "/usr/share/doc/libcgal-demo/data.tar.gz"
+ARCHIVE = "/usr/share/doc/libcgal-dev/data.tar.gz"  # in package libcgal-demo
 SUFFIXES = (".off", ".obj", ".ply", ".stl")
 
 

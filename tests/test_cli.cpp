@@ -131,6 +131,12 @@ TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cl
   const Run closed = run("quality " + kData + "/ellipsoid.off " + kData + "/ellipsoid.off");
   REQUIRE(closed.status == 0);
   REQUIRE(closed.out.find("closed manifold: yes") != std::string::npos);
+  // A mesh that fails a check (the square is open, the ellipsoid closed): exit 3, report written.
+  const std::string report = kOut + "quality_failed.json";
+  const Run failed = run("quality " + kData + "/ellipsoid.off " + square + " --report " + report);
+  REQUIRE(failed.status == 3);
+  REQUIRE(failed.out.find("closed manifold: no") != std::string::npos);
+  REQUIRE(read_json(report)["verification"]["passed"] == false);
 }
 
 TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails a check", "[cli][remesh]") {

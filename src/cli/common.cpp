@@ -180,7 +180,12 @@ void print_quality(const QualityMetrics* quality, bool of_angles) {
 }
 
 void progress(const std::string& message) {
-  static const bool enabled = isatty(STDERR_FILENO) || std::getenv("LRVD_PROGRESS");
+  // LRVD_PROGRESS decides when it is set: on unless empty or "0"; else on a terminal only.
+  static const bool enabled = [] {
+    const char* env = std::getenv("LRVD_PROGRESS");
+    if (env) return *env != '\0' && std::string(env) != "0";
+    return isatty(STDERR_FILENO) != 0;
+  }();
   if (enabled) std::fprintf(stderr, "lrvd: %s\n", message.c_str());
 }
 

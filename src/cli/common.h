@@ -48,7 +48,7 @@ void write_json(const std::string& path, const nlohmann::json& report);
 //! triangles). The share under 30 degrees is of the angles (`of_angles`) or of the triangles.
 void print_quality(const QualityMetrics* quality, bool of_angles);
 
-//! Progress on stderr for long work (only when stderr is a terminal or LRVD_PROGRESS is set).
+//! Progress on stderr for long work (when LRVD_PROGRESS is set to anything but "" or "0"; when it is unset, only on a terminal).
 void progress(const std::string& message);
 
 }  // namespace lrvd::cli
