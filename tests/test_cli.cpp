@@ -83,6 +83,16 @@ TEST_CASE("lrvd compute writes cells and a report with the promised keys", "[cli
 TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   const std::string points = kOut + "far.xyz";
   std::ofstream(points) << "0 0 1000\n";
+  // A tetrahedron 1e77 across: its squared distances overflow in the exact predicates' filters.
+  const std::string huge = kOut + "huge.off", huge_points = kOut + "huge.xyz", a_file = kOut + "not_a_folder";
+  std::ofstream(huge) << "OFF\n4 4 0\n0 0 0\n1e77 0 0\n0 1e77 0\n0 0 1e77\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(huge_points) << "2e76 2e76 6e76\n";
+  std::ofstream(a_file) << "x\n";
+  const std::string weights = kOut + "weights20.txt";
+  {
+    std::ofstream w(weights);
+    for (int i = 0; i < 20; ++i) w << "0\n";
+  }
   for (const std::string& args :
        {std::string("compute ") + kData + "/missing.off -n 10", "compute " + kData + "/elk.off -n 0",
         "compute " + kData + "/elk.off --points " + points, "compute " + kData + "/elk.off -n 10 --diagram lrpd",
@@ -91,10 +101,20 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
         "remesh " + kData + "/elk.off -n 6 -o " + kOut + "elk_6.off",
         // More than memory allows: refused before sampling or refining, not an exhausted machine.
         "compute " + kData + "/elk.off -n 100000000", "compute " + kData + "/elk.off -n 1000 --refine 0.001",
-        std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand")}) {
+        std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand"),
+        "verify " + huge + " --points " + huge_points, "compute " + huge + " -n 10",
+        "mps " + kData + "/elk.off --radius 1e154 -o " + kOut + "huge_radius.xyz",
+        "stress --report " + a_file + " --scale 0.05",
+        // Outputs that could not be written are refused before the work, not after it.
+        "remesh " + kData + "/elk.off -n 200 -o " + kOut + "elk.stl",
+        "remesh " + kData + "/elk.off -n 200 -o " + kOut + "no_such_folder/elk.off",
+        "compute " + kData + "/elk.off -n 20 -o " + kOut + "cells.off",
+        "mps " + kData + "/elk.off --radius 0.05 -o " + kOut + "same.json --report " + kOut + "same.json",
+        "remesh " + kData + "/ellipsoid.off -n 20 --weights " + weights + " -o " + kOut + "weighted.off"}) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);
     REQUIRE(r.status == 2);
+    REQUIRE(r.err.find("lrvd: error:") != std::string::npos);
     REQUIRE(lines(r.err) >= 1);
     if (args.rfind("nosuch", 0) != 0) REQUIRE(lines(r.err) == 1);
   }
@@ -136,6 +156,7 @@ TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cl
   const Run failed = run("quality " + kData + "/ellipsoid.off " + square + " --report " + report);
   REQUIRE(failed.status == 3);
   REQUIRE(failed.out.find("closed manifold: no") != std::string::npos);
+  REQUIRE(failed.out.find("verification: FAILED") != std::string::npos);
   REQUIRE(read_json(report)["verification"]["passed"] == false);
 }
 

@@ -25,6 +25,7 @@ struct ComputeOptions {
 
 int run_diagram(const ComputeOptions& opt, bool write_cells) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
+  check_outputs({{write_cells ? opt.output : std::string(), "-o", {".ply"}}, {opt.report, "--report", {}, kMeshOutputExtensions}});
   Input input = load_input(opt.input);
   if (is_power(kind) && !input.samples.weighted())
     throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", opt.kind));

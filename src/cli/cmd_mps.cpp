@@ -20,12 +20,15 @@ namespace lrvd::cli {
 
 namespace {
 
+constexpr double kMaxRelativeRadius = 10;  //!< --radius, relative to the longest bounding-box side
+
 struct MpsCommandOptions {
   std::string mesh_path;
   bool repair = false;
   double radius = 0;
   bool adaptive = false;
   double max_radius_ratio = MpsOptions{}.max_radius_ratio;
+  bool max_radius_ratio_given = false;  // set by the parser's callback below
   std::uint64_t seed = 1;
   std::string gap_update = "local";
   std::string split_to = "field";
@@ -39,9 +42,18 @@ struct MpsCommandOptions {
 };
 
 int run_mps(const MpsCommandOptions& opt) {
-  if (!(opt.radius > 0) || !std::isfinite(opt.radius))
-    throw InputError(fmt::format("--radius must be a positive number (relative to the longest bounding-box side), got {}",
-                                 opt.radius));
+  // A radius of the model's size already leaves one sample per sheet; far beyond it, squared
+  // distances overflow.
+  if (!(opt.radius > 0) || !(opt.radius <= kMaxRelativeRadius))
+    throw InputError(fmt::format("--radius must be a positive number up to {:g} (relative to the longest bounding-box "
+                                 "side), got {}",
+                                 kMaxRelativeRadius, opt.radius));
+  if (opt.max_radius_ratio_given && !opt.adaptive) throw InputError("--max-radius-ratio applies to --adaptive");
+  // The samples are text, 'x y z r^2' per line: not a mesh file.
+  const std::vector<std::string> mesh_formats = {".off", ".obj", ".ply", ".stl"};
+  check_outputs({{opt.output, "-o", {}, mesh_formats},
+                 {opt.remesh, "--remesh", kMeshOutputExtensions},
+                 {opt.report, "--report", {}, mesh_formats}});
   const LoadedMesh loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
   const SurfaceMesh& input = loaded.mesh;
 
@@ -173,6 +185,7 @@ Action add_mps_command(CLI::App& app) {
   cmd->add_flag("--adaptive", opt->adaptive, "Radius from curvature, never below --radius");
   cmd->add_option("--max-radius-ratio", opt->max_radius_ratio, "Adaptive: largest radius / --radius")
       ->check(CLI::Range(1.0, 100.0))
+      ->each([opt](const std::string&) { opt->max_radius_ratio_given = true; })
       ->capture_default_str();
   cmd->add_option("--seed", opt->seed, "Seed of the darts")->capture_default_str();
   cmd->add_option("--gap-update", opt->gap_update,

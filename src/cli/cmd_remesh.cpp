@@ -50,7 +50,10 @@ int run_remesh(const RemeshCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
   if (opt.output.empty()) throw InputError("give an output file with -o");
+  check_outputs({{opt.output, "-o", kMeshOutputExtensions}, {opt.report, "--report", {}, kMeshOutputExtensions}});
   Input input = load_input(opt.input);
+  if (input.samples.weighted())
+    throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
   const int fewest = input.loaded.mesh.minimum_vertex_count();
@@ -148,6 +151,7 @@ struct QualityOptions {
 };
 
 int run_quality(const QualityOptions& opt) {
+  check_outputs({{opt.report, "--report", {}, kMeshOutputExtensions}});
   const SurfaceMesh reference = read_mesh(opt.reference).mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh);
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
@@ -166,6 +170,8 @@ int run_quality(const QualityOptions& opt) {
               report["quality"]["closed_manifold"].get<bool>() ? "yes" : "no", check.topology.passed ? "yes" : "no",
               check.self_intersecting_pairs);
   // Like a remesh of our own: 3 when the mesh fails a check, so that a script can tell.
+  std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
+  if (!check.passed) std::fputs(check.summary().c_str(), stdout);
   return check.passed ? kOk : kCheckFailed;
 }
 
@@ -179,7 +185,8 @@ Action add_remesh_command(CLI::App& app) {
       ->check(CLI::IsMember({"lrvd", "rvd"}))
       ->capture_default_str();
   cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
-  cmd->add_option("--iterations", opt->iterations, "Iteration cap")->check(CLI::Range(1, 100000))->capture_default_str();
+  cmd->add_option("--iterations", opt->iterations,
+                  "Iteration cap of the first CVT (each repair round of a dual with defects runs up to 30 more)")->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--density", opt->density, "uniform or curvature")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();

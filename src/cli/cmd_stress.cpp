@@ -20,7 +20,11 @@ namespace {
 // RVD against LRVD on every stress mesh and sample count: the disconnected cells of the RVD and
 // the verification of the LRVD, as markdown and JSON tables.
 int write_stress_report(const std::string& dir, double scale, int seeds) {
-  std::filesystem::create_directories(dir);
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir))
+    throw InputError(fmt::format("cannot make the report directory {}: {}", dir,
+                                 error ? error.message() : "a file of that name is in the way"));
   nlohmann::json rows = nlohmann::json::array();
   std::string md =
       "| mesh | triangles | n | RVD disconnected cells | RVD time (s) | LRVD disconnected cells | LRVD verified | "
@@ -76,12 +80,15 @@ Action add_stress_command(CLI::App& app) {
   };
   auto opt = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("stress", "Stress meshes: list them, write one, or report RVD vs LRVD on all");
-  cmd->add_flag("--list", opt->list, "List the stress meshes");
-  cmd->add_option("name", opt->name, "Stress mesh to write");
-  cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)");
+  CLI::Option* list = cmd->add_flag("--list", opt->list, "List the stress meshes");
+  CLI::Option* name = cmd->add_option("name", opt->name, "Stress mesh to write");
+  CLI::Option* output = cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)");
   cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")->check(CLI::Range(0.05, 10.0));
-  cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR");
-  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::Range(1, 100));
+  CLI::Option* report = cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR");
+  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::Range(1, 100))->needs(report);
+  // The three uses exclude each other: a listing, one mesh written, or the report over all.
+  list->excludes(name)->excludes(output)->excludes(report);
+  report->excludes(name)->excludes(output);
   return [opt]() -> int {
     if (!opt->report_dir.empty()) return write_stress_report(opt->report_dir, opt->scale, opt->seeds);
     if (opt->list) {

@@ -1,7 +1,10 @@
 // Loading inputs and writing reports for the subcommands.
 #include "cli/common.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -66,6 +69,8 @@ std::vector<double> read_weights(const std::string& path) {
 Input load_input(const InputOptions& opt) {
   Input input;
   input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
+  // Before any point is located on it: distances of a model outside this range overflow or vanish.
+  require_workable_size(input.loaded.mesh, "lrvd");
   if (opt.repair) {
     const RepairReport& r = input.loaded.repair;
     std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
@@ -82,6 +87,9 @@ Input load_input(const InputOptions& opt) {
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {
+    if (!points.weights.empty())
+      throw InputError(fmt::format("the weights are given twice: in the 4th column of {} and in --weights {}",
+                                   opt.points_path, opt.weights_path));
     points.weights = read_weights(opt.weights_path);
   }
   const int n = opt.points_path.empty() ? opt.count : static_cast<int>(points.points.size());
@@ -159,6 +167,38 @@ nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVe
   q["genus_preserved"] = check.topology.passed;
   q["self_intersections"] = check.self_intersecting_pairs;
   return q;
+}
+
+const std::vector<std::string> kMeshOutputExtensions = {".off", ".obj", ".ply"};
+
+void check_outputs(const std::vector<OutputFile>& outputs) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> seen;
+  for (const OutputFile& out : outputs) {
+    if (out.path.empty()) continue;
+    const fs::path path(out.path);
+    std::error_code error;
+    if (fs::is_directory(path, error))
+      throw InputError(fmt::format("{} {} is a folder, not a file", out.option, out.path));
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    auto listed = [&](const std::vector<std::string>& list) { return std::find(list.begin(), list.end(), ext) != list.end(); };
+    if (!out.extensions.empty() && !listed(out.extensions)) {
+      std::string known;
+      for (const std::string& e : out.extensions) known += (known.empty() ? "" : ", ") + e;
+      throw InputError(fmt::format("{} {}: {} (lrvd writes {} there)", out.option, out.path,
+                                   ext.empty() ? "no extension" : fmt::format("the extension '{}' is not one it writes", ext), known));
+    }
+    if (listed(out.refused))
+      throw InputError(fmt::format("{} {}: the file would not be a '{}' file; use another extension", out.option, out.path, ext));
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    if (!fs::is_directory(folder, error))
+      throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
+    const fs::path normal = fs::absolute(path, error).lexically_normal();
+    if (std::find(seen.begin(), seen.end(), normal) != seen.end())
+      throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
+    seen.push_back(normal);
+  }
 }
 
 void write_json(const std::string& path, const nlohmann::json& report) {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -44,6 +45,21 @@ nlohmann::json predicates_json();
 //! self_intersections from the remesh check.
 nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check);
 void write_json(const std::string& path, const nlohmann::json& report);
+
+//! An output file a command will write, with the option that names it and the extensions it may
+//! have (none listed: any but those of `refused`).
+struct OutputFile {
+  std::string path;
+  const char* option;
+  std::vector<std::string> extensions;
+  std::vector<std::string> refused = {};
+};
+//! Refuses, before any work, outputs that could not be written at the end: an extension the
+//! writer does not know, a folder that does not exist, a path that is a folder, or two outputs
+//! on one file. Empty paths (outputs not asked for) are skipped.
+void check_outputs(const std::vector<OutputFile>& outputs);
+//! The extensions of mesh files the writers know.
+extern const std::vector<std::string> kMeshOutputExtensions;
 //! The console line of a remesh's quality, or that it was not measured (null: the remesh has no
 //! triangles). The share under 30 degrees is of the angles (`of_angles`) or of the triangles.
 void print_quality(const QualityMetrics* quality, bool of_angles);

@@ -21,6 +21,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
@@ -66,6 +67,12 @@ void check_readable(const std::string& path) {
 // Reading, checking and triangulating the soup.
 
 bool read_soup(const std::string& path, Format format, std::vector<Point>& points, std::vector<Polygon>& polygons) {
+  // CGAL's readers print their own complaints to std::cerr; lrvd gives one line of its own
+  // (diagnose_mesh_file), so theirs are dropped while they read.
+  struct QuietCerr {
+    std::streambuf* saved = std::cerr.rdbuf(nullptr);
+    ~QuietCerr() { std::cerr.rdbuf(saved); }
+  } quiet;
   try {
     switch (format) {
       case Format::Off:

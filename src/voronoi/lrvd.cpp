@@ -609,6 +609,8 @@ class LrvdBuilder {
 
 void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool weighted) {
   if (samples.size() == 0) throw InputError("no samples: a diagram needs at least one");
+  // Beyond this range the predicates' products overflow or vanish in double precision.
+  require_workable_size(mesh, "a diagram");
   if (weighted && !samples.weighted()) throw InputError("a power diagram needs a weight for every sample");
   std::vector<char> sampled(mesh.component_count(), 0);
   for (int i = 0; i < samples.size(); ++i) {
