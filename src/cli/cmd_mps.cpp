@@ -163,6 +163,11 @@ int run_mps(const MpsCommandOptions& opt) {
                                 : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
+  // Closer pairs the disk condition does not cover (docs/mps.md, "Conflict rule"): said, not hidden.
+  if (check.close_pairs_not_local > 0)
+    std::printf("  %lld pair(s) of samples closer than their radius are not local to each other (another component, "
+                "the other side of a sheet, or past a turn of the surface of more than 90 degrees): allowed\n",
+                static_cast<long long>(check.close_pairs_not_local));
   if (check.polygons_outside_own_ball > 0)
     std::printf("  %lld LRPD polygons reach outside their cell's ball; in %lld of their triangles disks of samples "
                 "that are no LRPD candidate there cover them\n",
