@@ -103,6 +103,7 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
         "compute " + kData + "/elk.off -n 100000000", "compute " + kData + "/elk.off -n 1000 --refine 0.001",
         std::string("stress nosuchmesh -o x.off"), std::string("nosuchcommand"),
         "verify " + huge + " --points " + huge_points, "compute " + huge + " -n 10",
+        "compute " + kData + "/elk.off -n 10 --seed -1", "compute " + kData + "/elk.off -n 10 --seed 99999999999999999999999",
         "mps " + kData + "/elk.off --radius 1e154 -o " + kOut + "huge_radius.xyz",
         "stress --report " + a_file + " --scale 0.05",
         // Outputs that could not be written are refused before the work, not after it.

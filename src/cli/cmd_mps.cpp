@@ -192,7 +192,7 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::Range(1.0, 100.0))
       ->each([opt](const std::string&) { opt->max_radius_ratio_given = true; })
       ->capture_default_str();
-  cmd->add_option("--seed", opt->seed, "Seed of the darts")->capture_default_str();
+  cmd->add_option("--seed", opt->seed, "Seed of the darts")->check(seed_validator())->capture_default_str();
   cmd->add_option("--gap-update", opt->gap_update,
                   "local: one LRPD, gaps clipped as disks are added (default); lrpd: a new LRPD after every round "
                   "of darts (the paper's loop)")

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <cstdio>
@@ -17,6 +18,19 @@
 
 namespace lrvd::cli {
 
+CLI::Validator seed_validator() {
+  // CLI11 would take "-1" as 2^64 - 1 and clamp a longer number: only decimal digits that fit.
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        errno = 0;
+        if (digits) std::strtoull(text.c_str(), nullptr, 10);
+        if (!digits || errno == ERANGE) return "a seed is a whole number from 0 to 18446744073709551615, not '" + text + "'";
+        return std::string();
+      },
+      "UINT64");
+}
+
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
   cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
   cmd->add_flag("--repair", opt.repair, "Weld, clean, orient and stitch a triangle soup before use");
@@ -28,7 +42,7 @@ void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
     points->required();
   }
   cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)");
-  cmd->add_option("--seed", opt.seed, "Seed of the random samples")->capture_default_str();
+  cmd->add_option("--seed", opt.seed, "Seed of the random samples")->check(seed_validator())->capture_default_str();
   cmd->add_option("--refine", opt.refine,
                   "Split long edges first: 'auto' (when the samples would crowd the triangles), 'off', or a "
                   "maximum edge length")

@@ -27,6 +27,8 @@ struct InputOptions {
 };
 
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count);
+//! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
+CLI::Validator seed_validator();
 
 struct Input {
   LoadedMesh loaded;          //!< as read (and repaired)
