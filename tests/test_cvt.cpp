@@ -324,6 +324,27 @@ TEST_CASE("Open meshes with holes keep every hole at low N", "[cvt][remesh]") {
   }
 }
 
+TEST_CASE("A sample cornered at a sharp boundary corner gets a larger cell, not company: CGAL's negative at 500", "[cvt][remesh]") {
+  // A disk of six triangles with a 38-degree corner: the CVT leaves a small cell in the corner with
+  // one neighbour, a sample in no triangle. Raising the density there (48 rounds) only made the
+  // pattern smaller; lowering it on that cell's own triangles lets the cell grow to meet two others.
+  const SurfaceMesh input = cgal_mesh("negative.off");
+  REQUIRE_FALSE(input.is_closed());
+  const SurfaceMesh mesh = for_samples(input, 500);
+  Samples start = sample_uniform(mesh, 500, 1);
+  // The first CVT's dual, before any repair: the cornered sample is found as such.
+  const CvtResult first = optimize_cvt(mesh, start, CvtOptions{});
+  const DualMesh dual = compute_dual(first.diagram, mesh, first.samples);
+  const DualDefects defects = find_dual_defects(dual, first.diagram, mesh, false, false);
+  REQUIRE(defects.cornered.size() == 1);
+  REQUIRE(defects.topological == defects.cornered);
+  const Remeshed r = remesh(input, 500);
+  INFO(r.check.summary());
+  REQUIRE(r.check.passed);
+  REQUIRE(r.result.repair_rounds <= 3);
+  REQUIRE(r.result.dual.positions.size() == 500);
+}
+
 TEST_CASE("The second run moves samples into the defect cells: CGAL's triceratops at 300", "[cvt][remesh]") {
   // Horns and a frill thinner than the cells: the first run's 24 rounds of raised density end with
   // pinched and unused vertices; the second run, which also moves samples of light cells into the

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <numeric>
 #include <set>
 #include <string>
@@ -219,6 +220,24 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     for (int v : t) used[v] = 1;
   for (size_t i = 0; i < used.size(); ++i)
     if (!used[i]) defect.insert(static_cast<int>(i));
+  // Unused samples whose disk cells meet the boundary of an open mesh: cornered.
+  std::vector<int> cornered;
+  if (!input_closed && std::find(used.begin(), used.end(), 0) != used.end()) {
+    std::vector<char> on_boundary(used.size(), 0);
+    for (const CellPolygon& poly : diagram.polygons) {
+      if (used[poly.cell] || on_boundary[poly.cell]) continue;
+      const Triangle& tri = mesh.triangle(poly.triangle);
+      const SymbolicVertex* v = diagram.polygon_vertices(poly);
+      for (int e = 0; e < 3 && !on_boundary[poly.cell]; ++e) {
+        if (mesh.neighbor(poly.triangle, e) >= 0) continue;
+        for (int k = 0; k < poly.vertex_count && !on_boundary[poly.cell]; ++k)
+          on_boundary[poly.cell] = v[k].on_mesh_edge(tri[e], tri[(e + 1) % 3]) &&
+                                   v[(k + 1) % poly.vertex_count].on_mesh_edge(tri[e], tri[(e + 1) % 3]);
+      }
+    }
+    for (int i = 0; i < static_cast<int>(used.size()); ++i)
+      if (!used[i] && on_boundary[i] && !hints.count(i)) cornered.push_back(i);
+  }
   // Triangles that cut through each other (nearby sheets sampled too coarsely).
   const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
   std::set<int> crossing;
@@ -236,6 +255,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.topological.assign(defect.begin(), defect.end());
   out.crossing.assign(crossing.begin(), crossing.end());
   out.cell_topology.assign(hints.begin(), hints.end());
+  out.cornered = std::move(cornered);
   out.euler_ok = euler_ok;
   out.crossing_pairs = pairs;
   return out;
@@ -264,6 +284,18 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, doubl
     if (involved[poly.cell] && !raised[poly.triangle]) {
       raised[poly.triangle] = 1;
       density[poly.triangle] *= factor;
+    }
+}
+
+// Divides the density on the triangles of the given cells (their own, not their neighbours'), so
+// that the CVT makes those cells larger.
+void lower_density(const Diagram& diagram, const std::vector<int>& cells, double factor, std::vector<double>& density) {
+  std::vector<char> lowered_cell(diagram.sample_count, 0), lowered(density.size(), 0);
+  for (int c : cells) lowered_cell[c] = 1;
+  for (const CellPolygon& poly : diagram.polygons)
+    if (lowered_cell[poly.cell] && !lowered[poly.triangle]) {
+      lowered[poly.triangle] = 1;
+      density[poly.triangle] /= factor;
     }
 }
 
@@ -395,15 +427,31 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
     // characteristic that no defect finder locates).
     for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
-      raise_density(result.cvt.diagram, defects.where_to_act(), options.repair_factor, again.triangle_density);
+      // Cornered cells get a lower density, the other defects a higher one (a cap at a closed
+      // mesh's tip is left to the raise: lowering there too cost more than it gave, docs/results.md
+      // "Session 22").
+      std::vector<int> lowered, raised = defects.where_to_act();
+      if (&defects.where_to_act() == &defects.topological && !defects.cornered.empty()) {
+        lowered = defects.cornered;
+        raised.clear();
+        std::set_difference(defects.topological.begin(), defects.topological.end(), lowered.begin(), lowered.end(),
+                            std::back_inserter(raised));
+      }
+      if (!lowered.empty()) lower_density(result.cvt.diagram, lowered, options.repair_factor, again.triangle_density);
+      if (!raised.empty()) raise_density(result.cvt.diagram, raised, options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
-      progress(fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours", round + 1,
-                           options.repair_rounds, options.repair_factor, defects.where_to_act().size()));
+      progress(lowered.empty()
+                   ? fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours", round + 1,
+                                 options.repair_rounds, options.repair_factor, raised.size())
+                   : fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours, /{} in the "
+                                 "cells of {} samples in no triangle",
+                                 round + 1, options.repair_rounds, options.repair_factor, raised.size(),
+                                 options.repair_factor, lowered.size()));
       // The second run also moves samples into the defect cells (the first, whose raised density
-      // suffices on the models of docs/results.md, leaves them to the CVT).
-      const bool moved = keep_to_sheets &&
-                         relocate_samples(result.cvt.diagram, mesh, again.triangle_density, defects.where_to_act(),
-                                          result.cvt.samples) > 0;
+      // suffices on the models of docs/results.md, leaves them to the CVT); not into the cells
+      // that are to grow.
+      const bool moved = keep_to_sheets && !raised.empty() &&
+                         relocate_samples(result.cvt.diagram, mesh, again.triangle_density, raised, result.cvt.samples) > 0;
       // The diagram of the samples is the last one computed: the density changed, the diagram not.
       result.cvt = optimize_cvt(mesh, result.cvt.samples, again, moved ? nullptr : &result.cvt.diagram, &index);
       result.total_iterations += result.cvt.iterations;

@@ -50,6 +50,11 @@ struct DualDefects {
   std::vector<int> topological;    //!< samples at bad edges, repeated or merged triangles, unused samples
   std::vector<int> crossing;       //!< samples of triangles that intersect others
   std::vector<int> cell_topology;  //!< cells that are rings, or share two arcs with a neighbour
+  //! Unused samples (also in `topological`) whose cells are disks that meet the boundary of an open
+  //! mesh: a small cell in a corner sharper than the cells, whose one neighbour spans the corner.
+  //! More samples there repeat the pattern at a smaller scale; fewer make the cell grow until it
+  //! meets two others.
+  std::vector<int> cornered;
   bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
   //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
   std::vector<std::pair<int, int>> crossing_pairs;
@@ -104,7 +109,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! the lightest cells away from the defects (from any component that keeps the fewest vertices its
 //! topology needs) to the points of the defect cells farthest from their samples; the run with
 //! fewer defects is kept, and the counters cover both runs. Samples otherwise stay on their
-//! connected components. Rounds stop early when no cell is known to act on. Open meshes are
+//! connected components. A sample in no triangle whose cell is a disk in a corner of an open
+//! mesh's boundary (DualDefects::cornered) gets the density divided by `repair_factor` on its
+//! cell's own triangles instead, so that the cell grows until it meets two others. Rounds stop early when no cell is known to act on. Open meshes are
 //! repaired where a boundary loop is closed over (met by fewer than three cells, or a cell meets
 //! two loops) or the dual is pinched at a vertex. The result is fitted to the surface under the
 //! CVT's quality floor (fit_to_surface) unless switched off; if crossings are left in it, it is
