@@ -133,9 +133,20 @@ TEST_CASE("read_mesh refuses face indices out of range") {
   REQUIRE_THROWS_AS(read_mesh(data("index_out_of_range.off")), InputError);
   REQUIRE_THROWS_WITH(read_mesh(data("index_out_of_range.off")),
                       Contains("index_out_of_range.off: face 2 has vertex index 9 out of range [0, 4)"));
-  // CGAL's OBJ reader lets the index one past the end through; the check after reading does not.
+  // CGAL's OBJ reader lets the index one past the end through; the check after reading does not,
+  // and names the line with the file's own index.
   REQUIRE_THROWS_WITH(read_mesh(data("index_out_of_range.obj")),
-                      Contains("face 3 has vertex index 4 out of range [0, 4) (index 5 in the file"));
+                      Contains("face 3 (line 9) refers to vertex 5, but the file has 4 vertices"));
+  // What CGAL misreads into short or wild faces: OBJ index 0 or a letter, an OFF whose header
+  // declares fewer vertices than it has (a vertex line read as a face).
+  const std::string tetra_obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
+  write_file(scratch("index_zero.obj"), tetra_obj + "f 2 3 0\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("index_zero.obj")), Contains("face 3 (line 8): '0' is not a vertex index"));
+  write_file(scratch("letters.obj"), tetra_obj + "f a b c\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("letters.obj")), Contains("'a' is not a vertex index"));
+  write_file(scratch("header_short.off"), "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("header_short.off")),
+                      Contains("face 0 (line 6) has 0 vertices") && Contains("header's vertex count, 3"));
 }
 
 TEST_CASE("read_mesh reports what SurfaceMesh refuses, with the file name and a --repair hint") {

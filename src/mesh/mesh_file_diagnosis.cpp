@@ -114,6 +114,10 @@ std::string diagnose_off(const std::string& path) {
     long long n = 0;
     if (!parse_long(tokens[0], n) || n < 0)
       return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
+    if (n < 3)
+      return fmt::format("face {} (line {}) has {} vertices; a face needs at least 3 (does the header's vertex count, {}, "
+                         "match the vertex lines?)",
+                         f, lines.line_number(), n, nv);
     if (static_cast<long long>(tokens.size()) < n + 1)
       return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, lines.line_number(),
                          tokens.size() - 1, n);

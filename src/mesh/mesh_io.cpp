@@ -93,6 +93,13 @@ bool read_soup(const std::string& path, Format format, std::vector<Point>& point
 // out-of-range indices (CGAL's PLY reader does not check them; its OBJ reader lets index n pass).
 void check_soup(const std::string& path, Format format, const std::vector<Point>& points,
                 const std::vector<Polygon>& polygons) {
+  // A face CGAL read short or out of range often comes from a line it misread (a binary OFF, an
+  // OBJ index 0 or a letter, header counts that do not match): the line scanner names that line
+  // when it can, with what is wrong there.
+  auto fail_face = [&](const std::string& reason) {
+    const std::string scanned = diagnose_unreadable_mesh_file(path, format);
+    fail(path, scanned.rfind("cannot be parsed", 0) == 0 ? reason : scanned);
+  };
   if (polygons.empty())
     fail(path, points.empty() ? "has no vertices and no faces"
                               : fmt::format("has {} vertices but no faces (a point cloud?)", points.size()));
@@ -103,10 +110,10 @@ void check_soup(const std::string& path, Format format, const std::vector<Point>
   }
   for (std::size_t f = 0; f < polygons.size(); ++f) {
     if (polygons[f].size() < 3)
-      fail(path, fmt::format("face {} has only {} vertices; a face needs at least 3", f, polygons[f].size()));
+      fail_face(fmt::format("face {} has only {} vertices; a face needs at least 3", f, polygons[f].size()));
     for (std::size_t index : polygons[f])
       if (index >= points.size())
-        fail(path, fmt::format("face {} has vertex index {} out of range [0, {}){}", f,
+        fail_face(fmt::format("face {} has vertex index {} out of range [0, {}){}", f,
                                static_cast<std::ptrdiff_t>(index), points.size(),
                                format == Format::Obj ? fmt::format(" (index {} in the file, which counts from 1)",
                                                                    static_cast<std::ptrdiff_t>(index) + 1)
