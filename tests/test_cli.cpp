@@ -119,6 +119,8 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
     REQUIRE(lines(r.err) >= 1);
     if (args.rfind("nosuch", 0) != 0) REQUIRE(lines(r.err) == 1);
   }
+  REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
+  REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
 }
 
 TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verification", "[cli][remesh]") {

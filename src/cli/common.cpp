@@ -61,6 +61,8 @@ constexpr int kMaxSamples = 5'000'000;
 constexpr double kMaxRefinedTriangles = 6e6;
 
 std::vector<double> read_weights(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
   std::vector<double> weights;

@@ -38,6 +38,14 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
+    // A misspelt subcommand reaches CLI11 as a missing one: name the word it did not know.
+    if (app.get_subcommands().empty())
+      for (const std::string& extra : app.remaining())
+        if (!extra.empty() && extra[0] != '-') {
+          std::fprintf(stderr, "lrvd: error: unknown subcommand '%s': compute, verify, remesh, quality, mps or stress (see --help)\n",
+                       extra.c_str());
+          return kBadInput;
+        }
     std::fprintf(stderr, "lrvd: error: %s (see --help)\n", e.what());
     return kBadInput;
   }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <queue>
@@ -195,6 +196,8 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
 }
 
 PointFile read_xyz(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("point file '{}' is a folder", path));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("cannot read point file '{}'", path));
   PointFile file;
