@@ -5,9 +5,9 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <filesystem>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
