@@ -144,6 +144,10 @@ TEST_CASE("read_mesh refuses face indices out of range") {
   REQUIRE_THROWS_WITH(read_mesh(scratch("index_zero.obj")), Contains("face 3 (line 8): '0' is not a vertex index"));
   write_file(scratch("letters.obj"), tetra_obj + "f a b c\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("letters.obj")), Contains("'a' is not a vertex index"));
+  write_file(scratch("no_xyz.ply"),
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float a\nproperty float b\nproperty float z\n"
+             "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("no_xyz.ply")), Contains("its vertex element has no x, y properties (it has: a, b, z)"));
   write_file(scratch("header_short.off"), "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("header_short.off")),
                       Contains("face 0 (line 6) has 0 vertices") && Contains("header's vertex count, 3"));

@@ -178,34 +178,51 @@ std::string diagnose_obj(const std::string& path) {
   return "";
 }
 
-// PLY: the header, then (ascii only) the vertex coordinates and the number of body lines.
-std::string diagnose_ply(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string line;
-  int line_number = 1;
-  if (!std::getline(in, line) || line.substr(0, 3) != "ply") return "is not a PLY file: it does not start with 'ply'";
+// A PLY header as far as the diagnosis needs it.
+struct PlyHeader {
+  bool is_ply = false, ended = false;
   std::string format;
   std::vector<std::pair<std::string, long long>> elements;
   std::vector<std::string> vertex_properties;
-  bool ended = false;
-  while (!ended && std::getline(in, line)) {
+};
+
+PlyHeader read_ply_header(std::istream& in, int& line_number) {
+  PlyHeader h;
+  std::string line;
+  line_number = 1;
+  if (!std::getline(in, line) || line.substr(0, 3) != "ply") return h;
+  h.is_ply = true;
+  while (!h.ended && std::getline(in, line)) {
     ++line_number;
     std::istringstream words(line);
     std::string key, name;
     words >> key;
     if (key == "format") {
-      words >> format;
+      words >> h.format;
     } else if (key == "element") {
       long long count = -1;
       words >> name >> count;
-      elements.emplace_back(name, count);
-    } else if (key == "property" && !elements.empty() && elements.back().first == "vertex") {
+      h.elements.emplace_back(name, count);
+    } else if (key == "property" && !h.elements.empty() && h.elements.back().first == "vertex") {
       words >> name >> name;
-      vertex_properties.push_back(name);
+      h.vertex_properties.push_back(name);
     }
-    ended = key == "end_header";
+    h.ended = key == "end_header";
   }
-  if (!ended) return "has an invalid PLY header: no 'end_header' line";
+  return h;
+}
+
+// PLY: the header, then (ascii only) the vertex coordinates and the number of body lines.
+std::string diagnose_ply(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  int line_number = 1;
+  const PlyHeader header = read_ply_header(in, line_number);
+  if (!header.is_ply) return "is not a PLY file: it does not start with 'ply'";
+  if (!header.ended) return "has an invalid PLY header: no 'end_header' line";
+  const std::string& format = header.format;
+  const auto& elements = header.elements;
+  const auto& vertex_properties = header.vertex_properties;
   long long nv = 0, nf = 0, after_vertices = 0;
   for (const auto& [name, count] : elements) {
     if (name == "vertex") nv = count;
@@ -285,6 +302,21 @@ std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileForma
     reason = fmt::format("cannot be parsed as {} (CGAL's reader refused it)", names[int(format)]);
   }
   return reason;
+}
+
+std::string find_missing_ply_coordinates(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  int line_number = 0;
+  const PlyHeader header = read_ply_header(in, line_number);
+  if (!header.is_ply || !header.ended) return "";
+  std::string missing, present;
+  for (const char* c : {"x", "y", "z"})
+    if (std::find(header.vertex_properties.begin(), header.vertex_properties.end(), c) == header.vertex_properties.end())
+      missing += missing.empty() ? c : std::string(", ") + c;
+  if (missing.empty()) return "";
+  for (const std::string& name : header.vertex_properties) present += (present.empty() ? "" : ", ") + name;
+  return fmt::format("its vertex element has no {} propert{} (it has: {})", missing, missing.size() == 1 ? "y" : "ies",
+                     present.empty() ? "none" : present);
 }
 
 std::string find_non_finite_binary_stl_coordinate(const std::string& path) {

@@ -17,6 +17,10 @@ std::string lowercase_extension(const std::string& path);
 //! vertices"). Never empty: falls back to a generic "cannot be parsed as ..." line.
 std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileFormat format);
 
+//! For a PLY file whose vertices lack an x, y or z property (CGAL then reads zeros): "its vertex
+//! element has no x, y, z properties (it has: a, b, c)"; "" otherwise.
+std::string find_missing_ply_coordinates(const std::string& path);
+
 //! For a binary STL file: "facet f has a non-finite coordinate (x, y, z)" for the first facet
 //! with a NaN or infinite corner; "" when there is none or the file is not binary STL.
 //! (CGAL welds STL corners through a std::map, where NaN compares equal to anything.)

@@ -385,6 +385,8 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
   const Format format = input_format(path);
   if (format == Format::Stl)  // before CGAL, whose STL reader would weld a NaN corner into another
     if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
+  if (format == Format::Ply)  // CGAL reads a PLY without coordinates as points at the origin
+    if (std::string problem = find_missing_ply_coordinates(path); !problem.empty()) fail(path, problem);
   if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
   check_soup(path, format, points, polygons);
 }
