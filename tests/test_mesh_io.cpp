@@ -144,6 +144,14 @@ TEST_CASE("read_mesh refuses face indices out of range") {
   REQUIRE_THROWS_WITH(read_mesh(scratch("index_zero.obj")), Contains("face 3 (line 8): '0' is not a vertex index"));
   write_file(scratch("letters.obj"), tetra_obj + "f a b c\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("letters.obj")), Contains("'a' is not a vertex index"));
+  // What CGAL reads as something else and does not refuse: a fractional index, a word after a
+  // face's indices.
+  write_file(scratch("fraction.obj"), tetra_obj + "f 2 3 4.5\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("fraction.obj")), Contains("face 3 (line 8): '4.5' is not a vertex index"));
+  write_file(scratch("trailing.obj"), tetra_obj + "f 2 3 4 junk\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("trailing.obj")), Contains("'junk' is not a vertex index"));
+  write_file(scratch("fraction.off"), "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3.7\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("fraction.off")), Contains("face 3 (line 10): '3.7' is not a vertex index"));
   write_file(scratch("no_xyz.ply"),
              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float a\nproperty float b\nproperty float z\n"
              "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");

@@ -304,6 +304,12 @@ std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileForma
   return reason;
 }
 
+std::string find_misread_line(const std::string& path, MeshFileFormat format) {
+  if (format == MeshFileFormat::Off) return diagnose_off(path);
+  if (format == MeshFileFormat::Obj) return diagnose_obj(path);
+  return "";
+}
+
 std::string find_missing_ply_coordinates(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   int line_number = 0;

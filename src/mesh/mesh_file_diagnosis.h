@@ -17,6 +17,11 @@ std::string lowercase_extension(const std::string& path);
 //! vertices"). Never empty: falls back to a generic "cannot be parsed as ..." line.
 std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileFormat format);
 
+//! For an OFF or OBJ file CGAL did read: the first line its reader took other than written (a
+//! face index '3.7' read as 3, a word after a face's indices), as diagnose_unreadable_mesh_file
+//! words it; "" when the line scanner finds nothing (and for PLY and STL, which it does not scan).
+std::string find_misread_line(const std::string& path, MeshFileFormat format);
+
 //! For a PLY file whose vertices lack an x, y or z property (CGAL then reads zeros): "its vertex
 //! element has no x, y, z properties (it has: a, b, c)"; "" otherwise.
 std::string find_missing_ply_coordinates(const std::string& path);

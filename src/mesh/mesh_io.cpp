@@ -389,6 +389,9 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
     if (std::string problem = find_missing_ply_coordinates(path); !problem.empty()) fail(path, problem);
   if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
   check_soup(path, format, points, polygons);
+  // CGAL reads '3.7' as the index 3 and skips words after a face's indices: a scan of the lines
+  // catches what it took for something else.
+  if (std::string problem = find_misread_line(path, format); !problem.empty()) fail(path, problem);
 }
 
 }  // namespace
