@@ -220,14 +220,24 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     for (int v : t) used[v] = 1;
   for (size_t i = 0; i < used.size(); ++i)
     if (!used[i]) defect.insert(static_cast<int>(i));
-  // Unused samples whose disk cells meet the boundary of an open mesh: cornered.
+  // Unused samples whose disk cells meet the boundary of an open mesh and one other cell: cornered.
+  // (A row of unused cells across a strip narrower than the cells, each with two neighbours, needs
+  // more samples, not fewer.)
   std::vector<int> cornered;
   if (!input_closed && std::find(used.begin(), used.end(), 0) != used.end()) {
     std::vector<char> on_boundary(used.size(), 0);
+    std::vector<int> neighbour(used.size(), -1);  // the one other cell seen; -1: none, -2: two or more
     for (const CellPolygon& poly : diagram.polygons) {
-      if (used[poly.cell] || on_boundary[poly.cell]) continue;
-      const Triangle& tri = mesh.triangle(poly.triangle);
+      if (used[poly.cell]) continue;
       const SymbolicVertex* v = diagram.polygon_vertices(poly);
+      for (int k = 0; k < poly.vertex_count; ++k)
+        for (int a = 0; a < v[k].num_labels(); ++a) {
+          const int l = v[k].label[a];
+          int& n = neighbour[poly.cell];
+          if (l != poly.cell && n != l) n = n == -1 ? l : -2;
+        }
+      if (on_boundary[poly.cell]) continue;
+      const Triangle& tri = mesh.triangle(poly.triangle);
       for (int e = 0; e < 3 && !on_boundary[poly.cell]; ++e) {
         if (mesh.neighbor(poly.triangle, e) >= 0) continue;
         for (int k = 0; k < poly.vertex_count && !on_boundary[poly.cell]; ++k)
@@ -236,7 +246,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
       }
     }
     for (int i = 0; i < static_cast<int>(used.size()); ++i)
-      if (!used[i] && on_boundary[i] && !hints.count(i)) cornered.push_back(i);
+      if (!used[i] && on_boundary[i] && !hints.count(i) && neighbour[i] != -2) cornered.push_back(i);
   }
   // Triangles that cut through each other (nearby sheets sampled too coarsely).
   const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);

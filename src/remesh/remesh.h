@@ -51,7 +51,8 @@ struct DualDefects {
   std::vector<int> crossing;       //!< samples of triangles that intersect others
   std::vector<int> cell_topology;  //!< cells that are rings, or share two arcs with a neighbour
   //! Unused samples (also in `topological`) whose cells are disks that meet the boundary of an open
-  //! mesh: a small cell in a corner sharper than the cells, whose one neighbour spans the corner.
+  //! mesh and one other cell: a small cell in a corner sharper than the cells, whose one neighbour
+  //! spans the corner.
   //! More samples there repeat the pattern at a smaller scale; fewer make the cell grow until it
   //! meets two others.
   std::vector<int> cornered;
