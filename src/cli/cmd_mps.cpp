@@ -50,10 +50,9 @@ int run_mps(const MpsCommandOptions& opt) {
                                  kMaxRelativeRadius, opt.radius));
   if (opt.max_radius_ratio_given && !opt.adaptive) throw InputError("--max-radius-ratio applies to --adaptive");
   // The samples are text, 'x y z r^2' per line: not a mesh file.
-  const std::vector<std::string> mesh_formats = {".off", ".obj", ".ply", ".stl"};
-  check_outputs({{opt.output, "-o", {}, mesh_formats},
-                 {opt.remesh, "--remesh", kMeshOutputExtensions},
-                 {opt.report, "--report", {}, mesh_formats}});
+  check_outputs({{opt.output, "-o", {}, kMeshReadExtensions},
+                 {opt.remesh, "--remesh", kMeshWriteExtensions},
+                 {opt.report, "--report", {}, kMeshReadExtensions}});
   const LoadedMesh loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
   const SurfaceMesh& input = loaded.mesh;
 

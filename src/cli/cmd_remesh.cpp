@@ -50,7 +50,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
   if (opt.output.empty()) throw InputError("give an output file with -o");
-  check_outputs({{opt.output, "-o", kMeshOutputExtensions}, {opt.report, "--report", {}, kMeshOutputExtensions}});
+  check_outputs({{opt.output, "-o", kMeshWriteExtensions}, {opt.report, "--report", {}, kMeshReadExtensions}});
   Input input = load_input(opt.input);
   if (input.samples.weighted())
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
@@ -151,7 +151,7 @@ struct QualityOptions {
 };
 
 int run_quality(const QualityOptions& opt) {
-  check_outputs({{opt.report, "--report", {}, kMeshOutputExtensions}});
+  check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}});
   const SurfaceMesh reference = read_mesh(opt.reference).mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh);
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);

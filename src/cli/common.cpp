@@ -2,7 +2,6 @@
 #include "cli/common.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +13,7 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "mesh/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
 namespace lrvd::cli {
@@ -185,19 +185,16 @@ nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVe
   return q;
 }
 
-const std::vector<std::string> kMeshOutputExtensions = {".off", ".obj", ".ply"};
-
-void check_outputs(const std::vector<OutputFile>& outputs) {
+void check_outputs(const std::vector<PlannedOutput>& outputs) {
   namespace fs = std::filesystem;
   std::vector<fs::path> seen;
-  for (const OutputFile& out : outputs) {
+  for (const PlannedOutput& out : outputs) {
     if (out.path.empty()) continue;
     const fs::path path(out.path);
     std::error_code error;
     if (fs::is_directory(path, error))
       throw InputError(fmt::format("{} {} is a folder, not a file", out.option, out.path));
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = lowercase_extension(out.path);
     auto listed = [&](const std::vector<std::string>& list) { return std::find(list.begin(), list.end(), ext) != list.end(); };
     if (!out.extensions.empty() && !listed(out.extensions)) {
       std::string known;

@@ -50,7 +50,7 @@ void write_json(const std::string& path, const nlohmann::json& report);
 
 //! An output file a command will write, with the option that names it and the extensions it may
 //! have (none listed: any but those of `refused`).
-struct OutputFile {
+struct PlannedOutput {
   std::string path;
   const char* option;
   std::vector<std::string> extensions;
@@ -59,9 +59,7 @@ struct OutputFile {
 //! Refuses, before any work, outputs that could not be written at the end: an extension the
 //! writer does not know, a folder that does not exist, a path that is a folder, or two outputs
 //! on one file. Empty paths (outputs not asked for) are skipped.
-void check_outputs(const std::vector<OutputFile>& outputs);
-//! The extensions of mesh files the writers know.
-extern const std::vector<std::string> kMeshOutputExtensions;
+void check_outputs(const std::vector<PlannedOutput>& outputs);
 //! The console line of a remesh's quality, or that it was not measured (null: the remesh has no
 //! triangles). The share under 30 degrees is of the angles (`of_angles`) or of the triangles.
 void print_quality(const QualityMetrics* quality, bool of_angles);

@@ -31,6 +31,8 @@
 
 namespace lrvd {
 
+const std::vector<std::string> kMeshReadExtensions = {".off", ".obj", ".ply", ".stl"};
+
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;

@@ -57,6 +57,9 @@ PolygonSoup read_polygon_soup(const std::string& path);
 //! (binary little-endian, double coordinates), chosen by the extension.
 //! \throw InputError on an unknown extension or a path that cannot be written;
 //!        std::invalid_argument when a triangle index is out of range.
+//! The extensions read_mesh reads and write_mesh writes (lower case, with the dot).
+extern const std::vector<std::string> kMeshReadExtensions, kMeshWriteExtensions;
+
 void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
                 const std::vector<std::array<int, 3>>& triangles);
 void write_mesh(const std::string& path, const SurfaceMesh& mesh);

@@ -1,5 +1,6 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -58,10 +59,12 @@ void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
 
 }  // namespace
 
+const std::vector<std::string> kMeshWriteExtensions = {".off", ".obj", ".ply"};
+
 void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
                 const std::vector<std::array<int, 3>>& triangles) {
   const std::string ext = lowercase_extension(path);
-  if (ext != ".off" && ext != ".obj" && ext != ".ply")
+  if (std::find(kMeshWriteExtensions.begin(), kMeshWriteExtensions.end(), ext) == kMeshWriteExtensions.end())
     fail(path, fmt::format("cannot write meshes with extension '{}'; use .off, .obj or .ply", ext));
   for (std::size_t t = 0; t < triangles.size(); ++t) check_indices(triangles[t], positions.size(), t);
   OutputFile file(path);

@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <limits>
 #include <utility>
+
+#include "mesh/surface_mesh.h"
 
 namespace lrvd {
 
@@ -25,14 +26,9 @@ std::uint64_t spread(std::uint64_t x) {
 
 std::vector<int> morton_order(const std::vector<Vec3>& points) {
   const int n = static_cast<int>(points.size());
-  Vec3 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-          std::numeric_limits<double>::infinity()};
-  Vec3 hi = -1.0 * lo;
-  for (const Vec3& p : points)
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], p[c]);
-      hi[c] = std::max(hi[c], p[c]);
-    }
+  if (n == 0) return {};
+  const BoundingBox box = bounding_box(points);
+  const Vec3 &lo = box.min, &hi = box.max;
   const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
   const double cells = (1 << 21) - 1;
   std::vector<std::pair<std::uint64_t, int>> keyed(n);

@@ -14,6 +14,7 @@
 
 #include "mesh/closest_point.h"
 #include "metrics/self_intersections.h"
+#include "voronoi/clip.h"
 
 
 namespace lrvd {
@@ -236,14 +237,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
           int& n = neighbour[poly.cell];
           if (l != poly.cell && n != l) n = n == -1 ? l : -2;
         }
-      if (on_boundary[poly.cell]) continue;
-      const Triangle& tri = mesh.triangle(poly.triangle);
-      for (int e = 0; e < 3 && !on_boundary[poly.cell]; ++e) {
-        if (mesh.neighbor(poly.triangle, e) >= 0) continue;
-        for (int k = 0; k < poly.vertex_count && !on_boundary[poly.cell]; ++k)
-          on_boundary[poly.cell] = v[k].on_mesh_edge(tri[e], tri[(e + 1) % 3]) &&
-                                   v[(k + 1) % poly.vertex_count].on_mesh_edge(tri[e], tri[(e + 1) % 3]);
-      }
+      const unsigned along = polygon_edges(v, poly.vertex_count, mesh.triangle(poly.triangle)).along;
+      for (int e = 0; e < 3; ++e)
+        if ((along >> e & 1u) && mesh.neighbor(poly.triangle, e) < 0) on_boundary[poly.cell] = 1;
     }
     for (int i = 0; i < static_cast<int>(used.size()); ++i)
       if (!used[i] && on_boundary[i] && !hints.count(i) && neighbour[i] != -2) cornered.push_back(i);
@@ -440,13 +436,14 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       // Cornered cells get a lower density, the other defects a higher one (a cap at a closed
       // mesh's tip is left to the raise: lowering there too cost more than it gave, docs/results.md
       // "Session 22").
-      std::vector<int> lowered, raised = defects.where_to_act();
-      if (&defects.where_to_act() == &defects.topological && !defects.cornered.empty()) {
-        lowered = defects.cornered;
-        raised.clear();
+      // Cornered samples are topological defects, which are acted on first.
+      const std::vector<int>& lowered = defects.cornered;
+      std::vector<int> raised;
+      if (lowered.empty())
+        raised = defects.where_to_act();
+      else
         std::set_difference(defects.topological.begin(), defects.topological.end(), lowered.begin(), lowered.end(),
                             std::back_inserter(raised));
-      }
       if (!lowered.empty()) lower_density(result.cvt.diagram, lowered, options.repair_factor, again.triangle_density);
       if (!raised.empty()) raise_density(result.cvt.diagram, raised, options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
