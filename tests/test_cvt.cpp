@@ -357,6 +357,23 @@ TEST_CASE("The second run moves samples into the defect cells: CGAL's triceratop
   REQUIRE(r.result.dual.positions.size() == 300);
 }
 
+TEST_CASE("A cap on a sharp tip gets a larger cell in a third run: CGAL's triceratops at 200", "[cvt][remesh]") {
+  // At 200 vertices the horn tips end as caps inside one ring cell (samples in no triangle) after
+  // both runs of raised density: fewer than three cells fit round a tip sharper than a half-plane,
+  // at any density. The third run lowers the density on such caps and ends valid.
+  const SurfaceMesh input = cgal_mesh("triceratops.off");
+  const SurfaceMesh mesh = for_samples(input, 200);
+  RemeshOptions two_runs;
+  two_runs.tip_caps_retry = false;
+  const RemeshResult before = remesh_cvt(input, mesh, sample_uniform(mesh, 200, 1), two_runs);
+  REQUIRE_FALSE(verify_remesh(input, before.dual.positions, before.dual.triangles, 200).passed);
+  const Remeshed r = remesh(input, 200);
+  INFO(r.check.summary());
+  REQUIRE(r.result.tip_caps_lowered);
+  REQUIRE(r.check.passed);
+  REQUIRE(r.result.dual.positions.size() == 200);
+}
+
 TEST_CASE("Fitting the vertices to their cells' planes lowers the distance and keeps the CVT's shape", "[cvt][remesh][fit]") {
   const SurfaceMesh input = cgal_mesh("elk.off");
   RemeshOptions options;

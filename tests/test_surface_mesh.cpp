@@ -6,6 +6,7 @@
 #include <random>
 
 #include "common/error.h"
+#include "mesh/curvature.h"
 #include "mesh/spatial_order.h"
 #include "mesh/stress.h"
 #include "mesh/surface_mesh.h"
@@ -86,6 +87,25 @@ TEST_CASE("The constructor refuses what the algorithms cannot handle") {
   // Two triangles touching at vertex 0 only.
   const std::vector<Vec3> bow = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
   REQUIRE_THROWS_WITH(SurfaceMesh(bow, {{0, 1, 2}, {0, 3, 4}}), Catch::Contains("vertex 0 joins 2 separate fans"));
+}
+
+TEST_CASE("Angle deficits: four right angles at an octahedron's corner, and they sum to 2π times the Euler characteristic") {
+  const SurfaceMesh octa = test::octahedron();
+  const std::vector<double> d = angle_deficits(octa);
+  for (double x : d) CHECK(x == Approx(2 * M_PI - 4 * M_PI / 3));  // four equilateral triangles
+  // Gauss-Bonnet, closed and open: the boundary's turns count on the open sheet and sphere cap.
+  auto total = [](const SurfaceMesh& m) {
+    double sum = 0;
+    for (double x : angle_deficits(m)) sum += x;
+    return sum;
+  };
+  CHECK(total(test::icosphere(2)) == Approx(2 * M_PI * 2));
+  const SurfaceMesh sheet = test::grid(4, 3);
+  CHECK(total(sheet) == Approx(2 * M_PI * sheet.euler_characteristic()));
+  const std::vector<double> g = angle_deficits(sheet);
+  CHECK(g[0] == Approx(M_PI / 2));           // a corner turns by a right angle
+  CHECK(g[1] == Approx(0).margin(1e-12));    // along a side it goes straight
+  CHECK(g[6] == Approx(0).margin(1e-12));    // inside, the sheet is flat
 }
 
 TEST_CASE("The suggested refinement gives about four triangles a sample") {

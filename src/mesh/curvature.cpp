@@ -2,6 +2,7 @@
 #include "mesh/curvature.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace lrvd {
 
@@ -29,5 +30,19 @@ std::vector<double> mean_curvature(const SurfaceMesh& mesh) {
   return kappa;
 }
 
+std::vector<double> angle_deficits(const SurfaceMesh& mesh) {
+  std::vector<double> deficit(mesh.vertex_count(), 2 * M_PI);
+  for (const auto& loop : mesh.boundary_loops())
+    for (int v : loop) deficit[v] = M_PI;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    for (int c = 0; c < 3; ++c) {
+      const Vec3 u = mesh.position(tri[(c + 1) % 3]) - mesh.position(tri[c]);
+      const Vec3 v = mesh.position(tri[(c + 2) % 3]) - mesh.position(tri[c]);
+      deficit[tri[c]] -= std::atan2(norm(cross(u, v)), dot(u, v));
+    }
+  }
+  return deficit;
+}
 
 }  // namespace lrvd

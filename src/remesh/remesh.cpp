@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "mesh/closest_point.h"
+#include "mesh/curvature.h"
 #include "metrics/self_intersections.h"
 #include "voronoi/clip.h"
 
@@ -221,11 +222,11 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     for (int v : t) used[v] = 1;
   for (size_t i = 0; i < used.size(); ++i)
     if (!used[i]) defect.insert(static_cast<int>(i));
-  // Unused samples whose disk cells meet the boundary of an open mesh and one other cell: cornered.
-  // (A row of unused cells across a strip narrower than the cells, each with two neighbours, needs
-  // more samples, not fewer.)
-  std::vector<int> cornered;
-  if (!input_closed && std::find(used.begin(), used.end(), 0) != used.end()) {
+  // Unused samples whose disk cells meet one other cell: cornered when they meet the boundary of an
+  // open mesh, tip caps when they hold more than π of angle deficit. (A row of unused cells across
+  // a strip narrower than the cells, each with two neighbours, needs more samples, not fewer.)
+  std::vector<int> cornered, tip_caps;
+  if (std::find(used.begin(), used.end(), 0) != used.end()) {
     std::vector<char> on_boundary(used.size(), 0);
     std::vector<int> neighbour(used.size(), -1);  // the one other cell seen; -1: none, -2: two or more
     for (const CellPolygon& poly : diagram.polygons) {
@@ -241,8 +242,33 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
       for (int e = 0; e < 3; ++e)
         if ((along >> e & 1u) && mesh.neighbor(poly.triangle, e) < 0) on_boundary[poly.cell] = 1;
     }
-    for (int i = 0; i < static_cast<int>(used.size()); ++i)
-      if (!used[i] && on_boundary[i] && !hints.count(i) && neighbour[i] != -2) cornered.push_back(i);
+    std::vector<int> capped;  // candidates: one neighbour, no boundary
+    for (int i = 0; i < static_cast<int>(used.size()); ++i) {
+      if (used[i] || hints.count(i) || neighbour[i] == -2) continue;
+      if (on_boundary[i] && !input_closed)
+        cornered.push_back(i);
+      else if (!on_boundary[i] && neighbour[i] >= 0)
+        capped.push_back(i);
+    }
+    if (!capped.empty()) {
+      // The mesh vertices inside each candidate's cell (corners of its polygons), each counted once.
+      const std::vector<double> deficit = angle_deficits(mesh);
+      std::vector<char> candidate(used.size(), 0);
+      for (int i : capped) candidate[i] = 1;
+      std::vector<std::pair<int, int>> inside;
+      for (const CellPolygon& poly : diagram.polygons) {
+        if (!candidate[poly.cell]) continue;
+        const SymbolicVertex* v = diagram.polygon_vertices(poly);
+        for (int k = 0; k < poly.vertex_count; ++k)
+          if (v[k].type == SymbolicVertex::Type::A) inside.push_back({poly.cell, v[k].v[0]});
+      }
+      std::sort(inside.begin(), inside.end());
+      inside.erase(std::unique(inside.begin(), inside.end()), inside.end());
+      std::vector<double> gathered(used.size(), 0.0);
+      for (const auto& [cell, vertex] : inside) gathered[cell] += deficit[vertex];
+      for (int i : capped)
+        if (gathered[i] > M_PI) tip_caps.push_back(i);
+    }
   }
   // Triangles that cut through each other (nearby sheets sampled too coarsely).
   const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
@@ -262,6 +288,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.crossing.assign(crossing.begin(), crossing.end());
   out.cell_topology.assign(hints.begin(), hints.end());
   out.cornered = std::move(cornered);
+  out.tip_caps = std::move(tip_caps);
   out.euler_ok = euler_ok;
   out.crossing_pairs = pairs;
   return out;
@@ -408,7 +435,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // The first CVT, then rounds that raise the density where the worst kind of defect is (topology
   // first, crossings next); the state with the fewest defects is the result, with the counters of
   // the whole run.
-  auto optimise_and_repair = [&](bool keep_to_sheets, DualDefects& best_defects) {
+  // `saw_tip_caps` is set when some round's dual had a cap on a sharp tip.
+  auto optimise_and_repair = [&](bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
+                                 bool& saw_tip_caps) {
     CvtOptions first = options.cvt;
     first.keep_to_sheets = keep_to_sheets;
     RemeshResult result;
@@ -426,18 +455,22 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
     settle(result, defects);
     progress(fmt::format("{}CVT: {} iterations, {} diagrams, energy {:.6g}; the dual has {}",
-                         keep_to_sheets ? "second run, " : "", result.cvt.iterations, result.cvt.diagram_evaluations,
-                         result.cvt.energy, defects.describe()));
+                         lower_tip_caps ? "third run, " : keep_to_sheets ? "second run, " : "", result.cvt.iterations,
+                         result.cvt.diagram_evaluations, result.cvt.energy, defects.describe()));
     RemeshResult best = result;
     best_defects = defects;
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
     // characteristic that no defect finder locates).
     for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
-      // Cornered cells get a lower density, the other defects a higher one (a cap at a closed
-      // mesh's tip is left to the raise: lowering there too cost more than it gave, docs/results.md
-      // "Session 22").
-      // Cornered samples are topological defects, which are acted on first.
-      const std::vector<int>& lowered = defects.cornered;
+      // Cornered cells get a lower density, the other defects a higher one; so do caps on sharp
+      // tips in the third run (before it they are left to the raise, which keeps more of the tip:
+      // docs/results.md "Session 23"). Both are topological defects, which are acted on first.
+      saw_tip_caps = saw_tip_caps || !defects.tip_caps.empty();
+      std::vector<int> lowered = defects.cornered;
+      if (lower_tip_caps) {
+        lowered.insert(lowered.end(), defects.tip_caps.begin(), defects.tip_caps.end());
+        std::sort(lowered.begin(), lowered.end());
+      }
       std::vector<int> raised;
       if (lowered.empty())
         raised = defects.where_to_act();
@@ -482,19 +515,18 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     return best;
   };
   DualDefects defects;
-  RemeshResult result = optimise_and_repair(false, defects);
-  // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
-  // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
-  // surface to it is often on the other side: samples drain from one side to the other there).
-  if (!defects.empty() && options.keep_to_sheets_retry) {
-    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
-                         result.repair_rounds));
+  bool saw_tip_caps = false;  // in the second run: the third differs from it only from such a round on
+  RemeshResult result = optimise_and_repair(false, false, defects, saw_tip_caps);
+  saw_tip_caps = false;
+  // Runs the whole loop again and keeps it if it ends with fewer defects; the counters cover every run.
+  auto retry = [&](bool keep_to_sheets, bool lower_tip_caps, bool& saw) {
     DualDefects again_defects;
-    RemeshResult again = optimise_and_repair(true, again_defects);
+    RemeshResult again = optimise_and_repair(keep_to_sheets, lower_tip_caps, again_defects, saw);
     again.repair_rounds += result.repair_rounds;
     again.total_iterations += result.total_iterations;
     again.diagram_evaluations += result.diagram_evaluations;
-    again.kept_to_sheets = true;
+    again.kept_to_sheets = keep_to_sheets;
+    again.tip_caps_lowered = lower_tip_caps;
     if (again_defects.fewer_than(defects)) {
       result = std::move(again);
       defects = std::move(again_defects);
@@ -503,6 +535,23 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.total_iterations = again.total_iterations;
       result.diagram_evaluations = again.diagram_evaluations;
     }
+  };
+  // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
+  // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
+  // surface to it is often on the other side: samples drain from one side to the other there).
+  if (!defects.empty() && options.keep_to_sheets_retry) {
+    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
+                         result.repair_rounds));
+    retry(true, false, saw_tip_caps);
+  }
+  // Defects left, and caps on sharp tips among them at some round: a third run that lowers the
+  // density on those caps.
+  if (!defects.empty() && saw_tip_caps && options.keep_to_sheets_retry && options.tip_caps_retry) {
+    progress(fmt::format("defects left after {} rounds, caps on sharp tips among them: the second run again with "
+                         "a lower density on those caps",
+                         result.repair_rounds));
+    bool ignored = false;
+    retry(true, true, ignored);
   }
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).

@@ -33,6 +33,11 @@ struct RemeshOptions {
   //! samples with CvtOptions::keep_to_sheets, each round also moving samples into the defect
   //! cells, and keep the run with fewer defects
   bool keep_to_sheets_retry = true;
+  //! when the second run ends with defects too and some round of it found a cap on a sharp tip
+  //! (DualDefects::tip_caps), run it a third time with the density lowered on those caps instead of
+  //! raised, and keep it if it has fewer defects (a larger cap cuts more of the tip off, so this is
+  //! the last resort, not the rule)
+  bool tip_caps_retry = true;
   //! Called with one line on each step of the run: the first CVT's outcome, each repair round
   //! (before: where the density goes up; after: the defects left), the second run, the fitting;
   //! for progress output.
@@ -56,6 +61,11 @@ struct DualDefects {
   //! More samples there repeat the pattern at a smaller scale; fewer make the cell grow until it
   //! meets two others.
   std::vector<int> cornered;
+  //! Unused samples (also in `topological`) whose cells are disks inside one other cell, away from
+  //! any boundary, and hold more than π of the surface's angle deficit: a cap on a tip sharper than
+  //! a half-plane. Around such a cap fewer than three cells of its own size fit, at any scale, so
+  //! more samples repeat the pattern; a larger cap meets more cells.
+  std::vector<int> tip_caps;
   bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
   //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
   std::vector<std::pair<int, int>> crossing_pairs;
@@ -87,7 +97,8 @@ struct RemeshResult {
   UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
   bool fitted = false;      //!< `dual` is fitted and untangled already
   DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
-  bool kept_to_sheets = false;  //!< the result is the second run's (RemeshOptions::keep_to_sheets_retry)
+  bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
+  bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   //! What the repair left in `dual` as the rounds saw it, before the final fitting and untangling
   //! (the crossings those leave are in `untangle.remaining`): where a failed check comes from.
   DualDefects defects;
@@ -112,7 +123,10 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! fewer defects is kept, and the counters cover both runs. Samples otherwise stay on their
 //! connected components. A sample in no triangle whose cell is a disk in a corner of an open
 //! mesh's boundary (DualDefects::cornered) gets the density divided by `repair_factor` on its
-//! cell's own triangles instead, so that the cell grows until it meets two others. Rounds stop early when no cell is known to act on. Open meshes are
+//! cell's own triangles instead, so that the cell grows until it meets two others. If the second
+//! run ends with defects too and met a cap on a sharp tip (DualDefects::tip_caps), it runs a third
+//! time with the density lowered on such caps as on cornered cells, and that run is kept if it has
+//! fewer defects. Rounds stop early when no cell is known to act on. Open meshes are
 //! repaired where a boundary loop is closed over (met by fewer than three cells, or a cell meets
 //! two loops) or the dual is pinched at a vertex. The result is fitted to the surface under the
 //! CVT's quality floor (fit_to_surface) unless switched off; if crossings are left in it, it is
