@@ -1,6 +1,8 @@
 // Mesh IO: every refusal on a real malformed file with its message, --repair on real soups,
 // exact round trips of the writers, CGAL's data-set meshes, and the Voronoi-cells PLY.
 #include <catch2/catch.hpp>
+
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -92,6 +94,34 @@ TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into th
   write_file(scratch("truncated_binary.stl"), binary_stl);
   REQUIRE_THROWS_WITH(read_mesh(scratch("truncated_binary.stl")),
                       Contains("is truncated or malformed as binary STL: it has 264 bytes"));
+
+  // Binary OFF: big-endian 32-bit counts, float coordinates, faces. CGAL reads faces without a
+  // colour count; Geomview's layout has one after each face's indices, which CGAL misreads.
+  for (bool colour_counts : {false, true}) {
+    std::string off = "OFF BINARY\n";
+    auto big_endian = [&off](std::uint32_t v) {
+      for (int shift = 24; shift >= 0; shift -= 8) off.push_back(static_cast<char>(v >> shift & 0xff));
+    };
+    for (std::uint32_t count : {4u, 4u, 0u}) big_endian(count);
+    const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const auto& corner : corners)
+      for (float c : corner) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &c, 4);
+        big_endian(bits);
+      }
+    for (const auto& face : {std::array<std::uint32_t, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}}) {
+      big_endian(3);
+      for (std::uint32_t v : face) big_endian(v);
+      if (colour_counts) big_endian(0);
+    }
+    const std::string path = scratch(colour_counts ? "geomview_binary.off" : "binary.off");
+    write_file(path, off);
+    if (colour_counts)
+      REQUIRE_THROWS_WITH(read_mesh(path), Contains("a colour count after each face's indices") && Contains("ASCII OFF"));
+    else
+      REQUIRE(read_mesh(path).mesh.triangle_count() == 4);
+  }
 
   write_file(scratch("polyline.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("polyline.obj")), Contains("line 5: the OBJ statement 'l' is not supported"));

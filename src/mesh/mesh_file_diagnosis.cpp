@@ -78,6 +78,34 @@ std::string check_coordinates(const std::vector<std::string>& tokens, std::size_
   return non_finite(element, xyz);
 }
 
+// A binary OFF laid out as Geomview writes it, with a colour count (and that many floats) after
+// each face's indices: CGAL's reader takes the count for the next face's size.
+std::string diagnose_binary_off(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string header;
+  std::getline(in, header);
+  auto read_int = [&in](std::int64_t& value) {
+    unsigned char b[4];
+    if (!in.read(reinterpret_cast<char*>(b), 4)) return false;
+    value = static_cast<std::int32_t>(std::uint32_t(b[0]) << 24 | std::uint32_t(b[1]) << 16 | std::uint32_t(b[2]) << 8 | b[3]);
+    return true;
+  };
+  std::int64_t nv = 0, nf = 0, ne = 0;
+  if (!read_int(nv) || !read_int(nf) || !read_int(ne) || nv < 0 || nf < 0) return "";
+  in.seekg(12 * nv, std::ios::cur);  // x, y, z as 32-bit floats
+  for (std::int64_t f = 0; f < nf; ++f) {
+    std::int64_t n = 0, index = 0, colours = 0;
+    if (!read_int(n) || n < 3) return "";
+    for (std::int64_t k = 0; k < n; ++k)
+      if (!read_int(index) || index < 0 || index >= nv) return "";
+    if (!read_int(colours) || colours < 0 || colours > 4) return "";
+    in.seekg(4 * colours, std::ios::cur);
+  }
+  if (!in || in.peek() != std::char_traits<char>::eof()) return "";
+  return "is a binary OFF with a colour count after each face's indices (Geomview's layout), which CGAL's "
+         "reader takes for the next face's size: save it as ASCII OFF or PLY";
+}
+
 std::string diagnose_off(const std::string& path) {
   TokenLines lines(path);
   std::vector<std::string> tokens;
@@ -85,7 +113,7 @@ std::string diagnose_off(const std::string& path) {
   const std::string magic = tokens.empty() ? std::string() : tokens[0];
   if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
     return "is not an OFF file: it does not start with 'OFF'";
-  if (tokens.size() > 1 && tokens[1] == "BINARY") return "";  // binary OFF: no line to point at
+  if (tokens.size() > 1 && tokens[1] == "BINARY") return magic == "OFF" ? diagnose_binary_off(path) : "";
   if (tokens.size() == 1)
     lines.next(tokens);
   else
