@@ -12,7 +12,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/error.h"
 #include "mesh/mesh_io.h"
+#include "remesh/remesh.h"
+#include "test_meshes.h"
 
 using nlohmann::json;
 
@@ -245,4 +248,34 @@ TEST_CASE("lrvd gives the same output with one thread and with several", "[cli][
   const Run bad = run("remesh " + kData + "/elk.off -n 200 -o " + one + " --threads 0");
   REQUIRE(bad.status == 2);
   REQUIRE(lines(bad.err) == 1);
+}
+
+TEST_CASE("remesh_to (the library call) gives the mesh that lrvd remesh writes also with several components", "[cli][remesh]") {
+  // Two spheres side by side: each component gets its share of the samples in both.
+  const lrvd::SurfaceMesh two = lrvd::test::merge(lrvd::test::icosphere(3), lrvd::test::icosphere(2), {3, 0, 0});
+  REQUIRE(two.component_count() == 2);
+  lrvd::write_mesh(kOut + "two_spheres.off", two);
+  for (const auto& [path, n] : {std::pair<std::string, int>{kData + "/elk.off", 300}, {kOut + "two_spheres.off", 90}}) {
+    INFO(path);
+    const lrvd::SurfaceMesh input = lrvd::read_mesh(path).mesh;
+    const lrvd::RemeshResult library = lrvd::remesh_to(input, n);
+    lrvd::write_mesh(kOut + "remesh_to.off", library.dual.positions, library.dual.triangles);
+    const Run cli = run("remesh " + path + " -n " + std::to_string(n) + " -o " + kOut + "remesh_cli.off");
+    REQUIRE(cli.status == 0);
+    CHECK(take_file(kOut + "remesh_to.off") == take_file(kOut + "remesh_cli.off"));
+  }
+  REQUIRE_THROWS_AS(lrvd::remesh_to(two, 7), lrvd::InputError);  // two spheres need 4 vertices each
+}
+
+TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
+  auto read = [](const std::string& name) {  // (take_file would delete it)
+    std::ifstream in(std::string(LRVD_SOURCE_DIR) + "/docs/" + name);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  };
+  const std::string example = read("library_example.cpp");
+  const std::string page = read("library.md");
+  REQUIRE_FALSE(example.empty());
+  CHECK(page.find("```cpp\n" + example + "```\n") != std::string::npos);
 }

@@ -89,7 +89,7 @@ TEST_CASE("The constructor refuses what the algorithms cannot handle") {
   REQUIRE_THROWS_WITH(SurfaceMesh(bow, {{0, 1, 2}, {0, 3, 4}}), Catch::Contains("vertex 0 joins 2 separate fans"));
 }
 
-TEST_CASE("Angle deficits: four right angles at an octahedron's corner, and they sum to 2π times the Euler characteristic") {
+TEST_CASE("Angle deficits: 2π/3 at each corner of an octahedron and 2π times the Euler characteristic in all") {
   const SurfaceMesh octa = test::octahedron();
   const std::vector<double> d = angle_deficits(octa);
   for (double x : d) CHECK(x == Approx(2 * M_PI - 4 * M_PI / 3));  // four equilateral triangles

@@ -56,12 +56,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
-  const int fewest = input.loaded.mesh.minimum_vertex_count();
-  if (input.samples.size() < fewest)
-    throw InputError(fmt::format("{} vertices are too few for this surface: no triangle mesh with its topology ({} "
-                                 "component(s), Euler characteristic {}) has fewer than {}",
-                                 input.samples.size(), input.loaded.mesh.component_count(),
-                                 input.loaded.mesh.euler_characteristic(), fewest));
+  require_remesh_vertex_count(input.loaded.mesh, input.samples.size());
   // The CVT keeps each sample on its component: each gets its share of the samples up front, and
   // at least the fewest vertices its own topology needs.
   if (input.mesh.component_count() > 1 && opt.input.points_path.empty())

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "common/error.h"
 #include "mesh/closest_point.h"
 #include "mesh/curvature.h"
 #include "metrics/self_intersections.h"
@@ -582,6 +583,25 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   result.defects = std::move(defects);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+void require_remesh_vertex_count(const SurfaceMesh& input, int n) {
+  const int fewest = input.minimum_vertex_count();
+  if (n < fewest)
+    throw InputError(fmt::format("{} vertices are too few for this surface: no triangle mesh with its topology ({} "
+                                 "component(s), Euler characteristic {}) has fewer than {}",
+                                 n, input.component_count(), input.euler_characteristic(), fewest));
+}
+
+RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const RemeshOptions& options) {
+  require_workable_size(input, "remeshing");
+  require_remesh_vertex_count(input, n);
+  const double length = suggested_refinement_length(input, n);
+  const SurfaceMesh mesh = length > 0 && input.max_edge_length() > length ? refine_long_edges(input, length) : input;
+  const Samples samples = mesh.component_count() > 1
+                              ? sample_by_component(mesh, n, seed, mesh.minimum_vertex_counts())
+                              : sample_uniform(mesh, n, seed);
+  return remesh_cvt(input, mesh, samples, options);
 }
 
 }  // namespace lrvd

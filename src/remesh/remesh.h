@@ -134,4 +134,16 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
 
+//! \throw InputError when n is below input.minimum_vertex_count(): no triangle mesh with the
+//! input's topology has fewer vertices.
+void require_remesh_vertex_count(const SurfaceMesh& input, int n);
+
+//! The whole remesh of `input` to exactly n vertices, as `lrvd remesh MESH -n N --seed S` does it:
+//! the input refined where n is comparable to its triangle count (suggested_refinement_length), n
+//! uniform samples (with several connected components, each its share by area and at least the
+//! fewest vertices its topology needs), then remesh_cvt. The output is result.dual; check it with
+//! verify_remesh (verification/remesh_check.h).
+//! \throw InputError when n is below input.minimum_vertex_count().
+RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed = 1, const RemeshOptions& options = {});
+
 }  // namespace lrvd
