@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include "metrics/quality.h"
+#include "voronoi/clip.h"
 #include "metrics/self_intersections.h"
 
 namespace lrvd {
@@ -24,6 +25,13 @@ struct CellQuadric {
 
 std::vector<CellQuadric> cell_quadrics(const Diagram& diagram, const SurfaceMesh& mesh) {
   std::vector<CellQuadric> quadric(diagram.sample_count);
+  std::vector<double> cell_area(diagram.sample_count, 0.0);
+  // Boundary segments inside each cell: a polygon's side along a mesh edge with no neighbour.
+  struct Segment {
+    int cell, triangle;
+    Vec3 a, b;
+  };
+  std::vector<Segment> segments;
   const SymbolicContext ctx = diagram.context(mesh);
   for (const CellPolygon& poly : diagram.polygons) {
     const SymbolicVertex* v = diagram.polygon_vertices(poly);
@@ -41,6 +49,31 @@ std::vector<CellQuadric> cell_quadrics(const Diagram& diagram, const SurfaceMesh
     const double offset = dot(normal, mesh.position(mesh.triangle(poly.triangle)[0]));
     quadric[poly.cell].a += area * n * n.transpose();
     quadric[poly.cell].b += area * offset * n;
+    cell_area[poly.cell] += area;
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const int l = (k + 1) % poly.vertex_count;
+      const unsigned shared = edge_mask(v[k], tri) & edge_mask(v[l], tri);
+      for (int e = 0; e < 3; ++e)
+        if ((shared >> e & 1u) && mesh.neighbor(poly.triangle, e) < 0)
+          segments.push_back({poly.cell, poly.triangle, position(v[k], ctx), position(v[l], ctx)});
+    }
+  }
+  // Each boundary segment adds the plane through it at right angles to its triangle, weighted by
+  // its length times the cell's size (an area, as the surface planes' weights are): a cell on the
+  // boundary pulls its vertex onto the boundary as well as onto the surface.
+  for (const Segment& s : segments) {
+    const Vec3 along = s.b - s.a;
+    const double length = norm(along);
+    if (!(length > 0)) continue;
+    Vec3 side = cross(mesh.triangle_normal(s.triangle), along);
+    const double side_length = norm(side);
+    if (!(side_length > 0)) continue;
+    side = side / side_length;
+    const Eigen::Vector3d n(side.x, side.y, side.z);
+    const double weight = length * std::sqrt(cell_area[s.cell]);
+    quadric[s.cell].a += weight * n * n.transpose();
+    quadric[s.cell].b += weight * dot(side, s.a) * n;
   }
   return quadric;
 }

@@ -121,6 +121,7 @@ class OffsetBalancer {
   std::vector<char> input_refined_;  // input triangles sampled at the finer level already
   std::vector<int> first_;
   std::vector<char> moved_;  // vertices moved since the last measure
+  std::vector<char> on_boundary_;  // vertices on the remesh's boundary (an edge of one triangle)
   std::vector<Entry> entries_;
   std::vector<double> coefficient_, local_d_, local_w_;
   std::vector<Vec3> local_g_;

@@ -67,6 +67,15 @@ OffsetBalancer::OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const st
     if (proper_[t]) proper_triangles_.push_back(dual_.triangles[t]), dual_triangle_.push_back(t);
   place_samples();
   if (input_vertex_cell) hint_input_vertices(*input_vertex_cell);
+  on_boundary_.assign(dual.positions.size(), 0);
+  std::vector<std::pair<int, int>> edges;
+  for (const Triangle& f : dual.triangles)
+    for (int e = 0; e < 3; ++e) edges.push_back({std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])});
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0, j; i < edges.size(); i = j) {
+    for (j = i + 1; j < edges.size() && edges[j] == edges[i];) ++j;
+    if (j - i == 1) on_boundary_[edges[i].first] = on_boundary_[edges[i].second] = 1;
+  }
   moved_.assign(dual.positions.size(), 1);
 }
 
@@ -74,10 +83,14 @@ double OffsetBalancer::measure(double floor) {
   const int nr = static_cast<int>(remesh_.size()), ni = static_cast<int>(input_points_.size());
   // Only the samples on triangles with a moved corner can have changed (an input sample's
   // distance to its old triangle is unchanged then, so its stale value is an upper bound).
+  // Samples at the remesh's boundary are measured again whenever they moved: off an open input's
+  // boundary, in the surface, the distance grows at once, which a value linearised from 0 (whose
+  // direction is then the normal) does not show.
   auto moved = [&](const Sample& s) {
     if (s.triangle < 0) return true;
     const Triangle& f = dual_.triangles[s.triangle];
-    return (moved_[f[0]] || moved_[f[1]] || moved_[f[2]]) && std::abs(s.d) >= floor;
+    return (moved_[f[0]] || moved_[f[1]] || moved_[f[2]]) &&
+           (std::abs(s.d) >= floor || on_boundary_[f[0]] || on_boundary_[f[1]] || on_boundary_[f[2]]);
   };
   // The remesh's index only when an input sample is measured.
   std::optional<ClosestPointIndex> remesh_index;
