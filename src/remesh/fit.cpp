@@ -10,8 +10,8 @@
 #include <Eigen/Dense>
 
 #include "metrics/quality.h"
-#include "voronoi/clip.h"
 #include "metrics/self_intersections.h"
+#include "voronoi/clip.h"
 
 namespace lrvd {
 
