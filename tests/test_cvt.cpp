@@ -375,7 +375,7 @@ TEST_CASE("A cap on a sharp tip gets a larger cell in a third run: CGAL's tricer
   REQUIRE(r.result.dual.positions.size() == 200);
 }
 
-TEST_CASE("On an open sheet the fitting takes the boundary vertices to the boundary and none past it", "[cvt][remesh][fit]") {
+TEST_CASE("On an open sheet the fitting takes the boundary vertices out to the boundary and hardly past it", "[cvt][remesh][fit]") {
   // The unit square: the dual's boundary runs through the boundary cells' samples, inside the
   // square; the boundary's planes in the cells' quadrics take it out to the square's sides. Before
   // them the Hausdorff distance was 2.75 %, and the balancing's sideways steps, blind to the
