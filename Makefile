@@ -1,9 +1,10 @@
 # Entry points for a fresh Debian 12 machine: `make demo` and `make test` do all set-up.
 BUILD ?= build
 JOBS ?= 2
+PREFIX ?= /usr/local
 CMAKE_FLAGS ?=
 
-.PHONY: all setup configure build test demo bench clean
+.PHONY: all setup configure build test demo bench install clean
 
 all: build
 
@@ -33,6 +34,10 @@ demo: build
 bench: build
 	mkdir -p $(BUILD)/bench
 	$(BUILD)/bench_remesh --lrvd-only --threads 1 --out $(BUILD)/bench/remesh.md --json $(BUILD)/bench/remesh.json
+
+# The lrvd command, the libraries, their headers and the CMake package (docs/library.md).
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD)
