@@ -265,6 +265,7 @@ TEST_CASE("remesh_to (the library call) gives the mesh that lrvd remesh writes a
     CHECK(take_file(kOut + "remesh_to.off") == take_file(kOut + "remesh_cli.off"));
   }
   REQUIRE_THROWS_AS(lrvd::remesh_to(two, 7), lrvd::InputError);  // two spheres need 4 vertices each
+  REQUIRE_THROWS_WITH(lrvd::remesh_to(two, 4'000'000), Catch::Contains("use fewer vertices"));  // ~16M triangles
 }
 
 TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {

@@ -51,14 +51,9 @@ void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
 
 namespace {
 
-// What a diagram of a mesh costs in memory, at its peak: about 0.6-0.75 KB a triangle to compute
-// it, 2.5 KB a triangle with its exact verification (`lrvd compute` of the elk at 500,000 samples,
-// refined to 1.9M triangles: 1.4 GB without the verification, 4.9 GB with it). These limits keep a
-// verified diagram under about 15 GB (the refinement's estimate taken with its margin,
-// kRefinedTriangleMargin); a larger sampling is refused with a one-line error instead of
-// exhausting memory.
+// The most samples a command takes; the refinement they call for is bounded by
+// kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
 constexpr int kMaxSamples = 5'000'000;
-constexpr double kMaxRefinedTriangles = 6e6;
 
 std::vector<double> read_weights(const std::string& path) {
   std::error_code error;

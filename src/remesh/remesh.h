@@ -143,7 +143,8 @@ void require_remesh_vertex_count(const SurfaceMesh& input, int n);
 //! uniform samples (with several connected components, each its share by area and at least the
 //! fewest vertices its topology needs), then remesh_cvt. The output is result.dual; check it with
 //! verify_remesh (verification/remesh_check.h).
-//! \throw InputError when n is below input.minimum_vertex_count().
+//! \throw InputError when n is below input.minimum_vertex_count(), or when n needs a refinement
+//! beyond kMaxRefinedTriangles.
 RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed = 1, const RemeshOptions& options = {});
 
 }  // namespace lrvd
