@@ -326,6 +326,17 @@ TEST_CASE("The fewest vertices a mesh of the same topology can have") {
   REQUIRE(test::grid(3, 3).minimum_vertex_count() == 3);    // a disk: one triangle
   REQUIRE(test::merge(test::octahedron(), test::grid(2, 2), Vec3{5, 0, 0}).minimum_vertex_count() == 7);
   REQUIRE(make_stress_mesh("knot_tube").minimum_vertex_count() == 7);  // a torus
+  // An annulus (the 3 x 3 grid without its middle square): three vertices on each loop.
+  const SurfaceMesh grid = test::grid(3, 3);
+  std::vector<Vec3> positions;
+  for (int v = 0; v < grid.vertex_count(); ++v) positions.push_back(grid.position(v));
+  std::vector<Triangle> ring;
+  for (int t = 0; t < grid.triangle_count(); ++t)
+    if (t != 8 && t != 9) ring.push_back(grid.triangle(t));  // the middle square's two triangles
+  const SurfaceMesh annulus(positions, ring);
+  REQUIRE(annulus.boundary_loops().size() == 2);
+  REQUIRE(annulus.euler_characteristic() == 0);
+  REQUIRE(annulus.minimum_vertex_count() == 6);
 }
 
 TEST_CASE("A Morton order visits each octant of the bounding cube in one run with x fastest") {

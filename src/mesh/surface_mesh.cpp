@@ -320,12 +320,13 @@ std::vector<int> SurfaceMesh::component_euler_characteristics() const {
 }
 
 std::vector<int> SurfaceMesh::minimum_vertex_counts() const {
-  std::vector<char> open(component_count_, 0);
-  for (const std::vector<int>& loop : boundary_loops_) open[vertex_component(loop.front())] = 1;
+  std::vector<int> loops(component_count_, 0);
+  for (const std::vector<int>& loop : boundary_loops_) ++loops[vertex_component(loop.front())];
   const std::vector<int> chi = component_euler_characteristics();
+  auto heawood = [](int euler) { return static_cast<int>(std::ceil((7 + std::sqrt(49.0 - 24.0 * euler)) / 2 - 1e-9)); };
   std::vector<int> fewest(component_count_);
   for (int c = 0; c < component_count_; ++c)
-    fewest[c] = open[c] ? 3 : static_cast<int>(std::ceil((7 + std::sqrt(49.0 - 24.0 * chi[c])) / 2 - 1e-9));
+    fewest[c] = loops[c] == 0 ? heawood(chi[c]) : std::max(3 * loops[c], heawood(chi[c] + loops[c]) - loops[c]);
   return fewest;
 }
 

@@ -78,8 +78,10 @@ class SurfaceMesh {
   int euler_characteristic() const;
   std::vector<int> component_euler_characteristics() const;
   //! The fewest vertices a triangle mesh of the same topology can have, summed over the
-  //! components: a closed component of Euler characteristic χ needs ⌈(7 + √(49 − 24χ))/2⌉ (Heawood:
-  //! 4 for a sphere, 7 for a torus), one with boundary 3. A lower bound: genus 2 needs 10, not 9.
+  //! components: a closed component of Euler characteristic χ needs H(χ) = ⌈(7 + √(49 − 24χ))/2⌉
+  //! (Heawood: 4 for a sphere, 7 for a torus); one with b boundary loops needs 3 on each loop (a
+  //! vertex is on one loop at most) and H(χ + b) − b (a cone over each loop closes it), whichever is
+  //! more: 3 for a disk, 6 for an annulus. A lower bound: genus 2 needs 10, not 9.
   int minimum_vertex_count() const;
   std::vector<int> minimum_vertex_counts() const;  //!< the same per component
 

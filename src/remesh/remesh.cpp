@@ -589,8 +589,12 @@ void require_remesh_vertex_count(const SurfaceMesh& input, int n) {
   const int fewest = input.minimum_vertex_count();
   if (n < fewest)
     throw InputError(fmt::format("{} vertices are too few for this surface: no triangle mesh with its topology ({} "
-                                 "component(s), Euler characteristic {}) has fewer than {}",
-                                 n, input.component_count(), input.euler_characteristic(), fewest));
+                                 "component(s), Euler characteristic {}{}) has fewer than {}",
+                                 n, input.component_count(), input.euler_characteristic(),
+                                 input.boundary_loops().empty()
+                                     ? std::string()
+                                     : fmt::format(", {} boundary loop(s)", input.boundary_loops().size()),
+                                 fewest));
 }
 
 RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const RemeshOptions& options) {
