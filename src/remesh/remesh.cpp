@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iterator>
 #include <numeric>
+#include <optional>
 #include <set>
 #include <string>
 #include <tuple>
@@ -436,16 +437,32 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // The first CVT, then rounds that raise the density where the worst kind of defect is (topology
   // first, crossings next); the state with the fewest defects is the result, with the counters of
   // the whole run.
-  // `saw_tip_caps` is set when some round's dual had a cap on a sharp tip.
+  // `saw_tip_caps` is set when some round's dual had a cap on a sharp tip. The third run starts from
+  // the second's first CVT (the same samples, options and result), kept here, not computed again.
+  struct Start {
+    RemeshResult result;
+    DualDefects defects;
+  };
+  std::optional<Start> sheets_start;
   auto optimise_and_repair = [&](bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
                                  bool& saw_tip_caps) {
     CvtOptions first = options.cvt;
     first.keep_to_sheets = keep_to_sheets;
     RemeshResult result;
-    result.cvt = optimize_cvt(mesh, initial, first, nullptr, &index);
-    result.total_iterations = result.cvt.iterations;
-    result.diagram_evaluations = result.cvt.diagram_evaluations;
-    result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
+    DualDefects defects;
+    if (keep_to_sheets && sheets_start) {
+      result = sheets_start->result;
+      defects = sheets_start->defects;
+      result.total_iterations = result.diagram_evaluations = 0;  // the counters count work done
+    } else {
+      result.cvt = optimize_cvt(mesh, initial, first, nullptr, &index);
+      result.total_iterations = result.cvt.iterations;
+      result.diagram_evaluations = result.cvt.diagram_evaluations;
+      result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
+      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+      settle(result, defects);
+      if (keep_to_sheets && options.tip_caps_retry) sheets_start = Start{result, defects};
+    }
     CvtOptions again = first;
     again.iterations = options.repair_iterations;
     again.lloyd_warmup = 1;
@@ -453,11 +470,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       again.triangle_density = options.cvt.density == CvtDensity::Curvature
                                    ? curvature_density(mesh, initial.size())
                                    : std::vector<double>(mesh.triangle_count(), 1.0);
-    DualDefects defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
-    settle(result, defects);
     progress(fmt::format("{}CVT: {} iterations, {} diagrams, energy {:.6g}; the dual has {}",
-                         lower_tip_caps ? "third run, " : keep_to_sheets ? "second run, " : "", result.cvt.iterations,
-                         result.cvt.diagram_evaluations, result.cvt.energy, defects.describe()));
+                         lower_tip_caps ? "third run, from the second's first " : keep_to_sheets ? "second run, " : "",
+                         result.cvt.iterations, result.cvt.diagram_evaluations, result.cvt.energy, defects.describe()));
     RemeshResult best = result;
     best_defects = defects;
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
