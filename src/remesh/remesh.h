@@ -118,7 +118,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! verifies it). If it still has defects, the whole run is repeated with every sample kept to its
 //! own sheet (CvtOptions::keep_to_sheets: the centroid of a cell wrapping a thin wall must not send
 //! its sample across the wall or a narrow gap), and each of its rounds first moves the samples of
-//! the lightest cells away from the defects (from any component that keeps the fewest vertices its
+//! the lightest cells away from the defects (from any component that keeps more than the fewest vertices its
 //! topology needs) to the points of the defect cells farthest from their samples; the run with
 //! fewer defects is kept, and the counters cover both runs. Samples otherwise stay on their
 //! connected components. A sample in no triangle whose cell is a disk in a corner of an open
