@@ -617,11 +617,11 @@ RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const Rem
   require_remesh_vertex_count(input, n);
   const double length = suggested_refinement_length(input, n);
   const bool refine = length > 0 && input.max_edge_length() > length;
-  if (refine && kRefinedTriangleMargin * expected_refined_triangle_count(input, length) > kMaxRefinedTriangles)
+  const double at_most = refine ? kRefinedTriangleMargin * expected_refined_triangle_count(input, length) : 0;
+  if (at_most > kMaxRefinedTriangles)
     throw InputError(fmt::format("{} vertices would need the mesh refined to about {:.3g} triangles (limit {:.3g}): "
                                  "use fewer vertices",
-                                 n, kRefinedTriangleMargin * expected_refined_triangle_count(input, length),
-                                 kMaxRefinedTriangles));
+                                 n, at_most, kMaxRefinedTriangles));
   const SurfaceMesh mesh = refine ? refine_long_edges(input, length) : input;
   const Samples samples = mesh.component_count() > 1
                               ? sample_by_component(mesh, n, seed, mesh.minimum_vertex_counts())
