@@ -124,6 +124,14 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   }
   REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
   REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
+  // A report no one can write (not even root, under /proc): refused before the remesh, whose mesh
+  // is then not written either.
+  const std::string unwritten = kOut + "unwritten.off";
+  std::remove(unwritten.c_str());
+  const Run proc = run("remesh " + kData + "/elk.off -n 300 -o " + unwritten + " --report /proc/lrvd_report.json");
+  REQUIRE(proc.status == 2);
+  REQUIRE(proc.err.find("cannot be written") != std::string::npos);
+  REQUIRE_FALSE(std::ifstream(unwritten).good());
 }
 
 TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verification", "[cli][remesh]") {

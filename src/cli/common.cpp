@@ -206,6 +206,12 @@ void check_outputs(const std::vector<PlannedOutput>& outputs) {
     if (std::find(seen.begin(), seen.end(), normal) != seen.end())
       throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
     seen.push_back(normal);
+    // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
+    // so that a long run does not end on a file it cannot write.
+    const bool existed = fs::exists(path, error);
+    if (!std::ofstream(out.path, std::ios::app))
+      throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
+    if (!existed) fs::remove(path, error);
   }
 }
 
