@@ -363,10 +363,9 @@ TEST_CASE("A cap on a sharp tip gets a larger cell in a third run: CGAL's tricer
   // both runs of raised density: fewer than three cells fit round a tip sharper than a half-plane,
   // at any density. The third run lowers the density on such caps and ends valid.
   const SurfaceMesh input = cgal_mesh("triceratops.off");
-  const SurfaceMesh mesh = for_samples(input, 200);
   RemeshOptions two_runs;
   two_runs.tip_caps_retry = false;
-  const RemeshResult before = remesh_cvt(input, mesh, sample_uniform(mesh, 200, 1), two_runs);
+  const RemeshResult before = remesh_to(input, 200, 1, two_runs);
   REQUIRE_FALSE(verify_remesh(input, before.dual.positions, before.dual.triangles, 200).passed);
   const Remeshed r = remesh(input, 200);
   INFO(r.check.summary());

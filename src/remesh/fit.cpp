@@ -32,6 +32,7 @@ std::vector<CellQuadric> cell_quadrics(const Diagram& diagram, const SurfaceMesh
     Vec3 a, b;
   };
   std::vector<Segment> segments;
+  const bool open = !mesh.is_closed();
   const SymbolicContext ctx = diagram.context(mesh);
   for (const CellPolygon& poly : diagram.polygons) {
     const SymbolicVertex* v = diagram.polygon_vertices(poly);
@@ -50,6 +51,7 @@ std::vector<CellQuadric> cell_quadrics(const Diagram& diagram, const SurfaceMesh
     quadric[poly.cell].a += area * n * n.transpose();
     quadric[poly.cell].b += area * offset * n;
     cell_area[poly.cell] += area;
+    if (!open) continue;
     const Triangle& tri = mesh.triangle(poly.triangle);
     for (int k = 0; k < poly.vertex_count; ++k) {
       const int l = (k + 1) % poly.vertex_count;

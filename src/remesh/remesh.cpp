@@ -531,9 +531,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     return best;
   };
   DualDefects defects;
+  bool first_saw_tip_caps = false;  // unused: the third run repeats the second, not the first
+  RemeshResult result = optimise_and_repair(false, false, defects, first_saw_tip_caps);
   bool saw_tip_caps = false;  // in the second run: the third differs from it only from such a round on
-  RemeshResult result = optimise_and_repair(false, false, defects, saw_tip_caps);
-  saw_tip_caps = false;
   // Runs the whole loop again and keeps it if it ends with fewer defects; the counters cover every run.
   auto retry = [&](bool keep_to_sheets, bool lower_tip_caps, bool& saw) {
     DualDefects again_defects;
