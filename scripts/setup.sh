@@ -25,7 +25,7 @@ data_dir="${1:-build/cgal-data}"
 archive=/usr/share/doc/libcgal-dev/data.tar.gz
 meshes=(elk.off knot.off knot1.off ellipsoid.off armadillo.off lion.off fold.off
   ChineseDragon-10kv.off bunny00.off bones.off holes.off pig.off triceratops.off mpi.off pinion_small.off man.off
-  diplodocus.off negative.off)
+  diplodocus.off negative.off ALSTOM_TEST4.off pig.stl)
 mkdir -p "$data_dir"
 need=0
 for m in "${meshes[@]}"; do [ -s "$data_dir/$m" ] || need=1; done

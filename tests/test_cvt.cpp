@@ -511,3 +511,46 @@ TEST_CASE("Focus rounds move the vertices at the largest distance with their rin
   INFO(check.summary());
   REQUIRE(check.passed);
 }
+
+TEST_CASE("Two cells that meet across a neck narrower than them are where to act: two squares joined by a neck", "[cvt][remesh]") {
+  // Two unit squares joined by a neck 0.1 wide and 0.1 long, cells about 0.3 and 0.18 wide: a cell
+  // from each side meets the other in the neck along an arc from boundary to boundary through no
+  // triple point, so the dual has no edge there and falls apart in two, with every sample used.
+  // Without these two cells to act on the rounds stopped at once, and the output had two
+  // components at 20 to 80 vertices, seeds 1 to 3.
+  const SurfaceMesh sheet = test::neck_sheet(40, 0.1, 0.1);
+  for (int n : {20, 60}) {
+    const SurfaceMesh mesh = for_samples(sheet, n);
+    const CvtResult first = optimize_cvt(mesh, sample_uniform(mesh, n, 1), CvtOptions{});
+    const DualDefects defects = find_dual_defects(compute_dual(first.diagram, mesh, first.samples), first.diagram,
+                                                  mesh, false, false);
+    INFO("n = " << n << ": " << defects.describe());
+    REQUIRE(defects.topological.empty());
+    REQUIRE_FALSE(defects.euler_ok);
+    REQUIRE(defects.cell_topology.size() == 2);
+    const double x0 = first.samples.positions[defects.cell_topology[0]].x,
+                 x1 = first.samples.positions[defects.cell_topology[1]].x;
+    CHECK(std::min(x0, x1) < 1.05);  // one on each side of the neck's middle
+    CHECK(std::max(x0, x1) > 1.05);
+    const Remeshed r = remesh(sheet, n);
+    INFO(r.check.summary());
+    REQUIRE(r.result.repair_rounds > 0);
+    REQUIRE(r.check.passed);
+    REQUIRE(r.check.components == 1);
+  }
+}
+
+TEST_CASE("Cells that meet across narrow strips are repaired on CGAL's ALSTOM_TEST4 and on pig.stl at 200", "[cvt][remesh]") {
+  // ALSTOM_TEST4: six open parts of a CAD model with strips narrower than the cells; pig.stl: after
+  // --repair, 17 components cut apart at non-manifold edges. Both ended with the wrong topology when
+  // such strips were not acted on (pig.stl: 18 components, one of its parts in two).
+  for (const auto& [model, repair] : {std::pair{"ALSTOM_TEST4.off", false}, std::pair{"pig.stl", true}}) {
+    const SurfaceMesh input = read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + model, ReadOptions{repair}).mesh;
+    REQUIRE_FALSE(input.is_closed());
+    const RemeshResult r = remesh_to(input, 200);
+    const RemeshVerification check = verify_remesh(input, r.dual.positions, r.dual.triangles, 200);
+    INFO(model << "\n" << check.summary());
+    REQUIRE(check.passed);
+    REQUIRE(check.components == input.component_count());
+  }
+}

@@ -29,6 +29,31 @@ inline SurfaceMesh grid(int nx, int ny) {
   return SurfaceMesh(p, t);
 }
 
+//! Two unit squares in the z = 0 plane joined by a neck `width` wide (centred on y = 1/2) and
+//! `length` long, on a grid of `per_unit` quads a unit split in two; width and length are whole
+//! numbers of quads.
+inline SurfaceMesh neck_sheet(int per_unit, double width, double length) {
+  const double h = 1.0 / per_unit;
+  const int nx = static_cast<int>(std::lround((2 + length) * per_unit)), ny = per_unit;
+  std::map<std::pair<int, int>, int> index;
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  auto vertex = [&](int i, int j) {
+    const auto [it, added] = index.try_emplace({i, j}, static_cast<int>(p.size()));
+    if (added) p.push_back({i * h, j * h, 0});
+    return it->second;
+  };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double x = (i + 0.5) * h, y = (j + 0.5) * h;
+      if (x > 1 && x < 1 + length && std::abs(y - 0.5) > width / 2) continue;
+      const int a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i, j + 1), d = vertex(i + 1, j + 1);
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  return SurfaceMesh(p, t);
+}
+
 //! Icosphere of radius 1: `levels` 1-to-4 subdivisions of an icosahedron, vertices on the sphere.
 inline SurfaceMesh icosphere(int levels) {
   const double g = (1 + std::sqrt(5.0)) / 2;

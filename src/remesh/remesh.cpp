@@ -26,14 +26,19 @@ namespace {
 
 // Cells that are not disks (more than one boundary loop: a ring around a thin tube) and pairs of
 // cells that share more than one boundary arc (paper Fig. 13): the dual is wrong there even when
-// it looks like a manifold. Boundary pieces are joined through their shared symbolic vertices.
-void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect) {
+// it looks like a manifold. Also, in `strips`, the pairs whose one shared arc runs from the mesh
+// boundary to the mesh boundary through no triple point: across a strip narrower than the cells,
+// where the dual has no edge between them. Boundary pieces are joined through their shared symbolic
+// vertices.
+void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect,
+                               std::vector<std::pair<int, int>>& strips) {
   using Key = std::pair<int, int>;  // (cell, 0) for a cell's whole boundary, (i, j + 1) for arc i|j
   struct Piece {
     Key key;
     SymbolicVertex u, w;
   };
   std::vector<Piece> pieces;
+  std::vector<SymbolicVertex> arc_ends_on_boundary;  // arc vertices on a boundary edge of the mesh
   for (const CellPolygon& poly : diagram.polygons) {
     const SymbolicVertex* v = diagram.polygon_vertices(poly);
     const Triangle& tri = mesh.triangle(poly.triangle);
@@ -49,7 +54,14 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
           if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
       if (other == -1) continue;
       pieces.push_back({{poly.cell, 0}, u, w});
-      if (other >= 0 && poly.cell < other) pieces.push_back({{poly.cell, other + 1}, u, w});
+      if (other >= 0 && poly.cell < other) {
+        pieces.push_back({{poly.cell, other + 1}, u, w});
+        for (const SymbolicVertex* q : {&u, &w})
+          for (int e = 0; e < 3; ++e)
+            if (q->type == SymbolicVertex::Type::B && mesh.neighbor(poly.triangle, e) < 0 &&
+                q->on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+              arc_ends_on_boundary.push_back(*q);
+      }
     }
   }
   // Count connected components per key with a union-find over the key's vertices: the pieces
@@ -71,6 +83,11 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
     const int u = id_of(p.u);
     links[next[p.key.first]++] = {p.key, u, id_of(p.w)};
   }
+  // Per vertex id: 1 for a triple point (type C), 2 for an arc's end on the mesh boundary.
+  std::vector<char> kind(ids.size(), 0);
+  for (const auto& [q, id] : ids)
+    if (q.type == SymbolicVertex::Type::C) kind[id] = 1;
+  for (const SymbolicVertex& q : arc_ends_on_boundary) kind[ids.at(q)] = 2;
   for (int c = 0; c < diagram.sample_count; ++c)
     std::sort(links.begin() + first_of_cell[c], links.begin() + first_of_cell[c + 1]);
   std::vector<int> parent(ids.size(), -1);  // -1: not in the current key's forest
@@ -82,9 +99,13 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
   for (size_t first = 0; first < links.size();) {
     size_t last = first;
     int components = 0;
+    bool triple = false, boundary_end = false;
     for (; last < links.size() && links[last].key == links[first].key; ++last)
-      for (int x : {links[last].u, links[last].w})
+      for (int x : {links[last].u, links[last].w}) {
         if (parent[x] < 0) parent[x] = x, touched.push_back(x), ++components;
+        triple = triple || kind[x] == 1;
+        boundary_end = boundary_end || kind[x] == 2;
+      }
     for (size_t k = first; k < last; ++k) {
       const int ra = root(links[k].u), rb = root(links[k].w);
       if (ra != rb) parent[ra] = rb, --components;
@@ -92,6 +113,8 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
     if (components > 1) {
       defect.insert(links[first].key.first);
       if (links[first].key.second > 0) defect.insert(links[first].key.second - 1);
+    } else if (links[first].key.second > 0 && boundary_end && !triple) {
+      strips.push_back({links[first].key.first, links[first].key.second - 1});
     }
     for (int x : touched) parent[x] = -1;
     touched.clear();
@@ -211,7 +234,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   add_pinched_vertices(dual, defect);
   std::set<int> hints;
-  add_cell_topology_defects(diagram, mesh, hints);
+  std::vector<std::pair<int, int>> strips;
+  add_cell_topology_defects(diagram, mesh, hints, strips);
   if (!input_closed) add_closed_over_holes(diagram, mesh, hints);
   // The dual's Euler characteristic against the mesh's: a manifold dual can still have lost a
   // handle (a cell wrapping a tube) or a hole of an open mesh (a cell around it), which only the
@@ -272,6 +296,10 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
         if (gathered[i] > M_PI) tip_caps.push_back(i);
     }
   }
+  // Two used cells that meet across a strip narrower than them: the dual lacks their edge and comes
+  // apart there (an unused one is a topological defect already, and maybe cornered).
+  for (const auto& [i, j] : strips)
+    if (used[i] && used[j]) hints.insert({i, j});
   // Triangles that cut through each other (nearby sheets sampled too coarsely).
   const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
   std::set<int> crossing;
@@ -404,7 +432,8 @@ std::string DualDefects::describe() const {
   if (!crossing.empty()) parts.push_back(fmt::format("{} at crossing triangles", crossing.size()));
   if (!euler_ok)
     parts.push_back(fmt::format("the wrong Euler characteristic ({} {})", count(cell_topology.size(), "cell"),
-                                cell_topology.size() == 1 ? "not a disk or sharing two arcs" : "not disks or sharing two arcs"));
+                                cell_topology.size() == 1 ? "not a disk or sharing two arcs"  // a strip flags two
+                                                           : "not disks, sharing two arcs or meeting across a strip"));
   std::string out = parts[0];
   for (size_t k = 1; k < parts.size(); ++k) out += ", " + parts[k];
   return out;

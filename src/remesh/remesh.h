@@ -48,13 +48,16 @@ struct RemeshOptions {
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
 //! triangle, and triangles that intersect each other (but for crossings between
 //! components when the input's components cross each other too: `input_components_cross`): the
-//! samples involved; also the cells that are not disks (a ring around a thin part) or share more
-//! than one boundary arc with a neighbour, which locate a lost handle when the dual's Euler
-//! characteristic is wrong.
+//! samples involved; also the cells that are not disks (a ring around a thin part), share more
+//! than one boundary arc with a neighbour, or meet across a strip of an open mesh narrower than
+//! them, which locate a lost handle, hole or link when the dual's Euler characteristic is wrong.
 struct DualDefects {
   std::vector<int> topological;    //!< samples at bad edges, repeated or merged triangles, unused samples
   std::vector<int> crossing;       //!< samples of triangles that intersect others
-  std::vector<int> cell_topology;  //!< cells that are rings, or share two arcs with a neighbour
+  //! cells that are rings, or share two arcs with a neighbour, or (two used cells) meet across a
+  //! strip narrower than them: their one shared arc runs from the mesh boundary to the mesh
+  //! boundary through no triple point, so the dual has no edge between them
+  std::vector<int> cell_topology;
   //! Unused samples (also in `topological`) whose cells are disks that meet the boundary of an open
   //! mesh and one other cell: a small cell in a corner sharper than the cells, whose one neighbour
   //! spans the corner.
@@ -73,7 +76,7 @@ struct DualDefects {
   //! characteristic (cell-topology findings alone are harmless then).
   bool empty() const { return topological.empty() && crossing.empty() && euler_ok; }
   //! The samples to act on: the dual's own defects first, then crossings, then — when the
-  //! Euler characteristic is wrong — the cells that are rings or share two arcs.
+  //! Euler characteristic is wrong — the cells that are rings, share two arcs or meet across a strip.
   const std::vector<int>& where_to_act() const {
     if (!topological.empty()) return topological;
     if (!crossing.empty()) return crossing;
