@@ -288,3 +288,32 @@ TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
   REQUIRE_FALSE(example.empty());
   CHECK(page.find("```cpp\n" + example + "```\n") != std::string::npos);
 }
+
+TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality measures against the filled reference", "[cli][remesh]") {
+  // CGAL's ChineseDragon-10kv has two holes of three edges, 0.15 around at most on a diagonal of
+  // 169: a remesh to 200 vertices must keep them and fails (48 rounds, 10 s). Filled, the dragon
+  // is closed and its remesh valid.
+  const std::string dragon = kData + "/ChineseDragon-10kv.off", out = kOut + "dragon_200.off",
+                    report = kOut + "dragon_200.json";
+  const Run r = run("remesh " + dragon + " -n 200 --fill-holes 0.01 -o " + out + " --report " + report);
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("repair: filled 2 holes") != std::string::npos);
+  const json j = read_json(report);
+  REQUIRE(j["input"]["closed"] == true);
+  REQUIRE(j["input"]["repair"].size() == 1);
+  REQUIRE(j["verification"]["passed"] == true);
+  // Against the file as it is, the remesh has lost the two holes; against the filled one it has not.
+  REQUIRE(run("quality " + dragon + " " + out).status == 3);
+  REQUIRE(run("quality " + dragon + " " + out + " --fill-holes 0.01").status == 0);
+  // A fraction below the holes' size fills nothing and says so.
+  const Run none = run("compute " + dragon + " -n 100 --fill-holes 0.0001 --no-verify");
+  REQUIRE(none.status == 0);
+  REQUIRE(none.out.find("no hole filled: each of the 2 boundary loops is longer") != std::string::npos);
+  for (const char* bad : {"0", "-1", "abc", "nan"}) {
+    const Run refused = run("remesh " + dragon + " -n 200 --fill-holes " + std::string(bad) + " -o " + out);
+    REQUIRE(refused.status == 2);
+    REQUIRE(lines(refused.err) == 1);
+  }
+  std::remove(out.c_str());
+}

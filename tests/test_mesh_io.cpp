@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -271,6 +272,54 @@ TEST_CASE("Repair orients, removes duplicates and degenerate faces, and cuts non
   SECTION("what repair cannot fix is still an error that says so") {
     REQUIRE_THROWS_WITH(read_mesh(data("nan.off"), {true}), Contains("non-finite coordinate"));
   }
+}
+
+TEST_CASE("fill_small_holes closes the holes up to a length and keeps the others") {
+  // A 12 x 12 grid on the unit square without one of its quads (a hole of 4 edges, 4/12 around)
+  // and without a row of four (10 edges, 10/12 around).
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  const int n = 12;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) p.push_back({double(i) / n, double(j) / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (j == 2 && i == 2) continue;                      // the small hole
+      if (j == 6 && i >= 6 && i < 10) continue;           // the large one
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  const SurfaceMesh holed(p, t);
+  REQUIRE(holed.boundary_loops().size() == 3);
+  REQUIRE(holed.euler_characteristic() == -1);
+
+  RepairReport report;
+  const SurfaceMesh one = fill_small_holes(holed, 0.5, &report);
+  REQUIRE(report.filled_holes == 1);
+  REQUIRE(report.changed());
+  REQUIRE(report.notes.size() == 1);
+  REQUIRE(one.boundary_loops().size() == 2);
+  REQUIRE(one.euler_characteristic() == 0);
+  REQUIRE(one.triangle_count() == holed.triangle_count() + 2);  // 4 corners, no new vertex
+  REQUIRE(one.vertex_count() == holed.vertex_count());
+  for (int k = 0; k < holed.triangle_count(); ++k) REQUIRE(one.triangle(k) == holed.triangle(k));
+  // The new triangles turn the way the mesh does (+z).
+  for (int k = holed.triangle_count(); k < one.triangle_count(); ++k) REQUIRE(one.triangle_normal(k).z > 0);
+
+  const SurfaceMesh both = fill_small_holes(holed, 1.0);
+  REQUIRE(both.boundary_loops().size() == 1);
+  REQUIRE(both.euler_characteristic() == 1);
+  REQUIRE(both.triangle_count() == holed.triangle_count() + 2 + 8);
+  REQUIRE(fill_small_holes(holed, 0.3).triangle_count() == holed.triangle_count());
+
+  // Through read_mesh: the length is a fraction of the bounding-box diagonal (sqrt 2 here); the
+  // outer boundary (4 around) is a hole too for a fraction that large.
+  write_mesh(scratch("holed.off"), p, t);
+  const LoadedMesh read = read_mesh(scratch("holed.off"), ReadOptions{false, 0.5 / std::sqrt(2.0)});
+  REQUIRE(read.repair.filled_holes == 1);
+  REQUIRE(read.mesh.boundary_loops().size() == 2);
+  REQUIRE(read_mesh(scratch("holed.off"), ReadOptions{false, 3.0}).mesh.is_closed());
 }
 
 TEST_CASE("polygons are triangulated by exact ear clipping, also when non-convex") {

@@ -144,15 +144,20 @@ int run_remesh(const RemeshCommandOptions& opt) {
 
 struct QualityOptions {
   std::string reference, mesh, report;
+  bool repair = false;    //!< of the reference, as the remesh's input was
+  double fill_holes = 0;  //!< of the reference, as the remesh's input was
 };
 
 int run_quality(const QualityOptions& opt) {
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}});
-  const SurfaceMesh reference = read_mesh(opt.reference).mesh;
+  const LoadedMesh loaded = read_mesh(opt.reference, ReadOptions{opt.repair, opt.fill_holes});
+  print_repair(loaded.repair, loaded.mesh, opt.repair, opt.fill_holes);
+  const SurfaceMesh& reference = loaded.mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh);
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
+  if (loaded.repair.changed()) report["reference_repair"] = loaded.repair.notes;
   report["quality"] = remesh_quality_json(quality, check);
   report["verification"] = check.to_json();
   if (!opt.report.empty()) write_json(opt.report, report);
@@ -199,6 +204,7 @@ Action add_quality_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
   cmd->add_option("reference", opt->reference, "The input surface")->required();
   cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required();
+  add_repair_options(cmd, opt->repair, opt->fill_holes, "the reference (as for the remesh)");
   cmd->add_option("--report", opt->report, "Write a JSON report");
   return [opt]() { return run_quality(*opt); };
 }

@@ -31,9 +31,47 @@ CLI::Validator seed_validator() {
       "UINT64");
 }
 
+void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what) {
+  cmd->add_flag("--repair", repair, fmt::format("Weld, clean, orient and stitch {} if it is a triangle soup", what));
+  cmd->add_option("--fill-holes", fill_holes,
+                  fmt::format("Fill every hole of {} whose boundary is at most this fraction of its bounding-box "
+                              "diagonal long (e.g. 0.05); the other holes are kept",
+                              what))
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (text.empty() || *end != '\0' || !(value > 0) || !std::isfinite(value))
+              return "a positive fraction of the bounding-box diagonal, not '" + text + "'";
+            return std::string();
+          },
+          "FRACTION"));
+}
+
+void print_repair(const RepairReport& r, const SurfaceMesh& mesh, bool repair, double fill_holes) {
+  if (repair)
+    std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
+                                                         "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
+                                                         "copied {} non-manifold vertices, triangulated {} polygons",
+                                                         r.merged_vertices, r.removed_degenerate_faces,
+                                                         r.removed_duplicate_faces, r.removed_unreferenced_vertices,
+                                                         r.reoriented_faces, r.stitched_edges,
+                                                         r.duplicated_nonmanifold_vertices, r.triangulated_faces)
+                                                 .c_str()
+                                           : "nothing to change");
+  if (!repair && !(fill_holes > 0)) return;
+  for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
+  if (fill_holes > 0 && r.filled_holes == 0)
+    std::printf("repair: %s\n", mesh.is_closed() ? "no hole to fill: the mesh is closed"
+                                                 : fmt::format("no hole filled: each of the {} boundary loops is longer "
+                                                               "than {:.6g} of the bounding-box diagonal",
+                                                               mesh.boundary_loops().size(), fill_holes)
+                                                       .c_str());
+}
+
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
   cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
-  cmd->add_flag("--repair", opt.repair, "Weld, clean, orient and stitch a triangle soup before use");
+  add_repair_options(cmd, opt.repair, opt.fill_holes);
   CLI::Option* points = cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line");
   if (allow_count) {
     CLI::Option* n = cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)");
@@ -79,22 +117,10 @@ std::vector<double> read_weights(const std::string& path) {
 
 Input load_input(const InputOptions& opt) {
   Input input;
-  input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair});
+  input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair, opt.fill_holes});
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
   require_workable_size(input.loaded.mesh, "lrvd");
-  if (opt.repair) {
-    const RepairReport& r = input.loaded.repair;
-    std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
-                                                         "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
-                                                         "copied {} non-manifold vertices, triangulated {} polygons",
-                                                         r.merged_vertices, r.removed_degenerate_faces,
-                                                         r.removed_duplicate_faces, r.removed_unreferenced_vertices,
-                                                         r.reoriented_faces, r.stitched_edges,
-                                                         r.duplicated_nonmanifold_vertices, r.triangulated_faces)
-                                                 .c_str()
-                                           : "nothing to change");
-    for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
-  }
+  print_repair(input.loaded.repair, input.loaded.mesh, opt.repair, opt.fill_holes);
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {

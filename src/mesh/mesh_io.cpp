@@ -1,5 +1,6 @@
 // Mesh IO: CGAL's readers into a polygon soup, checks with messages naming the first offender,
-// exact ear-clipping triangulation and optional CGAL PMP soup repair (writers: mesh_writers.cpp).
+// exact ear-clipping triangulation, optional CGAL PMP soup repair and hole filling (writers:
+// mesh_writers.cpp).
 // This is the only translation unit that includes CGAL's IO and repair headers.
 #include "mesh/mesh_io.h"
 
@@ -12,6 +13,7 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 #include <fmt/format.h>
 
@@ -376,7 +378,72 @@ void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed
 
 bool RepairReport::changed() const {
   return merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
-         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
+         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces || filled_holes;
+}
+
+SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report) {
+  if (mesh.is_closed() || !(max_length > 0)) return mesh;
+  auto loop_length = [&](const std::vector<int>& loop) {
+    double length = 0;
+    for (size_t k = 0; k < loop.size(); ++k)
+      length += std::sqrt(squared_distance(mesh.position(loop[k]), mesh.position(loop[(k + 1) % loop.size()])));
+    return length;
+  };
+  std::vector<char> fill(mesh.vertex_count(), 0);  // per vertex: on a loop to fill
+  int to_fill = 0;
+  double longest = 0;
+  for (const std::vector<int>& loop : mesh.boundary_loops()) {
+    const double length = loop_length(loop);
+    if (length > max_length) continue;
+    ++to_fill;
+    longest = std::max(longest, length);
+    for (int v : loop) fill[v] = 1;
+  }
+  if (to_fill == 0) return mesh;
+  CGAL::Surface_mesh<Point> sm;
+  using VertexIndex = CGAL::Surface_mesh<Point>::Vertex_index;
+  using FaceIndex = CGAL::Surface_mesh<Point>::Face_index;
+  for (const Vec3& p : mesh.positions()) sm.add_vertex(Point(p.x, p.y, p.z));
+  for (const Triangle& t : mesh.triangles())
+    sm.add_face(VertexIndex(t[0]), VertexIndex(t[1]), VertexIndex(t[2]));
+  // One border halfedge per loop to fill (a vertex is on one loop at most: SurfaceMesh has no
+  // pinched vertices), then each hole triangulated without new vertices.
+  std::vector<CGAL::Surface_mesh<Point>::Halfedge_index> starts;
+  std::vector<char> seen(mesh.vertex_count(), 0);
+  for (auto h : sm.halfedges())
+    if (sm.is_border(h) && fill[sm.target(h).idx()] && !seen[sm.target(h).idx()]) {
+      starts.push_back(h);
+      for (auto g : CGAL::halfedges_around_face(h, sm)) seen[sm.target(g).idx()] = 1;
+    }
+  for (auto h : starts) {
+    std::vector<FaceIndex> added;
+    const size_t corners = CGAL::halfedges_around_face(h, sm).size();
+    PMP::triangulate_hole(sm, h, std::back_inserter(added));
+    if (added.size() + 2 != corners)
+      throw InputError(fmt::format("a hole of {} edges could not be filled", corners));
+  }
+  std::vector<Triangle> triangles = mesh.triangles();
+  for (FaceIndex f : sm.faces()) {
+    if (static_cast<int>(f.idx()) < mesh.triangle_count()) continue;
+    Triangle t{};
+    int c = 0;
+    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[c++] = static_cast<int>(v.idx());
+    triangles.push_back(t);
+  }
+  SurfaceMesh filled;
+  try {
+    filled = SurfaceMesh(mesh.positions(), std::move(triangles));
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("filling {} holes made an invalid mesh: {}", to_fill, e.what()));
+  }
+  if (report) {
+    report->filled_holes += to_fill;
+    report->notes.push_back(fmt::format("filled {} hole{} whose boundary is at most {:.6g} long (the longest: {:.6g}); {} "
+                                        "boundary loop{} left",
+                                        to_fill, to_fill == 1 ? "" : "s", max_length, longest,
+                                        filled.boundary_loops().size(), filled.boundary_loops().size() == 1 ? "" : "s"));
+  }
+  return filled;
 }
 
 namespace {
@@ -449,6 +516,13 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
     if (report.changed() && !loaded.mesh.is_closed())
       report.notes.push_back(
           fmt::format("the repaired mesh has {} boundary loops", loaded.mesh.boundary_loops().size()));
+  }
+  if (options.fill_holes > 0) {
+    try {
+      loaded.mesh = fill_small_holes(loaded.mesh, options.fill_holes * loaded.mesh.bounding_box().diagonal(), &report);
+    } catch (const InputError& e) {
+      fail(path, e.what());
+    }
   }
   return loaded;
 }

@@ -13,6 +13,9 @@ namespace lrvd {
 
 struct ReadOptions {
   bool repair = false;  //!< weld, clean, orient and stitch the polygon soup (CGAL PMP) before validation
+  //! If > 0: after validation (and repair), fill every hole whose boundary loop is at most this
+  //! fraction of the bounding-box diagonal long (fill_small_holes).
+  double fill_holes = 0;
 };
 
 //! What reading changed between the file and the returned mesh. Indices in the notes are 0-based.
@@ -25,6 +28,7 @@ struct RepairReport {
   int duplicated_nonmanifold_vertices = 0;  //!< vertices copied to cut non-manifold edges / vertices apart
   int stitched_edges = 0;                   //!< pairs of coincident boundary edges glued together
   int triangulated_faces = 0;               //!< polygons with more than 3 vertices split into triangles
+  int filled_holes = 0;                     //!< boundary loops closed with triangles (ReadOptions::fill_holes)
   std::vector<std::string> notes;           //!< one human-readable line per change worth knowing
   bool changed() const;
 };
@@ -42,6 +46,15 @@ struct LoadedMesh {
 //!        empty, truncated or unparsable file, non-finite coordinates, out-of-range indices, an
 //!        unwelded triangle soup (suggests --repair), and every SurfaceMesh precondition.
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
+
+//! The mesh with every hole whose boundary loop is at most `max_length` long (the sum of its edge
+//! lengths) closed by triangles between the loop's own vertices (CGAL's triangulate_hole: no new
+//! vertices, a minimum-weight triangulation); the other loops are kept. A remesh keeps every hole
+//! of its input, and one much smaller than the cells needs many rounds and vertices there, or
+//! fails: scans and CAD exports often have such holes by mistake. The triangles are appended after
+//! the mesh's own; a note and the count go to `report` when given.
+//! \throw InputError when a hole cannot be triangulated or the result is not a valid mesh.
+SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report = nullptr);
 
 //! Positions and triangles exactly as a file holds them (polygons triangulated), without the
 //! manifold validation: for measuring other tools' output, which may be non-manifold.
