@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
@@ -291,11 +292,22 @@ TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
 
 TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality measures against the filled reference", "[cli][remesh]") {
   // CGAL's ChineseDragon-10kv has two holes of three edges, 0.15 around at most on a diagonal of
-  // 169: a remesh to 200 vertices must keep them and fails (48 rounds, 10 s). Filled, the dragon
-  // is closed and its remesh valid.
+  // 169: a remesh to 200 vertices must keep them and fails after 48 rounds, naming the holes and
+  // the --fill-holes fraction that closes them. Filled, the dragon is closed and its remesh valid.
   const std::string dragon = kData + "/ChineseDragon-10kv.off", out = kOut + "dragon_200.off",
                     report = kOut + "dragon_200.json";
-  const Run r = run("remesh " + dragon + " -n 200 --fill-holes 0.01 -o " + out + " --report " + report);
+  const Run failed = run("remesh " + dragon + " -n 200 --threads 2 -o " + out + " --report " + report);
+  REQUIRE(failed.status == 3);
+  REQUIRE(failed.out.find("repair: 2 holes are met by fewer than three cells") != std::string::npos);
+  const json holes = read_json(report)["defects_left"]["closed_over_holes"];
+  REQUIRE(holes["count"] == 2);
+  REQUIRE(holes["longest"].get<double>() == Approx(0.150195).epsilon(1e-5));
+  const double fraction = holes["fill_holes"].get<double>();
+  REQUIRE(fraction * 169 > 0.150195);
+  REQUIRE(fraction < 0.001);
+  REQUIRE(failed.out.find(fmt::format("--fill-holes {:.2g} closes them and 0 other holes", fraction)) != std::string::npos);
+  const Run r = run("remesh " + dragon + " -n 200 --fill-holes " + fmt::format("{:.2g}", fraction) + " -o " + out +
+                    " --report " + report);
   INFO(r.out << r.err);
   REQUIRE(r.status == 0);
   REQUIRE(r.out.find("repair: filled 2 holes") != std::string::npos);
@@ -305,7 +317,7 @@ TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality 
   REQUIRE(j["verification"]["passed"] == true);
   // Against the file as it is, the remesh has lost the two holes; against the filled one it has not.
   REQUIRE(run("quality " + dragon + " " + out).status == 3);
-  REQUIRE(run("quality " + dragon + " " + out + " --fill-holes 0.01").status == 0);
+  REQUIRE(run("quality " + dragon + " " + out + " --fill-holes 0.01").status == 0);  // any fraction above the holes
   // A fraction below the holes' size fills nothing and says so.
   const Run none = run("compute " + dragon + " -n 100 --fill-holes 0.0001 --no-verify");
   REQUIRE(none.status == 0);

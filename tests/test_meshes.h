@@ -1,6 +1,7 @@
 // Small meshes built in code for the tests: octahedron, grid sheets, spheres, merging.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -50,6 +51,48 @@ inline SurfaceMesh neck_sheet(int per_unit, double width, double length) {
       const int a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i, j + 1), d = vertex(i + 1, j + 1);
       t.push_back({a, b, d});
       t.push_back({a, d, c});
+    }
+  return SurfaceMesh(p, t);
+}
+
+//! The unit square in the z = 0 plane (`per_unit` quads a side, each split in two) with a handle
+//! on top: a square tube one quad wide that rises from the quad at (i, j), runs `span` quads along
+//! x at a height of two quads and comes down into the quad at (i + span, j). Genus 1, one boundary
+//! loop.
+inline SurfaceMesh sheet_with_handle(int per_unit, int i, int j, int span) {
+  const double h = 1.0 / per_unit;
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  for (int y = 0; y <= per_unit; ++y)
+    for (int x = 0; x <= per_unit; ++x) p.push_back({x * h, y * h, 0});
+  auto grid_vertex = [&](int x, int y) { return y * (per_unit + 1) + x; };
+  for (int y = 0; y < per_unit; ++y)
+    for (int x = 0; x < per_unit; ++x) {
+      if (y == j && (x == i || x == i + span)) continue;  // the tube's two ends
+      const int a = grid_vertex(x, y), b = a + 1, c = a + per_unit + 1, d = c + 1;
+      t.push_back({a, b, d});
+      t.push_back({a, d, c});
+    }
+  // Rings of four vertices, in the order (low x or top, low y), (high x or bottom, low y), then
+  // the same two at high y: up from the first quad, two mitred corners, down into the second.
+  const double x0 = i * h, x1 = (i + span) * h, y0 = j * h, y1 = y0 + h, z1 = 2 * h;
+  auto add = [&](const Vec3& q) {
+    p.push_back(q);
+    return static_cast<int>(p.size()) - 1;
+  };
+  std::vector<std::array<int, 4>> rings;
+  rings.push_back({grid_vertex(i, j), grid_vertex(i + 1, j), grid_vertex(i + 1, j + 1), grid_vertex(i, j + 1)});
+  rings.push_back({add({x0, y0, h}), add({x0 + h, y0, h}), add({x0 + h, y1, h}), add({x0, y1, h})});
+  rings.push_back({add({x0, y0, z1 + h}), add({x0 + h, y0, z1}), add({x0 + h, y1, z1}), add({x0, y1, z1 + h})});
+  rings.push_back({add({x1 + h, y0, z1 + h}), add({x1, y0, z1}), add({x1, y1, z1}), add({x1 + h, y1, z1 + h})});
+  rings.push_back({add({x1 + h, y0, h}), add({x1, y0, h}), add({x1, y1, h}), add({x1 + h, y1, h})});
+  rings.push_back({grid_vertex(i + span + 1, j), grid_vertex(i + span, j), grid_vertex(i + span, j + 1),
+                   grid_vertex(i + span + 1, j + 1)});
+  for (size_t k = 0; k + 1 < rings.size(); ++k)
+    for (int a = 0; a < 4; ++a) {
+      const int b = (a + 1) % 4;
+      t.push_back({rings[k][a], rings[k + 1][b], rings[k + 1][a]});
+      t.push_back({rings[k][a], rings[k][b], rings[k + 1][b]});
     }
   return SurfaceMesh(p, t);
 }

@@ -1,5 +1,7 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -44,6 +46,31 @@ nlohmann::json defects_json(const DualDefects& defects, const Samples& samples) 
           {"topological", kind(defects.topological)},
           {"crossing", kind(defects.crossing)},
           {"cell_topology", kind(defects.cell_topology)}};
+}
+
+// The holes the kept dual closes over (fewer than three cells meet their loop), the longest's length,
+// and the smallest --fill-holes fraction of two significant digits that fills them, with the
+// number of other holes of the input it fills too.
+struct ClosedOverHoles {
+  int count = 0;
+  double longest = 0;
+  double fraction = 0;
+  int others = 0;
+};
+
+ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh& mesh, const SurfaceMesh& input,
+                                  double diagonal) {
+  ClosedOverHoles holes;
+  holes.count = static_cast<int>(defects.closed_over_loops.size());
+  if (holes.count == 0) return holes;
+  for (int l : defects.closed_over_loops) holes.longest = std::max(holes.longest, mesh.boundary_loop_length(l));
+  const double ratio = 1.05 * holes.longest / diagonal;  // a margin over the rounding of the lengths
+  const double unit = std::pow(10.0, std::floor(std::log10(ratio)) - 1);
+  holes.fraction = std::ceil(ratio / unit) * unit;
+  for (int l = 0; l < static_cast<int>(input.boundary_loops().size()); ++l)
+    holes.others += input.boundary_loop_length(l) <= holes.fraction * diagonal;
+  holes.others = std::max(0, holes.others - holes.count);
+  return holes;
 }
 
 int run_remesh(const RemeshCommandOptions& opt) {
@@ -105,6 +132,12 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.
   const double diagonal = input.loaded.mesh.bounding_box().diagonal();
+  const ClosedOverHoles holes = closed_over_holes(remeshed.defects, input.mesh, input.loaded.mesh, diagonal);
+  report["defects_left"]["closed_over_holes"] = {{"count", holes.count}};
+  if (holes.count > 0) {
+    report["defects_left"]["closed_over_holes"]["longest"] = holes.longest;
+    report["defects_left"]["closed_over_holes"]["fill_holes"] = holes.fraction;
+  }
   auto percent = [diagonal](double length) { return 100.0 * length / diagonal; };
   report["fit"] = {{"enabled", remesh.fit},
                    {"moved", remeshed.fit.moved},
@@ -139,6 +172,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
     }
     std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
   }
+  if (!check.passed && holes.count > 0)
+    std::printf("repair: %d hole%s met by fewer than three cells, the longest %.6g around (%.3g of the bounding-box "
+                "diagonal): --fill-holes %.2g closes %s and %d other hole%s, or give more vertices\n",
+                holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal, holes.fraction,
+                holes.count == 1 ? "it" : "them", holes.others, holes.others == 1 ? "" : "s");
   return check.passed ? kOk : kCheckFailed;
 }
 

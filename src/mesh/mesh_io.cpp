@@ -383,21 +383,15 @@ bool RepairReport::changed() const {
 
 SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report) {
   if (mesh.is_closed() || !(max_length > 0)) return mesh;
-  auto loop_length = [&](const std::vector<int>& loop) {
-    double length = 0;
-    for (size_t k = 0; k < loop.size(); ++k)
-      length += std::sqrt(squared_distance(mesh.position(loop[k]), mesh.position(loop[(k + 1) % loop.size()])));
-    return length;
-  };
   std::vector<char> fill(mesh.vertex_count(), 0);  // per vertex: on a loop to fill
   int to_fill = 0;
   double longest = 0;
-  for (const std::vector<int>& loop : mesh.boundary_loops()) {
-    const double length = loop_length(loop);
+  for (int l = 0; l < static_cast<int>(mesh.boundary_loops().size()); ++l) {
+    const double length = mesh.boundary_loop_length(l);
     if (length > max_length) continue;
     ++to_fill;
     longest = std::max(longest, length);
-    for (int v : loop) fill[v] = 1;
+    for (int v : mesh.boundary_loops()[l]) fill[v] = 1;
   }
   if (to_fill == 0) return mesh;
   CGAL::Surface_mesh<Point> sm;

@@ -366,6 +366,13 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
 
 BoundingBox SurfaceMesh::bounding_box() const { return lrvd::bounding_box(positions_); }
 
+double SurfaceMesh::boundary_loop_length(int loop) const {
+  const std::vector<int>& v = boundary_loops_[loop];
+  double length = 0;
+  for (size_t k = 0; k < v.size(); ++k) length += distance(positions_[v[k]], positions_[v[(k + 1) % v.size()]]);
+  return length;
+}
+
 double SurfaceMesh::max_edge_length() const {
   double longest = 0;
   for (const Triangle& tri : triangles_)

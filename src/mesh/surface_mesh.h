@@ -90,6 +90,8 @@ class SurfaceMesh {
   Vec3 triangle_normal(int t) const;  // unit normal
   BoundingBox bounding_box() const;
   double max_edge_length() const;
+  //! The length of boundary loop `loop` (an index into boundary_loops()): the sum of its edges.
+  double boundary_loop_length(int loop) const;
 
  private:
   friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*, RefineOrder);

@@ -24,7 +24,8 @@ namespace lrvd {
 
 namespace {
 
-// Cells that are not disks (more than one boundary loop: a ring around a thin tube) and pairs of
+// Cells that are not disks (more than one boundary loop: a ring around a thin tube; or an Euler
+// characteristic V - E + F below 1: a handle inside the cell, smaller than it) and pairs of
 // cells that share more than one boundary arc (paper Fig. 13): the dual is wrong there even when
 // it looks like a manifold. Also, in `strips`, the pairs whose one shared arc runs from the mesh
 // boundary to the mesh boundary through no triple point: across a strip narrower than the cells,
@@ -39,20 +40,37 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
   };
   std::vector<Piece> pieces;
   std::vector<SymbolicVertex> arc_ends_on_boundary;  // arc vertices on a boundary edge of the mesh
+  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids;  // every polygon vertex, numbered
+  auto id_of = [&](const SymbolicVertex& q) { return ids.try_emplace(q, static_cast<int>(ids.size())).first->second; };
+  // Per cell, for its Euler characteristic: polygons, polygon edges shared with the cell's own
+  // polygon across a mesh edge (each counted from both sides), the other edges, and (cell, vertex).
+  const int cells = diagram.sample_count;
+  std::vector<int> faces(cells, 0), inner_sides(cells, 0), outer_edges(cells, 0);
+  std::vector<char> unknown_edge(cells, 0);
+  std::vector<std::pair<int, int>> cell_vertices;
   for (const CellPolygon& poly : diagram.polygons) {
     const SymbolicVertex* v = diagram.polygon_vertices(poly);
     const Triangle& tri = mesh.triangle(poly.triangle);
+    ++faces[poly.cell];
     for (int k = 0; k < poly.vertex_count; ++k) {
       const SymbolicVertex &u = v[k], &w = v[(k + 1) % poly.vertex_count];
+      cell_vertices.push_back({poly.cell, id_of(u)});
       int other = -1;  // the neighbour cell across this edge, or -2 on the mesh boundary
       for (int e = 0; e < 3 && other == -1; ++e)
         if (u.on_mesh_edge(tri[e], tri[(e + 1) % 3]) && w.on_mesh_edge(tri[e], tri[(e + 1) % 3]))
           other = mesh.neighbor(poly.triangle, e) < 0 ? -2 : -3;
-      if (other == -3) continue;  // inside the cell, across a mesh edge
+      if (other == -3) {  // inside the cell, across a mesh edge
+        ++inner_sides[poly.cell];
+        continue;
+      }
       if (other == -1)
         for (int l : u.label)
           if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
-      if (other == -1) continue;
+      if (other == -1) {
+        unknown_edge[poly.cell] = 1;
+        continue;
+      }
+      ++outer_edges[poly.cell];
       pieces.push_back({{poly.cell, 0}, u, w});
       if (other >= 0 && poly.cell < other) {
         pieces.push_back({{poly.cell, other + 1}, u, w});
@@ -64,10 +82,17 @@ void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, 
       }
     }
   }
+  // V - E + F of each cell: 1 for a disk, 0 for a ring, -1 for a disk with a handle in it.
+  std::sort(cell_vertices.begin(), cell_vertices.end());
+  cell_vertices.erase(std::unique(cell_vertices.begin(), cell_vertices.end()), cell_vertices.end());
+  std::vector<int> euler(faces);
+  for (const auto& [cell, vertex] : cell_vertices) ++euler[cell];
+  for (int c = 0; c < cells; ++c) {
+    euler[c] -= inner_sides[c] / 2 + outer_edges[c];
+    if (faces[c] > 0 && !unknown_edge[c] && inner_sides[c] % 2 == 0 && euler[c] < 1) defect.insert(c);
+  }
   // Count connected components per key with a union-find over the key's vertices: the pieces
-  // sorted by key, the vertices numbered once for all keys.
-  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids;
-  auto id_of = [&](const SymbolicVertex& q) { return ids.try_emplace(q, static_cast<int>(ids.size())).first->second; };
+  // sorted by key, the vertices numbered with the cells' ones.
   struct Link {
     Key key;
     int u, w;
@@ -170,7 +195,8 @@ void add_pinched_vertices(const DualMesh& dual, std::set<int>& defect) {
 // cells along it. A loop met by fewer than three cells is closed over (a hole inside one cell, or
 // two cells meeting across it), and a cell that meets two loops joins them into one boundary of
 // the dual: those cells are where to act when the Euler characteristic is wrong.
-void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& hints) {
+void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& hints,
+                           std::vector<int>& closed_over) {
   const auto& loops = mesh.boundary_loops();
   std::vector<int> loop_of(mesh.vertex_count(), -1);
   for (size_t l = 0; l < loops.size(); ++l)
@@ -194,6 +220,7 @@ void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std:
   std::vector<int> loop_met(diagram.sample_count, -1);
   for (size_t i = 0, j; i < meets.size(); i = j) {
     for (j = i; j < meets.size() && meets[j].first == meets[i].first;) ++j;
+    if (j - i < 3) closed_over.push_back(meets[i].first);
     for (size_t k = i; k < j; ++k) {
       const int cell = meets[k].second;
       if (j - i < 3) hints.insert(cell);
@@ -236,7 +263,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   std::set<int> hints;
   std::vector<std::pair<int, int>> strips;
   add_cell_topology_defects(diagram, mesh, hints, strips);
-  if (!input_closed) add_closed_over_holes(diagram, mesh, hints);
+  std::vector<int> closed_over;
+  if (!input_closed) add_closed_over_holes(diagram, mesh, hints, closed_over);
   // The dual's Euler characteristic against the mesh's: a manifold dual can still have lost a
   // handle (a cell wrapping a tube) or a hole of an open mesh (a cell around it), which only the
   // cell-topology hints locate.
@@ -319,6 +347,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.cell_topology.assign(hints.begin(), hints.end());
   out.cornered = std::move(cornered);
   out.tip_caps = std::move(tip_caps);
+  out.closed_over_loops = std::move(closed_over);
   out.euler_ok = euler_ok;
   out.crossing_pairs = pairs;
   return out;

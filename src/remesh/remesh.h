@@ -48,13 +48,15 @@ struct RemeshOptions {
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
 //! triangle, and triangles that intersect each other (but for crossings between
 //! components when the input's components cross each other too: `input_components_cross`): the
-//! samples involved; also the cells that are not disks (a ring around a thin part), share more
+//! samples involved; also the cells that are not disks (a ring around a thin part, a handle
+//! inside one cell), share more
 //! than one boundary arc with a neighbour, or meet across a strip of an open mesh narrower than
 //! them, which locate a lost handle, hole or link when the dual's Euler characteristic is wrong.
 struct DualDefects {
   std::vector<int> topological;    //!< samples at bad edges, repeated or merged triangles, unused samples
   std::vector<int> crossing;       //!< samples of triangles that intersect others
-  //! cells that are rings, or share two arcs with a neighbour, or (two used cells) meet across a
+  //! cells that are not disks (rings, or holding a handle smaller than them: V - E + F below 1),
+  //! or share two arcs with a neighbour, or (two used cells) meet across a
   //! strip narrower than them: their one shared arc runs from the mesh boundary to the mesh
   //! boundary through no triple point, so the dual has no edge between them
   std::vector<int> cell_topology;
@@ -69,6 +71,9 @@ struct DualDefects {
   //! a half-plane. Around such a cap fewer than three cells of its own size fit, at any scale, so
   //! more samples repeat the pattern; a larger cap meets more cells.
   std::vector<int> tip_caps;
+  //! Boundary loops of the mesh (indices into SurfaceMesh::boundary_loops) that fewer than three
+  //! cells meet: holes the dual closes over (their cells are in `cell_topology`).
+  std::vector<int> closed_over_loops;
   bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
   //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
   std::vector<std::pair<int, int>> crossing_pairs;
