@@ -321,7 +321,7 @@ TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality 
   // A fraction below the holes' size fills nothing and says so.
   const Run none = run("compute " + dragon + " -n 100 --fill-holes 0.0001 --no-verify");
   REQUIRE(none.status == 0);
-  REQUIRE(none.out.find("no hole filled: each of the 2 boundary loops is longer") != std::string::npos);
+  REQUIRE(none.out.find("no hole filled: the shortest of the 2 boundary loops is") != std::string::npos);
   for (const char* bad : {"0", "-1", "abc", "nan"}) {
     const Run refused = run("remesh " + dragon + " -n 200 --fill-holes " + std::string(bad) + " -o " + out);
     REQUIRE(refused.status == 2);

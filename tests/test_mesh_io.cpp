@@ -313,6 +313,24 @@ TEST_CASE("fill_small_holes closes the holes up to a length and keeps the others
   REQUIRE(both.triangle_count() == holed.triangle_count() + 2 + 8);
   REQUIRE(fill_small_holes(holed, 0.3).triangle_count() == holed.triangle_count());
 
+  // A lone triangle beside it: its outline (3 around) is never filled, which would cover it twice.
+  std::vector<Vec3> p2 = p;
+  std::vector<Triangle> t2 = t;
+  const int base = static_cast<int>(p2.size());
+  for (const Vec3& q : {Vec3{2, 0, 0}, Vec3{2.5, 0, 0}, Vec3{2, 0.5, 0}}) p2.push_back(q);  // 1.71 around
+  t2.push_back({base, base + 1, base + 2});
+  RepairReport with_lone;
+  const SurfaceMesh lone = fill_small_holes(SurfaceMesh(p2, t2), 2.0, &with_lone);
+  REQUIRE(with_lone.filled_holes == 2);
+  REQUIRE(lone.boundary_loops().size() == 2);  // the square's outline (4 around) and the triangle's
+  REQUIRE(lone.triangle_count() == static_cast<int>(t2.size()) + 10);
+  REQUIRE(with_lone.notes.size() == 2);
+  REQUIRE_THAT(with_lone.notes[1], Contains("left 1 hole open: the whole outline of a component"));
+  RepairReport nothing;
+  REQUIRE(fill_small_holes(holed, 0.1, &nothing).triangle_count() == holed.triangle_count());
+  REQUIRE(nothing.filled_holes == 0);
+  REQUIRE_THAT(nothing.notes.at(0), Contains("no hole filled: the shortest of the 3 boundary loops is 0.333333 long"));
+
   // Through read_mesh: the length is a fraction of the bounding-box diagonal (sqrt 2 here); the
   // outer boundary (4 around) is a hole too for a fraction that large.
   write_mesh(scratch("holed.off"), p, t);

@@ -56,7 +56,7 @@ int run_mps(const MpsCommandOptions& opt) {
                  {opt.report, "--report", {}, kMeshReadExtensions}});
   const LoadedMesh loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair, opt.fill_holes});
   const SurfaceMesh& input = loaded.mesh;
-  print_repair(loaded.repair, loaded.mesh, opt.repair, opt.fill_holes);
+  print_repair(loaded.repair, opt.repair, opt.fill_holes);
 
   MpsOptions options;
   options.radius = opt.radius;

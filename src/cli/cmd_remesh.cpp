@@ -189,7 +189,7 @@ struct QualityOptions {
 int run_quality(const QualityOptions& opt) {
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}});
   const LoadedMesh loaded = read_mesh(opt.reference, ReadOptions{opt.repair, opt.fill_holes});
-  print_repair(loaded.repair, loaded.mesh, opt.repair, opt.fill_holes);
+  print_repair(loaded.repair, opt.repair, opt.fill_holes);
   const SurfaceMesh& reference = loaded.mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh);
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);

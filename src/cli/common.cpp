@@ -48,7 +48,7 @@ void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const s
           "FRACTION"));
 }
 
-void print_repair(const RepairReport& r, const SurfaceMesh& mesh, bool repair, double fill_holes) {
+void print_repair(const RepairReport& r, bool repair, double fill_holes) {
   if (repair)
     std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
                                                          "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
@@ -61,12 +61,6 @@ void print_repair(const RepairReport& r, const SurfaceMesh& mesh, bool repair, d
                                            : "nothing to change");
   if (!repair && !(fill_holes > 0)) return;
   for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
-  if (fill_holes > 0 && r.filled_holes == 0)
-    std::printf("repair: %s\n", mesh.is_closed() ? "no hole to fill: the mesh is closed"
-                                                 : fmt::format("no hole filled: each of the {} boundary loops is longer "
-                                                               "than {:.6g} of the bounding-box diagonal",
-                                                               mesh.boundary_loops().size(), fill_holes)
-                                                       .c_str());
 }
 
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
@@ -120,7 +114,7 @@ Input load_input(const InputOptions& opt) {
   input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair, opt.fill_holes});
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
   require_workable_size(input.loaded.mesh, "lrvd");
-  print_repair(input.loaded.repair, input.loaded.mesh, opt.repair, opt.fill_holes);
+  print_repair(input.loaded.repair, opt.repair, opt.fill_holes);
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {

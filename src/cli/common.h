@@ -31,7 +31,7 @@ void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count);
 //! --repair and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what = "the mesh");
 //! What --repair and --fill-holes changed, one "repair: ..." line each (nothing when neither is given).
-void print_repair(const RepairReport& report, const SurfaceMesh& mesh, bool repair, double fill_holes);
+void print_repair(const RepairReport& report, bool repair, double fill_holes);
 //! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
 CLI::Validator seed_validator();
 

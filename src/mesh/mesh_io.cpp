@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
@@ -382,18 +383,29 @@ bool RepairReport::changed() const {
 }
 
 SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report) {
-  if (mesh.is_closed() || !(max_length > 0)) return mesh;
-  std::vector<char> fill(mesh.vertex_count(), 0);  // per vertex: on a loop to fill
-  int to_fill = 0;
-  double longest = 0;
-  for (int l = 0; l < static_cast<int>(mesh.boundary_loops().size()); ++l) {
-    const double length = mesh.boundary_loop_length(l);
-    if (length > max_length) continue;
-    ++to_fill;
-    longest = std::max(longest, length);
-    for (int v : mesh.boundary_loops()[l]) fill[v] = 1;
+  if (!(max_length > 0)) return mesh;
+  if (mesh.is_closed()) {
+    if (report) report->notes.push_back("no hole to fill: the mesh is closed");
+    return mesh;
   }
-  if (to_fill == 0) return mesh;
+  // Loops short enough, but not the whole outline of a component without an inner vertex (a lone
+  // triangle or a flat fan): closing it would lay a second copy over the component.
+  std::vector<int> component_vertices(mesh.component_count(), 0);
+  for (int v = 0; v < mesh.vertex_count(); ++v) ++component_vertices[mesh.vertex_component(v)];
+  std::vector<char> fill(mesh.vertex_count(), 0);  // per vertex: on a loop to fill
+  int to_fill = 0, outlines = 0;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int l = 0; l < static_cast<int>(mesh.boundary_loops().size()); ++l) {
+    const std::vector<int>& loop = mesh.boundary_loops()[l];
+    shortest = std::min(shortest, mesh.boundary_loop_length(l));
+    if (mesh.boundary_loop_length(l) > max_length) continue;
+    if (component_vertices[mesh.vertex_component(loop[0])] == static_cast<int>(loop.size())) {
+      ++outlines;
+      continue;
+    }
+    ++to_fill;
+    for (int v : loop) fill[v] = 1;
+  }
   CGAL::Surface_mesh<Point> sm;
   using VertexIndex = CGAL::Surface_mesh<Point>::Vertex_index;
   using FaceIndex = CGAL::Surface_mesh<Point>::Face_index;
@@ -401,7 +413,8 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
   for (const Triangle& t : mesh.triangles())
     sm.add_face(VertexIndex(t[0]), VertexIndex(t[1]), VertexIndex(t[2]));
   // One border halfedge per loop to fill (a vertex is on one loop at most: SurfaceMesh has no
-  // pinched vertices), then each hole triangulated without new vertices.
+  // pinched vertices), then each hole triangulated without new vertices. CGAL adds nothing to a
+  // hole it cannot triangulate (every triangulation would repeat an edge the mesh has).
   std::vector<CGAL::Surface_mesh<Point>::Halfedge_index> starts;
   std::vector<char> seen(mesh.vertex_count(), 0);
   for (auto h : sm.halfedges())
@@ -409,12 +422,24 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
       starts.push_back(h);
       for (auto g : CGAL::halfedges_around_face(h, sm)) seen[sm.target(g).idx()] = 1;
     }
+  int filled_count = 0, unfillable = 0;
+  double longest = 0;
   for (auto h : starts) {
     std::vector<FaceIndex> added;
+    double length = 0;
+    for (auto g : CGAL::halfedges_around_face(h, sm))
+      length += std::sqrt(CGAL::squared_distance(sm.point(sm.source(g)), sm.point(sm.target(g))));
     const size_t corners = CGAL::halfedges_around_face(h, sm).size();
     PMP::triangulate_hole(sm, h, std::back_inserter(added));
+    if (added.empty()) {
+      ++unfillable;
+      continue;
+    }
     if (added.size() + 2 != corners)
-      throw InputError(fmt::format("a hole of {} edges could not be filled", corners));
+      throw InputError(fmt::format("a hole of {} edges was filled with {} triangles instead of {}", corners,
+                                   added.size(), corners - 2));
+    ++filled_count;
+    longest = std::max(longest, length);
   }
   std::vector<Triangle> triangles = mesh.triangles();
   for (FaceIndex f : sm.faces()) {
@@ -424,18 +449,33 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
     for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[c++] = static_cast<int>(v.idx());
     triangles.push_back(t);
   }
+  auto holes = [](int n) { return fmt::format("{} hole{}", n, n == 1 ? "" : "s"); };
   SurfaceMesh filled;
   try {
-    filled = SurfaceMesh(mesh.positions(), std::move(triangles));
+    filled = filled_count > 0 ? SurfaceMesh(mesh.positions(), std::move(triangles)) : mesh;
   } catch (const InputError& e) {
-    throw InputError(fmt::format("filling {} holes made an invalid mesh: {}", to_fill, e.what()));
+    throw InputError(fmt::format("filling {} made an invalid mesh: {}", holes(filled_count), e.what()));
   }
   if (report) {
-    report->filled_holes += to_fill;
-    report->notes.push_back(fmt::format("filled {} hole{} whose boundary is at most {:.6g} long (the longest: {:.6g}); {} "
-                                        "boundary loop{} left",
-                                        to_fill, to_fill == 1 ? "" : "s", max_length, longest,
-                                        filled.boundary_loops().size(), filled.boundary_loops().size() == 1 ? "" : "s"));
+    report->filled_holes += filled_count;
+    if (filled_count > 0) {
+      const size_t left = filled.boundary_loops().size();
+      report->notes.push_back(fmt::format("filled {} whose boundary is at most {:.6g} long (the longest: {:.6g}); {} "
+                                          "boundary loop{} left",
+                                          holes(filled_count), max_length, longest, left, left == 1 ? "" : "s"));
+    }
+    if (unfillable > 0)
+      report->notes.push_back(fmt::format("left {} open: no triangulation of {} without an edge the mesh has already",
+                                          holes(unfillable), unfillable == 1 ? "it" : "them"));
+    if (outlines > 0)
+      report->notes.push_back(fmt::format("left {} open: the whole outline of a component without inner "
+                                          "vertices, which filling would cover twice",
+                                          holes(outlines)));
+    if (to_fill == 0 && outlines == 0)
+      report->notes.push_back(fmt::format("no hole filled: the shortest of the {} boundary loops is {:.6g} long ({:.3g} "
+                                          "of the bounding-box diagonal), more than {:.6g}",
+                                          mesh.boundary_loops().size(), shortest,
+                                          shortest / mesh.bounding_box().diagonal(), max_length));
   }
   return filled;
 }
