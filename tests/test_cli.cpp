@@ -301,6 +301,7 @@ TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality 
   REQUIRE(failed.out.find("repair: 2 holes are met by fewer than three cells") != std::string::npos);
   const json holes = read_json(report)["defects_left"]["closed_over_holes"];
   REQUIRE(holes["count"] == 2);
+  REQUIRE(holes["fillable"] == 2);  // tried on the input
   REQUIRE(holes["longest"].get<double>() == Approx(0.150195).epsilon(1e-5));
   const double fraction = holes["fill_holes"].get<double>();
   REQUIRE(fraction * 169 > 0.150195);

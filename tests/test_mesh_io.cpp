@@ -331,13 +331,28 @@ TEST_CASE("fill_small_holes closes the holes up to a length and keeps the others
   REQUIRE(nothing.filled_holes == 0);
   REQUIRE_THAT(nothing.notes.at(0), Contains("no hole filled: the shortest of the 3 boundary loops is 0.333333 long"));
 
-  // Through read_mesh: the length is a fraction of the bounding-box diagonal (sqrt 2 here); the
-  // outer boundary (4 around) is a hole too for a fraction that large.
+  // Through read_mesh: the length is a fraction of the bounding-box diagonal (sqrt 2 here). For a
+  // fraction that large the outer boundary (4 around) is short enough too, but its patch would lie
+  // over the sheet: it is left open.
   write_mesh(scratch("holed.off"), p, t);
   const LoadedMesh read = read_mesh(scratch("holed.off"), ReadOptions{false, 0.5 / std::sqrt(2.0)});
   REQUIRE(read.repair.filled_holes == 1);
   REQUIRE(read.mesh.boundary_loops().size() == 2);
-  REQUIRE(read_mesh(scratch("holed.off"), ReadOptions{false, 3.0}).mesh.is_closed());
+  const LoadedMesh all = read_mesh(scratch("holed.off"), ReadOptions{false, 3.0});
+  REQUIRE(all.repair.filled_holes == 2);
+  REQUIRE(all.mesh.boundary_loops().size() == 1);
+  REQUIRE_THAT(all.repair.notes.at(1), Contains("left 1 hole open: filling it would cut through the surface"));
+
+  // A box without its lid: the lid's loop is filled and the box is closed.
+  const std::vector<Vec3> box = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<Triangle> sides = {{0, 2, 1}, {0, 3, 2}, {0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5},
+                                       {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  RepairReport lid;
+  const SurfaceMesh closed = fill_small_holes(SurfaceMesh(box, sides), 4.5, &lid);
+  REQUIRE(lid.filled_holes == 1);
+  REQUIRE(closed.is_closed());
+  REQUIRE(closed.euler_characteristic() == 2);
+  REQUIRE(closed.triangle_count() == 12);
 }
 
 TEST_CASE("polygons are triangulated by exact ear clipping, also when non-convex") {

@@ -95,7 +95,7 @@ int run_mps(const MpsCommandOptions& opt) {
                      {"closed", input.is_closed()},
                      {"euler_characteristic", input.euler_characteristic()},
                      {"longest_bbox_side", result.scale}};
-  if (loaded.repair.changed()) report["input"]["repair"] = loaded.repair.notes;
+  if (!loaded.repair.notes.empty()) report["input"]["repair"] = loaded.repair.notes;
   report["refined"] = {{"triangles", result.mesh.triangle_count()},
                        {"max_edge_length", result.mesh.max_edge_length()},
                        {"rule", options.refinement == MpsRefinement::MinRadius ? "r_min" : "radius field"},

@@ -1,8 +1,11 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -49,13 +52,14 @@ nlohmann::json defects_json(const DualDefects& defects, const Samples& samples) 
 }
 
 // The holes the kept dual closes over (fewer than three cells meet their loop), the longest's length,
-// and the smallest --fill-holes fraction of two significant digits that fills them, with the
-// number of other holes of the input it fills too.
+// and the smallest --fill-holes fraction of two significant digits above it: tried on the input,
+// how many of those holes it fills (fill_small_holes leaves some open) and how many other holes.
 struct ClosedOverHoles {
   int count = 0;
   double longest = 0;
   double fraction = 0;
-  int others = 0;
+  int fillable = 0;  //!< of the `count`, filled by --fill-holes `fraction`
+  int others = 0;    //!< other holes it fills
 };
 
 ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh& mesh, const SurfaceMesh& input,
@@ -66,10 +70,24 @@ ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh&
   for (int l : defects.closed_over_loops) holes.longest = std::max(holes.longest, mesh.boundary_loop_length(l));
   const double ratio = 1.05 * holes.longest / diagonal;  // a margin over the rounding of the lengths
   const double unit = std::pow(10.0, std::floor(std::log10(ratio)) - 1);
-  holes.fraction = std::ceil(ratio / unit) * unit;
-  for (int l = 0; l < static_cast<int>(input.boundary_loops().size()); ++l)
-    holes.others += input.boundary_loop_length(l) <= holes.fraction * diagonal;
-  holes.others = std::max(0, holes.others - holes.count);
+  holes.fraction = std::stod(fmt::format("{:.2g}", std::ceil(ratio / unit) * unit));  // as printed
+  RepairReport trial;
+  const SurfaceMesh filled = fill_small_holes(input, holes.fraction * diagonal, &trial);
+  // `mesh` is `input` refined: its loops run through the input's boundary vertices, at the same points.
+  std::map<std::array<double, 3>, int> input_vertex;
+  for (const std::vector<int>& loop : input.boundary_loops())
+    for (int v : loop) input_vertex[{input.position(v).x, input.position(v).y, input.position(v).z}] = v;
+  std::vector<char> still_open(input.vertex_count(), 0);
+  for (const std::vector<int>& loop : filled.boundary_loops())
+    for (int v : loop) still_open[v] = 1;
+  for (int l : defects.closed_over_loops)
+    for (int v : mesh.boundary_loops()[l]) {
+      const auto it = input_vertex.find({mesh.position(v).x, mesh.position(v).y, mesh.position(v).z});
+      if (it == input_vertex.end()) continue;
+      holes.fillable += !still_open[it->second];
+      break;
+    }
+  holes.others = std::max(0, trial.filled_holes - holes.fillable);
   return holes;
 }
 
@@ -136,7 +154,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["defects_left"]["closed_over_holes"] = {{"count", holes.count}};
   if (holes.count > 0) {
     report["defects_left"]["closed_over_holes"]["longest"] = holes.longest;
-    report["defects_left"]["closed_over_holes"]["fill_holes"] = holes.fraction;
+    report["defects_left"]["closed_over_holes"]["fillable"] = holes.fillable;
+    if (holes.fillable > 0) report["defects_left"]["closed_over_holes"]["fill_holes"] = holes.fraction;
   }
   auto percent = [diagonal](double length) { return 100.0 * length / diagonal; };
   report["fit"] = {{"enabled", remesh.fit},
@@ -172,11 +191,21 @@ int run_remesh(const RemeshCommandOptions& opt) {
     }
     std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
   }
-  if (!check.passed && holes.count > 0)
+  if (!check.passed && holes.count > 0) {
+    const std::string which = holes.fillable == holes.count ? (holes.count == 1 ? "it" : "them")
+                                                            : fmt::format("{} of them", holes.fillable);
+    const std::string advice =
+        holes.fillable == 0
+            ? fmt::format("--fill-holes cannot close {} (docs/input.md), give more vertices",
+                          holes.count == 1 ? "it" : "them")
+            : fmt::format("--fill-holes {:.2g} closes {} and {} other hole{}{}, or give more vertices", holes.fraction,
+                          which, holes.others, holes.others == 1 ? "" : "s",
+                          holes.fillable < holes.count ? " (it leaves the rest open)" : "");
     std::printf("repair: %d hole%s met by fewer than three cells, the longest %.6g around (%.3g of the bounding-box "
-                "diagonal): --fill-holes %.2g closes %s and %d other hole%s, or give more vertices\n",
-                holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal, holes.fraction,
-                holes.count == 1 ? "it" : "them", holes.others, holes.others == 1 ? "" : "s");
+                "diagonal): %s\n",
+                holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
+                advice.c_str());
+  }
   return check.passed ? kOk : kCheckFailed;
 }
 
@@ -195,7 +224,7 @@ int run_quality(const QualityOptions& opt) {
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
-  if (loaded.repair.changed()) report["reference_repair"] = loaded.repair.notes;
+  if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
   report["quality"] = remesh_quality_json(quality, check);
   report["verification"] = check.to_json();
   if (!opt.report.empty()) write_json(opt.report, report);

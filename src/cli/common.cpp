@@ -32,7 +32,7 @@ CLI::Validator seed_validator() {
 }
 
 void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what) {
-  cmd->add_flag("--repair", repair, fmt::format("Weld, clean, orient and stitch {} if it is a triangle soup", what));
+  cmd->add_flag("--repair", repair, fmt::format("Weld, clean, orient and stitch {} before use (a triangle soup, non-manifold edges)", what));
   cmd->add_option("--fill-holes", fill_holes,
                   fmt::format("Fill every hole of {} whose boundary is at most this fraction of its bounding-box "
                               "diagonal long (e.g. 0.05); the other holes are kept",
@@ -50,7 +50,7 @@ void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const s
 
 void print_repair(const RepairReport& r, bool repair, double fill_holes) {
   if (repair)
-    std::printf("repair: %s\n", r.changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
+    std::printf("repair: %s\n", r.soup_changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
                                                          "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
                                                          "copied {} non-manifold vertices, triangulated {} polygons",
                                                          r.merged_vertices, r.removed_degenerate_faces,
@@ -180,7 +180,7 @@ nlohmann::json input_json(const Input& input) {
                       {"euler_characteristic", mesh.euler_characteristic()}};
   if (input.refined_from >= 0)
     j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
-  if (input.loaded.repair.changed()) j["repair"] = input.loaded.repair.notes;
+  if (!input.loaded.repair.notes.empty()) j["repair"] = input.loaded.repair.notes;
   return j;
 }
 

@@ -25,12 +25,14 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "common/error.h"
 #include "mesh/mesh_file_diagnosis.h"
+#include "metrics/self_intersections.h"
 
 namespace lrvd {
 
@@ -377,10 +379,12 @@ void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed
 
 }  // namespace
 
-bool RepairReport::changed() const {
+bool RepairReport::soup_changed() const {
   return merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
-         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces || filled_holes;
+         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
 }
+
+bool RepairReport::changed() const { return soup_changed() || filled_holes; }
 
 SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report) {
   if (!(max_length > 0)) return mesh;
@@ -388,71 +392,106 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
     if (report) report->notes.push_back("no hole to fill: the mesh is closed");
     return mesh;
   }
+  require_workable_size(mesh, "hole filling");  // lengths and the intersection tests stay finite
+  const auto& loops = mesh.boundary_loops();
   // Loops short enough, but not the whole outline of a component without an inner vertex (a lone
   // triangle or a flat fan): closing it would lay a second copy over the component.
   std::vector<int> component_vertices(mesh.component_count(), 0);
   for (int v = 0; v < mesh.vertex_count(); ++v) ++component_vertices[mesh.vertex_component(v)];
-  std::vector<char> fill(mesh.vertex_count(), 0);  // per vertex: on a loop to fill
-  int to_fill = 0, outlines = 0;
+  std::vector<int> chosen;
+  int outlines = 0;
   double shortest = std::numeric_limits<double>::infinity();
-  for (int l = 0; l < static_cast<int>(mesh.boundary_loops().size()); ++l) {
-    const std::vector<int>& loop = mesh.boundary_loops()[l];
+  for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
     shortest = std::min(shortest, mesh.boundary_loop_length(l));
     if (mesh.boundary_loop_length(l) > max_length) continue;
-    if (component_vertices[mesh.vertex_component(loop[0])] == static_cast<int>(loop.size())) {
+    if (component_vertices[mesh.vertex_component(loops[l][0])] == static_cast<int>(loops[l].size()))
       ++outlines;
-      continue;
-    }
-    ++to_fill;
-    for (int v : loop) fill[v] = 1;
+    else
+      chosen.push_back(l);
   }
+  // Each chosen hole triangulated by CGAL without new vertices (the holes share no vertex:
+  // SurfaceMesh has no pinched vertices). CGAL adds nothing to a hole it cannot triangulate.
   CGAL::Surface_mesh<Point> sm;
   using VertexIndex = CGAL::Surface_mesh<Point>::Vertex_index;
   using FaceIndex = CGAL::Surface_mesh<Point>::Face_index;
   for (const Vec3& p : mesh.positions()) sm.add_vertex(Point(p.x, p.y, p.z));
   for (const Triangle& t : mesh.triangles())
-    sm.add_face(VertexIndex(t[0]), VertexIndex(t[1]), VertexIndex(t[2]));
-  // One border halfedge per loop to fill (a vertex is on one loop at most: SurfaceMesh has no
-  // pinched vertices), then each hole triangulated without new vertices. CGAL adds nothing to a
-  // hole it cannot triangulate (every triangulation would repeat an edge the mesh has).
-  std::vector<CGAL::Surface_mesh<Point>::Halfedge_index> starts;
-  std::vector<char> seen(mesh.vertex_count(), 0);
+    if (sm.add_face(VertexIndex(t[0]), VertexIndex(t[1]), VertexIndex(t[2])) == CGAL::Surface_mesh<Point>::null_face())
+      throw std::logic_error("fill_small_holes: a valid mesh did not convert");
+  std::vector<int> hole_of(mesh.vertex_count(), -1);  // per vertex: the chosen hole it bounds
+  for (size_t k = 0; k < chosen.size(); ++k)
+    for (int v : loops[chosen[k]]) hole_of[v] = static_cast<int>(k);
+  std::vector<CGAL::Surface_mesh<Point>::Halfedge_index> start(chosen.size());
   for (auto h : sm.halfedges())
-    if (sm.is_border(h) && fill[sm.target(h).idx()] && !seen[sm.target(h).idx()]) {
-      starts.push_back(h);
-      for (auto g : CGAL::halfedges_around_face(h, sm)) seen[sm.target(g).idx()] = 1;
-    }
-  int filled_count = 0, unfillable = 0;
-  double longest = 0;
-  for (auto h : starts) {
+    if (sm.is_border(h) && hole_of[sm.target(h).idx()] >= 0) start[hole_of[sm.target(h).idx()]] = h;
+  std::vector<std::vector<Triangle>> patch(chosen.size());
+  int unfillable = 0;
+  for (size_t k = 0; k < chosen.size(); ++k) {
     std::vector<FaceIndex> added;
-    double length = 0;
-    for (auto g : CGAL::halfedges_around_face(h, sm))
-      length += std::sqrt(CGAL::squared_distance(sm.point(sm.source(g)), sm.point(sm.target(g))));
-    const size_t corners = CGAL::halfedges_around_face(h, sm).size();
-    PMP::triangulate_hole(sm, h, std::back_inserter(added));
-    if (added.empty()) {
-      ++unfillable;
+    PMP::triangulate_hole(sm, start[k], std::back_inserter(added));
+    if (added.empty()) ++unfillable;
+    if (!added.empty() && added.size() + 2 != loops[chosen[k]].size())
+      throw std::logic_error(fmt::format("fill_small_holes: a hole of {} edges got {} triangles",
+                                         loops[chosen[k]].size(), added.size()));
+    for (FaceIndex f : added) {
+      Triangle t{};
+      int c = 0;
+      for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[c++] = static_cast<int>(v.idx());
+      patch[k].push_back(t);
+    }
+  }
+  // A patch that cuts through the surface or another patch (the outline of a flat sheet covers the
+  // sheet), or that has a degenerate triangle, is dropped: exact tests over the whole mesh.
+  std::vector<Triangle> triangles = mesh.triangles();
+  std::vector<int> owner(triangles.size(), -1);  // per triangle: its patch, -1 for the mesh's own
+  for (size_t k = 0; k < patch.size(); ++k)
+    for (const Triangle& t : patch[k]) {
+      triangles.push_back(t);
+      owner.push_back(static_cast<int>(k));
+    }
+  std::vector<char> dropped(patch.size(), 0);
+  const std::vector<char> proper = proper_triangles(mesh.positions(), triangles);
+  // Vertices at the same point count as shared: a repaired mesh cut apart at a non-manifold vertex
+  // has copies there, and patches touching at such a point do not cut anything.
+  std::map<std::array<double, 3>, int> first_at;
+  std::vector<int> same(mesh.vertex_count());
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    const Vec3& q = mesh.position(v);
+    same[v] = first_at.try_emplace({q.x, q.y, q.z}, v).first->second;
+  }
+  std::vector<Triangle> welded = triangles;
+  for (Triangle& t : welded)
+    for (int& v : t) v = same[v];
+  for (size_t t = 0; t < triangles.size(); ++t)
+    if (owner[t] >= 0 && !proper[t]) dropped[owner[t]] = 1;
+  // First the patches that cut the mesh itself or themselves, then, of two patches that cut each
+  // other and are both still in, both.
+  const auto pairs = find_self_intersections(mesh.positions(), welded, proper);
+  for (const auto& [a, b] : pairs)
+    if ((owner[a] < 0) != (owner[b] < 0) || (owner[a] >= 0 && owner[a] == owner[b]))
+      dropped[std::max(owner[a], owner[b])] = 1;
+  std::vector<char> cut_each_other(patch.size(), 0);
+  for (const auto& [a, b] : pairs)
+    if (owner[a] >= 0 && owner[b] >= 0 && owner[a] != owner[b] && !dropped[owner[a]] && !dropped[owner[b]])
+      cut_each_other[owner[a]] = cut_each_other[owner[b]] = 1;
+  for (size_t k = 0; k < patch.size(); ++k) dropped[k] = dropped[k] || cut_each_other[k];
+  int filled_count = 0, cutting = 0;
+  double longest = 0;
+  std::vector<Triangle> kept = mesh.triangles();
+  for (size_t k = 0; k < patch.size(); ++k) {
+    if (patch[k].empty()) continue;
+    if (dropped[k]) {
+      ++cutting;
       continue;
     }
-    if (added.size() + 2 != corners)
-      throw InputError(fmt::format("a hole of {} edges was filled with {} triangles instead of {}", corners,
-                                   added.size(), corners - 2));
     ++filled_count;
-    longest = std::max(longest, length);
-  }
-  std::vector<Triangle> triangles = mesh.triangles();
-  for (FaceIndex f : sm.faces()) {
-    if (static_cast<int>(f.idx()) < mesh.triangle_count()) continue;
-    Triangle t{};
-    int c = 0;
-    for (auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) t[c++] = static_cast<int>(v.idx());
-    triangles.push_back(t);
+    longest = std::max(longest, mesh.boundary_loop_length(chosen[k]));
+    kept.insert(kept.end(), patch[k].begin(), patch[k].end());
   }
   auto holes = [](int n) { return fmt::format("{} hole{}", n, n == 1 ? "" : "s"); };
   SurfaceMesh filled;
   try {
-    filled = filled_count > 0 ? SurfaceMesh(mesh.positions(), std::move(triangles)) : mesh;
+    filled = filled_count > 0 ? SurfaceMesh(mesh.positions(), std::move(kept)) : mesh;
   } catch (const InputError& e) {
     throw InputError(fmt::format("filling {} made an invalid mesh: {}", holes(filled_count), e.what()));
   }
@@ -465,17 +504,21 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
                                           holes(filled_count), max_length, longest, left, left == 1 ? "" : "s"));
     }
     if (unfillable > 0)
-      report->notes.push_back(fmt::format("left {} open: no triangulation of {} without an edge the mesh has already",
-                                          holes(unfillable), unfillable == 1 ? "it" : "them"));
+      report->notes.push_back(fmt::format("left {} open: CGAL found no valid triangulation of {}", holes(unfillable),
+                                          unfillable == 1 ? "it" : "them"));
+    if (cutting > 0)
+      report->notes.push_back(fmt::format("left {} open: filling {} would cut through the surface or make a "
+                                          "degenerate triangle",
+                                          holes(cutting), cutting == 1 ? "it" : "them"));
     if (outlines > 0)
       report->notes.push_back(fmt::format("left {} open: the whole outline of a component without inner "
                                           "vertices, which filling would cover twice",
                                           holes(outlines)));
-    if (to_fill == 0 && outlines == 0)
+    if (chosen.empty() && outlines == 0)
       report->notes.push_back(fmt::format("no hole filled: the shortest of the {} boundary loops is {:.6g} long ({:.3g} "
                                           "of the bounding-box diagonal), more than {:.6g}",
-                                          mesh.boundary_loops().size(), shortest,
-                                          shortest / mesh.bounding_box().diagonal(), max_length));
+                                          loops.size(), shortest, shortest / mesh.bounding_box().diagonal(),
+                                          max_length));
   }
   return filled;
 }

@@ -30,7 +30,8 @@ struct RepairReport {
   int triangulated_faces = 0;               //!< polygons with more than 3 vertices split into triangles
   int filled_holes = 0;                     //!< boundary loops closed with triangles (ReadOptions::fill_holes)
   std::vector<std::string> notes;           //!< one human-readable line per change worth knowing
-  bool changed() const;
+  bool soup_changed() const;  //!< any count but filled_holes (what --repair did)
+  bool changed() const;       //!< any count
 };
 
 struct LoadedMesh {
@@ -48,12 +49,16 @@ struct LoadedMesh {
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
 
 //! The mesh with every hole whose boundary loop is at most `max_length` long (the sum of its edge
-//! lengths) closed by triangles between the loop's own vertices (CGAL's triangulate_hole: no new
-//! vertices, a minimum-weight triangulation); the other loops are kept. A remesh keeps every hole
-//! of its input, and one much smaller than the cells needs many rounds and vertices there, or
-//! fails: scans and CAD exports often have such holes by mistake. The triangles are appended after
-//! the mesh's own; a note and the count go to `report` when given.
-//! \throw InputError when a hole cannot be triangulated or the result is not a valid mesh.
+//! lengths) closed by triangles between the loop's own vertices (CGAL's triangulate_hole with its
+//! defaults: no new vertices; Liepa's weights, the worst dihedral angle first, then the area). A
+//! remesh keeps every hole of its input, and one much smaller than the cells needs many rounds and
+//! vertices there, or fails: scans and CAD exports often have such holes by mistake. Left open, with
+//! a note each: longer loops; the whole outline of a component without inner vertices; a loop CGAL
+//! finds no triangulation for; a patch with a degenerate triangle, or one that cuts the mesh, itself
+//! or another patch (exact tests; vertices at the same point count as shared). The triangles are
+//! appended after the mesh's own; the notes and the count go to `report` when given.
+//! \throw InputError when the model is too large or small for the tests (require_workable_size), or
+//!        when the result is not a valid mesh.
 SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report = nullptr);
 
 //! Positions and triangles exactly as a file holds them (polygons triangulated), without the
