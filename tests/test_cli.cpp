@@ -323,6 +323,14 @@ TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality 
   const Run none = run("compute " + dragon + " -n 100 --fill-holes 0.0001 --no-verify");
   REQUIRE(none.status == 0);
   REQUIRE(none.out.find("no hole filled: the shortest of the 2 boundary loops is") != std::string::npos);
+  // mps takes it too, and its report says what was filled.
+  const std::string mps_report = kOut + "holes_mps.json", samples = kOut + "holes_mps.xyz";
+  REQUIRE(run("mps " + kData + "/holes.off --radius 0.05 --fill-holes 0.5 -o " + samples + " --report " + mps_report)
+              .status == 0);
+  const json m = read_json(mps_report);
+  REQUIRE(m["input"]["repair"].size() == 1);
+  REQUIRE(m["input"]["repair"][0].get<std::string>().find("filled 5 holes") == 0);
+  std::remove(samples.c_str());
   for (const char* bad : {"0", "-1", "abc", "nan"}) {
     const Run refused = run("remesh " + dragon + " -n 200 --fill-holes " + std::string(bad) + " -o " + out);
     REQUIRE(refused.status == 2);
