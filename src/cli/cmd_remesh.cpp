@@ -72,7 +72,12 @@ ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh&
   const double unit = std::pow(10.0, std::floor(std::log10(ratio)) - 1);
   holes.fraction = std::stod(fmt::format("{:.2g}", std::ceil(ratio / unit) * unit));  // as printed
   RepairReport trial;
-  const SurfaceMesh filled = fill_small_holes(input, holes.fraction * diagonal, &trial);
+  SurfaceMesh filled;
+  try {
+    filled = fill_small_holes(input, holes.fraction * diagonal, &trial);
+  } catch (const InputError&) {
+    return holes;  // the fill would not give a valid mesh: nothing to suggest
+  }
   // `mesh` is `input` refined: its loops run through the input's boundary vertices, at the same points.
   std::map<std::array<double, 3>, int> input_vertex;
   for (const std::vector<int>& loop : input.boundary_loops())
