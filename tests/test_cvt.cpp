@@ -43,6 +43,21 @@ Remeshed remesh(const SurfaceMesh& input, int n, int seed = 1) {
   return r;
 }
 
+// The first CVT of n uniform samples (`seed`) on `mesh` (the input itself or refined for n: no
+// crossing components) and the defects of its dual, before any repair round.
+struct FirstCvt {
+  CvtResult cvt;
+  DualDefects defects;
+};
+
+FirstCvt first_cvt(const SurfaceMesh& mesh, int n, int seed) {
+  FirstCvt r;
+  r.cvt = optimize_cvt(mesh, sample_uniform(mesh, n, seed), CvtOptions{});
+  r.defects = find_dual_defects(compute_dual(r.cvt.diagram, mesh, r.cvt.samples), r.cvt.diagram, mesh,
+                                mesh.is_closed(), false);
+  return r;
+}
+
 // Every triangle of `moved` (the same triangles as `before`) keeps its orientation.
 void require_none_turned_over(const DualMesh& before, const DualMesh& moved) {
   REQUIRE(moved.triangles == before.triangles);
@@ -331,12 +346,8 @@ TEST_CASE("A sample cornered at a sharp boundary corner gets a larger cell, not 
   // pattern smaller; lowering it on that cell's own triangles lets the cell grow to meet two others.
   const SurfaceMesh input = cgal_mesh("negative.off");
   REQUIRE_FALSE(input.is_closed());
-  const SurfaceMesh mesh = for_samples(input, 500);
-  Samples start = sample_uniform(mesh, 500, 1);
   // The first CVT's dual, before any repair: the cornered sample is found as such.
-  const CvtResult first = optimize_cvt(mesh, start, CvtOptions{});
-  const DualMesh dual = compute_dual(first.diagram, mesh, first.samples);
-  const DualDefects defects = find_dual_defects(dual, first.diagram, mesh, false, false);
+  const DualDefects defects = first_cvt(for_samples(input, 500), 500, 1).defects;
   REQUIRE(defects.cornered.size() == 1);
   REQUIRE(defects.topological == defects.cornered);
   const Remeshed r = remesh(input, 500);
@@ -520,16 +531,14 @@ TEST_CASE("Two cells that meet across a neck narrower than them are where to act
   // components at 20 to 80 vertices, seeds 1 to 3.
   const SurfaceMesh sheet = test::neck_sheet(40, 0.1, 0.1);
   for (int n : {20, 60}) {
-    const SurfaceMesh mesh = for_samples(sheet, n);
-    const CvtResult first = optimize_cvt(mesh, sample_uniform(mesh, n, 1), CvtOptions{});
-    const DualDefects defects = find_dual_defects(compute_dual(first.diagram, mesh, first.samples), first.diagram,
-                                                  mesh, false, false);
+    const FirstCvt first = first_cvt(for_samples(sheet, n), n, 1);
+    const DualDefects& defects = first.defects;
     INFO("n = " << n << ": " << defects.describe());
     REQUIRE(defects.topological.empty());
     REQUIRE_FALSE(defects.euler_ok);
     REQUIRE(defects.cell_topology.size() == 2);
-    const double x0 = first.samples.positions[defects.cell_topology[0]].x,
-                 x1 = first.samples.positions[defects.cell_topology[1]].x;
+    const double x0 = first.cvt.samples.positions[defects.cell_topology[0]].x,
+                 x1 = first.cvt.samples.positions[defects.cell_topology[1]].x;
     CHECK(std::min(x0, x1) < 1.05);  // one on each side of the neck's middle
     CHECK(std::max(x0, x1) > 1.05);
     const Remeshed r = remesh(sheet, n);
@@ -564,15 +573,13 @@ TEST_CASE("A cell with a handle inside it is where to act: a sheet with a small 
   const SurfaceMesh sheet = test::sheet_with_handle(40, 18, 20, 3);
   REQUIRE(sheet.euler_characteristic() == -1);
   for (int n : {40, 60}) {
-    const SurfaceMesh mesh = for_samples(sheet, n);
-    const CvtResult first = optimize_cvt(mesh, sample_uniform(mesh, n, 2), CvtOptions{});
-    const DualDefects defects = find_dual_defects(compute_dual(first.diagram, mesh, first.samples), first.diagram,
-                                                  mesh, false, false);
+    const FirstCvt first = first_cvt(for_samples(sheet, n), n, 2);
+    const DualDefects& defects = first.defects;
     INFO("n = " << n << ": " << defects.describe());
     REQUIRE(defects.topological.empty());
     REQUIRE_FALSE(defects.euler_ok);
     REQUIRE(defects.cell_topology.size() == 1);
-    const Vec3 site = first.samples.positions[defects.cell_topology[0]];
+    const Vec3 site = first.cvt.samples.positions[defects.cell_topology[0]];
     CHECK(std::hypot(site.x - 0.5, site.y - 0.5) < 0.25);  // the handle spans x 0.45-0.55, y 0.5-0.525
     const Remeshed r = remesh(sheet, n, 2);
     INFO(r.check.summary());

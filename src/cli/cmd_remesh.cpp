@@ -1,10 +1,8 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 
 #include <fmt/format.h>
@@ -78,20 +76,13 @@ ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh&
   } catch (const InputError&) {
     return holes;  // the fill would not give a valid mesh: nothing to suggest
   }
-  // `mesh` is `input` refined: its loops run through the input's boundary vertices, at the same points.
-  std::map<std::array<double, 3>, int> input_vertex;
-  for (const std::vector<int>& loop : input.boundary_loops())
-    for (int v : loop) input_vertex[{input.position(v).x, input.position(v).y, input.position(v).z}] = v;
+  // `mesh` is `input` or `input` refined in input order (RefineOrder::Input): the input's vertices
+  // keep their indices, and each loop runs through the input loop's own vertices.
   std::vector<char> still_open(input.vertex_count(), 0);
   for (const std::vector<int>& loop : filled.boundary_loops())
     for (int v : loop) still_open[v] = 1;
   for (int l : defects.closed_over_loops)
-    for (int v : mesh.boundary_loops()[l]) {
-      const auto it = input_vertex.find({mesh.position(v).x, mesh.position(v).y, mesh.position(v).z});
-      if (it == input_vertex.end()) continue;
-      holes.fillable += !still_open[it->second];
-      break;
-    }
+    holes.fillable += !still_open[*std::min_element(mesh.boundary_loops()[l].begin(), mesh.boundary_loops()[l].end())];
   holes.others = std::max(0, trial.filled_holes - holes.fillable);
   return holes;
 }

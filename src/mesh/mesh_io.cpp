@@ -402,8 +402,9 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
   int outlines = 0;
   double shortest = std::numeric_limits<double>::infinity();
   for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
-    shortest = std::min(shortest, mesh.boundary_loop_length(l));
-    if (mesh.boundary_loop_length(l) > max_length) continue;
+    const double length = mesh.boundary_loop_length(l);
+    shortest = std::min(shortest, length);
+    if (length > max_length) continue;
     if (component_vertices[mesh.vertex_component(loops[l][0])] == static_cast<int>(loops[l].size()))
       ++outlines;
     else
