@@ -32,7 +32,8 @@ CLI::Validator seed_validator() {
 }
 
 void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what) {
-  cmd->add_flag("--repair", repair, fmt::format("Weld, clean, orient and stitch {} before use (a triangle soup, non-manifold edges)", what));
+  cmd->add_flag("--repair", repair,
+                fmt::format("Weld, clean, orient and stitch {} before use (a triangle soup, non-manifold edges)", what));
   cmd->add_option("--fill-holes", fill_holes,
                   fmt::format("Fill every hole of {} whose boundary is at most this fraction of its bounding-box "
                               "diagonal long (e.g. 0.05); the other holes are kept",
