@@ -146,9 +146,10 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
   options.on_progress = [&](const std::string& line) { lines.push_back(line); };
   const RemeshResult base = remesh_cvt(elk, elk, start, options);
   REQUIRE(base.repair_rounds > 0);  // the case goes through the repair rounds and the fitting
+  REQUIRE(base.polished);  // and the Lloyd step on the state kept
   // The progress lines tell each step: the first CVT's defects, each round before and after, the
-  // fitting.
-  REQUIRE(lines.size() == 2 + 2 * static_cast<size_t>(base.repair_rounds));
+  // Lloyd step, the fitting.
+  REQUIRE(lines.size() == 3 + 2 * static_cast<size_t>(base.repair_rounds));
   CHECK_THAT(lines.front(), Catch::StartsWith("CVT: ") && Catch::Contains("topological defects"));
   for (int k = 1; k <= base.repair_rounds; ++k) {
     CHECK_THAT(lines[2 * k - 1], Catch::StartsWith(fmt::format("repair round {} of {}: density x{} around", k,
@@ -156,6 +157,7 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
     CHECK_THAT(lines[2 * k], Catch::StartsWith(fmt::format("repair round {}: ", k)) && Catch::Contains("the dual has"));
   }
   CHECK_THAT(lines[2 * base.repair_rounds], Catch::EndsWith("the dual has no defect"));
+  CHECK(lines[2 * base.repair_rounds + 1] == "1 Lloyd step on the samples: the dual has no defect");
   CHECK(lines.back() == "fitting the vertices to the surface");
   for (int k : {-30, 30}) {
     const double s = std::ldexp(1.0, k);
@@ -171,6 +173,37 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
     REQUIRE(r.dual.positions.size() == base.dual.positions.size());
     for (size_t v = 0; v < r.dual.positions.size(); ++v) REQUIRE(r.dual.positions[v] == s * base.dual.positions[v]);
   }
+}
+
+TEST_CASE("A remesh's kept state takes a Lloyd step when its dual has no defect, and keeps it only then", "[cvt][remesh]") {
+  // L-BFGS ends with its sites in space, put on the surface afterwards; the Lloyd step moves each
+  // sample to its cell's centroid, which lowers the energy of a state L-BFGS left.
+  const SurfaceMesh ellipsoid = cgal_mesh("ellipsoid.off");
+  RemeshOptions without;
+  without.polish_steps = 0;
+  const RemeshResult plain = remesh_to(ellipsoid, 300, 1, without);
+  const RemeshResult polished = remesh_to(ellipsoid, 300, 1);
+  REQUIRE(plain.repair_rounds == 0);
+  REQUIRE_FALSE(plain.polished);
+  REQUIRE(polished.polished);
+  CHECK(polished.diagram_evaluations == plain.diagram_evaluations + 1);
+  CHECK(polished.total_iterations == plain.total_iterations + 1);
+  CHECK(polished.cvt.energy < plain.cvt.energy);
+  // The kept CVT's history is the run's and then the step's.
+  REQUIRE(polished.cvt.energy_history.size() == plain.cvt.energy_history.size() + 1);
+  CHECK(polished.cvt.energy_history.back() == polished.cvt.energy);
+  CHECK(verify_remesh(ellipsoid, polished.dual.positions, polished.dual.triangles, 300).passed);
+
+  // A state with defects is left as the rounds left it: the elk at 516 without repair rounds.
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  RemeshOptions no_rounds;
+  no_rounds.repair_rounds = 0;
+  no_rounds.keep_to_sheets_retry = false;
+  const RemeshResult defective = remesh_to(elk, 516, 1, no_rounds);
+  REQUIRE_FALSE(defective.defects.empty());
+  CHECK_FALSE(defective.polished);
+  no_rounds.polish_steps = 0;
+  CHECK(remesh_to(elk, 516, 1, no_rounds).diagram_evaluations == defective.diagram_evaluations);
 }
 
 TEST_CASE("Remeshing and sampling refuse a model too large or too small for doubles, naming its size", "[cvt][remesh]") {

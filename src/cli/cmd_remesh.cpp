@@ -142,6 +142,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   // The repair ended with defects and the second run, samples kept to their own sheets, did better.
   report["kept_to_sheets"] = remeshed.kept_to_sheets;
   report["tip_caps_lowered"] = remeshed.tip_caps_lowered;
+  // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
+  report["polished"] = remeshed.polished;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.

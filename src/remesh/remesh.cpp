@@ -533,6 +533,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                          result.cvt.iterations, result.cvt.diagram_evaluations, result.cvt.energy, defects.describe()));
     RemeshResult best = result;
     best_defects = defects;
+    std::vector<double> best_density = first.triangle_density;
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
     // characteristic that no defect finder locates).
     for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
@@ -581,6 +582,37 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       if (defects.fewer_than(best_defects)) {
         best_defects = defects;
         best = result;
+        best_density = again.triangle_density;
+      }
+    }
+    // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density
+    // it was optimised for; they stand if its dual still has no defect. A state whose crossings
+    // were untangled (settle) is kept as it is.
+    if (options.polish_steps > 0 && first.optimizer == CvtOptimizer::Lbfgs && best_defects.empty() && !best.fitted) {
+      CvtOptions lloyd = first;
+      lloyd.optimizer = CvtOptimizer::Lloyd;
+      lloyd.iterations = options.polish_steps;
+      lloyd.triangle_density = best_density;
+      CvtResult polished = optimize_cvt(mesh, best.cvt.samples, lloyd, &best.cvt.diagram, &index);
+      result.total_iterations += polished.iterations;
+      result.diagram_evaluations += polished.diagram_evaluations;
+      DualMesh dual = compute_dual(polished.diagram, mesh, polished.samples);
+      DualDefects after = find_dual_defects(dual, polished.diagram, mesh, reference.is_closed(), components_cross);
+      progress(fmt::format("{} Lloyd step{} on the samples: the dual has {}{}", polished.iterations,
+                           polished.iterations == 1 ? "" : "s", after.describe(),
+                           after.empty() ? "" : ", the state before them stands"));
+      if (after.empty()) {
+        // The kept CVT is the run and its polish: its history, iterations and evaluations cover both.
+        polished.energy_history.insert(polished.energy_history.begin(), best.cvt.energy_history.begin(),
+                                       best.cvt.energy_history.end() - 1);
+        polished.iterations += best.cvt.iterations;
+        polished.diagram_evaluations += best.cvt.diagram_evaluations;
+        polished.line_search_stopped = best.cvt.line_search_stopped;
+        polished.time_s += best.cvt.time_s;
+        best.cvt = std::move(polished);
+        best.dual = std::move(dual);
+        best.polished = true;
+        best_defects = std::move(after);
       }
     }
     best.repair_rounds = result.repair_rounds;

@@ -38,6 +38,12 @@ struct RemeshOptions {
   //! raised, and keep it if it has fewer defects (a larger cap cuts more of the tip off, so this is
   //! the last resort, not the rule)
   bool tip_caps_retry = true;
+  //! Lloyd steps on the state a run keeps when its dual has no defect (L-BFGS only): L-BFGS moves
+  //! the sites in space and puts them on the surface at the end, which can leave two samples a
+  //! tenth of the cell size apart with slivers between them (Igea at 20000: Qmin 0.29); a Lloyd
+  //! step moves every sample to its cell's centroid. The polished state is kept when its dual has
+  //! no defect either.
+  int polish_steps = 1;
   //! Called with one line on each step of the run: the first CVT's outcome, each repair round
   //! (before: where the density goes up; after: the defects left), the second run, the fitting;
   //! for progress output.
@@ -107,6 +113,7 @@ struct RemeshResult {
   DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
   bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
+  bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
   //! What the repair left in `dual` as the rounds saw it, before the final fitting and untangling
   //! (the crossings those leave are in `untangle.remaining`): where a failed check comes from.
   DualDefects defects;
