@@ -252,7 +252,10 @@ Action add_remesh_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
   cmd->add_option("--iterations", opt->iterations,
-                  "Iteration cap of the first CVT (each repair round of a dual with defects runs up to 30 more)")->check(CLI::Range(1, 100000))->capture_default_str();
+                  "Iteration cap of the first CVT (each repair round of a dual with defects runs up to 30 more; "
+                  "with L-BFGS, a state without defects then takes one Lloyd step)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_option("--density", opt->density, "uniform or curvature")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();
