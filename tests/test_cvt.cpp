@@ -418,6 +418,41 @@ TEST_CASE("A cap on a sharp tip gets a larger cell in a third run: CGAL's tricer
   REQUIRE(r.result.dual.positions.size() == 200);
 }
 
+TEST_CASE("A cell at a sharp tip that meets two cells sharing two arcs round it is a tip cap", "[cvt][remesh]") {
+  // A closed cone 10 high on a unit disk (12 sides): its apex's angles sum to about 35°. A sample
+  // near the apex, two lower down on either side, three further down, three on the base: the apex
+  // cell meets only the two side cells, which share two arcs round it, so the dual has the triangle
+  // of the three twice (Horse at 20000 has this at a tip whose angles sum to 175°).
+  const int k = 12;
+  std::vector<Vec3> positions = {{0, 0, 10}, {0, 0, 0}};
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < k; ++i) positions.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0});
+  for (int i = 0; i < k; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % k;
+    triangles.push_back({0, a, b});
+    triangles.push_back({1, b, a});
+  }
+  const SurfaceMesh cone(positions, triangles);
+  REQUIRE(cone.is_closed());
+  auto side = [](double z, double degrees) {
+    const double r = (10 - z) / 10, a = degrees * M_PI / 180;
+    return Vec3{r * std::cos(a), r * std::sin(a), z};
+  };
+  std::vector<Vec3> points = {side(9.5, 0), side(8.5, 90), side(8.5, 265), side(5, 10), side(5, 130), side(5, 250)};
+  for (double d : {60.0, 180.0, 300.0}) points.push_back({0.5 * std::cos(d * M_PI / 180), 0.5 * std::sin(d * M_PI / 180), 0});
+  const Samples samples = locate_points(cone, points);
+  const Diagram diagram = compute_lrvd(cone, samples);
+  const DualMesh dual = compute_dual(diagram, cone, samples);
+  const DualDefects defects = find_dual_defects(dual, diagram, cone, true, false);
+  // The apex sample is used, twice in the same triangle.
+  REQUIRE(std::count(dual.triangles.begin(), dual.triangles.end(), Triangle{0, 1, 2}) +
+              std::count(dual.triangles.begin(), dual.triangles.end(), Triangle{0, 2, 1}) ==
+          2);
+  CHECK(defects.topological == std::vector<int>{0, 1, 2});
+  CHECK(defects.tip_caps == std::vector<int>{0});
+  CHECK(defects.cornered.empty());
+}
+
 TEST_CASE("On an open sheet the fitting takes the boundary vertices out to the boundary and hardly past it", "[cvt][remesh][fit]") {
   // The unit square: the dual's boundary runs through the boundary cells' samples, inside the
   // square; the boundary's planes in the cells' quadrics take it out to the square's sides. Before

@@ -278,30 +278,48 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     if (!used[i]) defect.insert(static_cast<int>(i));
   // Unused samples whose disk cells meet one other cell: cornered when they meet the boundary of an
   // open mesh, tip caps when they hold more than π of angle deficit. (A row of unused cells across
-  // a strip narrower than the cells, each with two neighbours, needs more samples, not fewer.)
+  // a strip narrower than the cells, each with two neighbours, needs more samples, not fewer.) A
+  // cell at a defect that meets exactly two others and no boundary is a tip cap too when it holds
+  // that much: the two share two arcs round it, and its two triangles repeat each other.
   std::vector<int> cornered, tip_caps;
-  if (std::find(used.begin(), used.end(), 0) != used.end()) {
+  if (std::find(used.begin(), used.end(), 0) != used.end() || !defect.empty()) {
     std::vector<char> on_boundary(used.size(), 0);
-    std::vector<int> neighbour(used.size(), -1);  // the one other cell seen; -1: none, -2: two or more
+    struct Neighbours {
+      int first = -1, second = -1;
+      bool more = false;
+      int count() const { return more ? 3 : (first >= 0) + (second >= 0); }
+    };
+    std::vector<Neighbours> neighbours(used.size());
     for (const CellPolygon& poly : diagram.polygons) {
-      if (used[poly.cell]) continue;
+      if (used[poly.cell] && !defect.count(poly.cell)) continue;
       const SymbolicVertex* v = diagram.polygon_vertices(poly);
+      Neighbours& n = neighbours[poly.cell];
       for (int k = 0; k < poly.vertex_count; ++k)
         for (int a = 0; a < v[k].num_labels(); ++a) {
           const int l = v[k].label[a];
-          int& n = neighbour[poly.cell];
-          if (l != poly.cell && n != l) n = n == -1 ? l : -2;
+          if (l == poly.cell || l == n.first || l == n.second) continue;
+          if (n.first < 0)
+            n.first = l;
+          else if (n.second < 0)
+            n.second = l;
+          else
+            n.more = true;
         }
       const unsigned along = polygon_edges(v, poly.vertex_count, mesh.triangle(poly.triangle)).along;
       for (int e = 0; e < 3; ++e)
         if ((along >> e & 1u) && mesh.neighbor(poly.triangle, e) < 0) on_boundary[poly.cell] = 1;
     }
-    std::vector<int> capped;  // candidates: one neighbour, no boundary
+    std::vector<int> capped;  // candidates: no boundary, one neighbour (unused) or two (at a defect)
     for (int i = 0; i < static_cast<int>(used.size()); ++i) {
-      if (used[i] || hints.count(i) || neighbour[i] == -2) continue;
+      const int count = neighbours[i].count();
+      if (used[i]) {
+        if (defect.count(i) && count == 2 && !on_boundary[i]) capped.push_back(i);
+        continue;
+      }
+      if (hints.count(i) || count > 1) continue;
       if (on_boundary[i] && !input_closed)
         cornered.push_back(i);
-      else if (!on_boundary[i] && neighbour[i] >= 0)
+      else if (!on_boundary[i] && count == 1)
         capped.push_back(i);
     }
     if (!capped.empty()) {

@@ -72,10 +72,11 @@ struct DualDefects {
   //! More samples there repeat the pattern at a smaller scale; fewer make the cell grow until it
   //! meets two others.
   std::vector<int> cornered;
-  //! Unused samples (also in `topological`) whose cells are disks inside one other cell, away from
-  //! any boundary, and hold more than π of the surface's angle deficit: a cap on a tip sharper than
-  //! a half-plane. Around such a cap fewer than three cells of its own size fit, at any scale, so
-  //! more samples repeat the pattern; a larger cap meets more cells.
+  //! Samples in `topological` whose cells, away from any boundary, hold more than π of the
+  //! surface's angle deficit and meet one other cell (unused: a disk inside it) or two (which share
+  //! two arcs round it): a cap on a tip sharper than a half-plane. Around such a cap fewer than
+  //! three cells of its own size fit, at any scale, so more samples repeat the pattern; a larger cap
+  //! meets more cells.
   std::vector<int> tip_caps;
   //! Boundary loops of the mesh (indices into SurfaceMesh::boundary_loops) that fewer than three
   //! cells meet: holes the dual closes over (their cells are in `cell_topology`).
