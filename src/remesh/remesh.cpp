@@ -282,8 +282,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   // cell at a defect that meets exactly two others and no boundary is a tip cap too when it holds
   // that much: the two share two arcs round it, and its two triangles repeat each other.
   std::vector<int> cornered, tip_caps;
-  if (std::find(used.begin(), used.end(), 0) != used.end() || !defect.empty()) {
-    std::vector<char> on_boundary(used.size(), 0);
+  if (!defect.empty()) {  // unused samples are among the defects
+    std::vector<char> at_defect(used.size(), 0), on_boundary(used.size(), 0);
+    for (int i : defect) at_defect[i] = 1;
     struct Neighbours {
       int first = -1, second = -1;
       bool more = false;
@@ -291,7 +292,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     };
     std::vector<Neighbours> neighbours(used.size());
     for (const CellPolygon& poly : diagram.polygons) {
-      if (used[poly.cell] && !defect.count(poly.cell)) continue;
+      if (!at_defect[poly.cell]) continue;
       const SymbolicVertex* v = diagram.polygon_vertices(poly);
       Neighbours& n = neighbours[poly.cell];
       for (int k = 0; k < poly.vertex_count; ++k)
@@ -313,7 +314,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
     for (int i = 0; i < static_cast<int>(used.size()); ++i) {
       const int count = neighbours[i].count();
       if (used[i]) {
-        if (defect.count(i) && count == 2 && !on_boundary[i]) capped.push_back(i);
+        if (at_defect[i] && count == 2 && !on_boundary[i]) capped.push_back(i);
         continue;
       }
       if (hints.count(i) || count > 1) continue;
