@@ -3,6 +3,7 @@
 #include "predicates/exact.h"
 
 #include <stdexcept>
+#include <vector>
 
 namespace lrvd {
 namespace {
@@ -65,6 +66,21 @@ ExactPoint exact_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
   const QV x = (s1 / det) * cross(r2, r0) + (s2 / det) * cross(r0, r1);
   const QV r = p1 + x;
   return {r.x, r.y, r.z};
+}
+
+bool zero_area_unperturbed(const SymbolicVertex* v, int count, const SymbolicContext& ctx) {
+  if (count < 3) return true;
+  // Twice the area times the plane's unit normal: the sum of the fan's cross products, a vector
+  // normal to the plane that holds every vertex exactly. Zero iff the vertices are collinear.
+  std::vector<QV> p;
+  p.reserve(count);
+  for (int k = 0; k < count; ++k) {
+    const ExactPoint e = exact_position(v[k], ctx);
+    p.push_back({e.x, e.y, e.z});
+  }
+  QV sum{Q(0), Q(0), Q(0)};
+  for (int k = 1; k + 1 < count; ++k) sum = sum + cross(p[k] - p[0], p[k + 1] - p[0]);
+  return CGAL::is_zero(sum.x) && CGAL::is_zero(sum.y) && CGAL::is_zero(sum.z);
 }
 
 }  // namespace lrvd

@@ -308,6 +308,13 @@ PredicateStats predicate_stats() {
   return s;
 }
 
+std::uint64_t thread_perturbations() {
+  const ThreadCounters& c = local_counters();
+  std::uint64_t sum = 0;
+  for (int k = 0; k < kKinds; ++k) sum += c.value[k][kPerturbations].load(std::memory_order_relaxed);
+  return sum;
+}
+
 void reset_predicate_stats() {
   Registry& r = registry();
   std::lock_guard<std::mutex> lock(r.mutex);
@@ -323,8 +330,10 @@ namespace predicates {
 bool in_filter_range(const Vec3& v) { return in_range(v); }
 bool in_filter_range(const Site& s) { return in_range(s); }
 
-Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
-  ThreadCounters& c = local_counters();
+namespace {
+
+// sign(-f_il(q)) of the unperturbed weights, Zero on an exact tie; counted as one side1 call.
+Sign side1_unperturbed_counted(ThreadCounters& c, const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
   bump(c, kSide1, kCalls);
   if (inputs_in_range || (in_range(i) && in_range(l) && in_range(q))) {
     if (Sign s = side1_fpf(i, l, q); s != Sign::Zero) return s;
@@ -337,12 +346,22 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
     bump(c, kSide1, kFilterFailures);
   }
   bump(c, kSide1, kExact);
-  Sign s = exact_sign(side1_f<EX>(i, l, q));
-  if (s != Sign::Zero) return -s;
+  return -exact_sign(side1_f<EX>(i, l, q));
+}
+
+}  // namespace
+
+Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
+  ThreadCounters& c = local_counters();
+  if (Sign s = side1_unperturbed_counted(c, i, l, q, inputs_in_range); s != Sign::Zero) return s;
   // f' = f - delta_i + delta_l: the lower id is the closer site.
   bump(c, kSide1, kPerturbations);
   if (i.id == l.id) return Sign::Zero;
   return i.id < l.id ? Sign::Positive : Sign::Negative;
+}
+
+Sign side1_unperturbed(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
+  return side1_unperturbed_counted(local_counters(), i, l, q, inputs_in_range);
 }
 
 Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
@@ -383,9 +402,11 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
   return side2(i, j, l, q1, q2, true);
 }
 
-Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
-           bool inputs_in_range) {
-  ThreadCounters& c = local_counters();
+namespace {
+
+// side2's filters: the sign when they decide it, else Zero (then counted as going exact).
+Sign side2_filtered(ThreadCounters& c, const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+                    bool inputs_in_range) {
   bump(c, kSide2, kCalls);
   if (inputs_in_range || (in_range(i) && in_range(j) && in_range(l) && in_range(q1) && in_range(q2))) {
     if (Sign s = side2_fpf(i, j, l, q1, q2); s != Sign::Zero) return s;
@@ -400,6 +421,15 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
     bump(c, kSide2, kFilterFailures);
   }
   bump(c, kSide2, kExact);
+  return Sign::Zero;
+}
+
+}  // namespace
+
+Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+           bool inputs_in_range) {
+  ThreadCounters& c = local_counters();
+  if (Sign s = side2_filtered(c, i, j, l, q1, q2, inputs_in_range); s != Sign::Zero) return s;
   EX num, den;
   side2_num_den<EX>(i, j, l, q1, q2, num, den);
   const Sign sden = exact_sign(den);
@@ -415,6 +445,15 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
       std::pair<int, EX>{j.id, -(two * dot(e, sub<EX>(l.p, i.p)))},
       std::pair<int, EX>{l.id, den}});
   return -(s * sden);
+}
+
+Sign side2_unperturbed(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+                       bool inputs_in_range) {
+  ThreadCounters& c = local_counters();
+  if (Sign s = side2_filtered(c, i, j, l, q1, q2, inputs_in_range); s != Sign::Zero) return s;
+  EX num, den;
+  side2_num_den<EX>(i, j, l, q1, q2, num, den);
+  return -(exact_sign(num) * exact_sign(den));
 }
 
 Sign side3(const Site& i, const Site& j, const Site& k, const Site& l,

@@ -50,6 +50,11 @@ struct PredicateStats {
 PredicateStats predicate_stats();
 //! Zeroes all counters. Exact when no other thread runs predicates meanwhile.
 void reset_predicate_stats();
+//! The exact ties the calling thread's predicates have resolved by the perturbation so far. A
+//! computation after which it differs has met a degenerate configuration (a tie can leave a
+//! perturbed side of zero length in the limit). reset_predicate_stats() between the two reads
+//! spoils the comparison: reset between computations only.
+std::uint64_t thread_perturbations();
 
 namespace predicates {
 
@@ -108,6 +113,12 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
 //! Degree 4 (numerator) times degree 2 (weight-free denominator).
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            bool inputs_in_range = false);
+
+//! side1 and side2 of the unperturbed weights: Zero on an exact tie (q on bisector(i, l)), which
+//! the perturbation would have resolved. Counted as side1 and side2 calls, never as perturbations.
+Sign side1_unperturbed(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range = false);
+Sign side2_unperturbed(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+                       bool inputs_in_range = false);
 
 //! Type (c): q = plane(p1,p2,p3) ∩ bisector(i,j) ∩ bisector(i,k).
 //! \pre n, p_j - p_i, p_k - p_i are linearly independent, n = (p2-p1)x(p3-p1) (the vertex

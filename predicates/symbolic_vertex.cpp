@@ -77,6 +77,29 @@ Sign side(const SymbolicVertex& q, int i, int l, const SymbolicContext& ctx) {
   return Sign::Zero;
 }
 
+bool coincide_unperturbed(const SymbolicVertex& u, const SymbolicVertex& w, const SymbolicContext& ctx) {
+  using Type = SymbolicVertex::Type;
+  if (u == w) return true;
+  if (u.type == Type::A && w.type == Type::A) return false;  // two ends of a mesh edge
+  const Site* s = ctx.sites;
+  const Vec3* p = ctx.vertices;
+  if (u.type == Type::A || w.type == Type::A) {
+    // A corner and a point of bisector(a, b) on its edge: one point iff the bisector runs through it.
+    const SymbolicVertex& corner = u.type == Type::A ? u : w;
+    const SymbolicVertex& b = u.type == Type::A ? w : u;
+    return predicates::side1_unperturbed(s[b.label[0]], s[b.label[1]], p[corner.v[0]], ctx.in_range) == Sign::Zero;
+  }
+  assert(u.type == Type::B && w.type == Type::B && u.v == w.v);
+  // u on bisector(i, j), w on bisector(i, m): one point iff u is as close to m as to i.
+  for (int i : {u.label[0], u.label[1]}) {
+    if (!w.has_label(i)) continue;
+    const int j = u.label[0] == i ? u.label[1] : u.label[0];
+    const int m = w.label[0] == i ? w.label[1] : w.label[0];
+    return predicates::side2_unperturbed(s[i], s[j], s[m], p[u.v[0]], p[u.v[1]], ctx.in_range) == Sign::Zero;
+  }
+  throw std::logic_error("coincide_unperturbed: two edge points without a common label");
+}
+
 SymbolicVertex intersect(const SymbolicVertex& u, const SymbolicVertex& w, int i, int l,
                          const std::array<int, 3>& triangle) {
   for (int e = 0; e < 3; ++e) {

@@ -75,6 +75,18 @@ Sign side(const SymbolicVertex& q, int i, int l, const SymbolicContext& ctx);
 SymbolicVertex intersect(const SymbolicVertex& u, const SymbolicVertex& w, int i, int l,
                          const std::array<int, 3>& triangle);
 
+//! Whether u and w, two vertices on one mesh edge with a label in common (the ends of a polygon
+//! side along the edge), are one point of the unperturbed geometry: a side of positive length in
+//! the perturbed diagram that has length zero in its limit. Exact, no perturbation.
+//! \pre u and w lie on one mesh edge; two type B vertices share a label.
+bool coincide_unperturbed(const SymbolicVertex& u, const SymbolicVertex& w, const SymbolicContext& ctx);
+
+//! Whether a polygon of a triangle (its `count` vertices in order) has zero area in the
+//! unperturbed geometry: a sliver of the perturbed diagram that collapses to a segment or a point.
+//! Exact, in rational arithmetic (predicates/exact.cpp): for the few polygons of triangles whose
+//! clipping met an exact tie.
+bool zero_area_unperturbed(const SymbolicVertex* v, int count, const SymbolicContext& ctx);
+
 //! Double position for output and integration. Type B: parameter F1/(F1 - F2) clamped to [0, 1];
 //! type C: Cramer's rule; falls back to the rounded exact position when doubles overflow or the
 //! double system is singular.

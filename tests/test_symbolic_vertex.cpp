@@ -7,6 +7,7 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <stdexcept>
 #include <type_traits>
 #include <unordered_set>
 #include <vector>
@@ -296,4 +297,30 @@ TEST_CASE("checked_context marks a context in range only when every vertex and s
   const SymbolicContext on{tri.data(), sites.data(), true}, off{tri.data(), sites.data()};
   for (int c = 0; c < 3; ++c)
     CHECK(lrvd::side(SymbolicVertex::mesh_vertex(c), 0, 1, on) == lrvd::side(SymbolicVertex::mesh_vertex(c), 0, 1, off));
+}
+
+TEST_CASE("coincide_unperturbed finds perturbed sides of zero length along a mesh edge", "[predicates][symbolic_vertex]") {
+  // Edge (0, 1) from (0,0,0) to (2,0,0). bisector(i, j) and bisector(i, m) both cross it at
+  // (1,0,0); bisector(i, n) at (0.5,0,0); bisector(i, k) runs through the corner (0,0,0).
+  const std::vector<Vec3> vertices = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+  const std::vector<Site> sites = {Site{{0, 1, 0}, 0, 0}, Site{{2, 1, 0}, 0, 1}, Site{{1, 1, 1}, 0, 2},
+                                   Site{{1, 1, 0}, 0, 3}, Site{{1, 0, 0}, 0, 4}};
+  const SymbolicContext ctx = lrvd::checked_context(vertices.data(), vertices.size(), sites.data(), sites.size());
+  const int i = 0, j = 1, m = 2, n = 3, k = 4;
+  const SymbolicVertex bij = SymbolicVertex::on_edge(0, 1, i, j), bim = SymbolicVertex::on_edge(1, 0, m, i);
+  const SymbolicVertex bin = SymbolicVertex::on_edge(0, 1, i, n), bik = SymbolicVertex::on_edge(0, 1, k, i);
+  const SymbolicVertex a0 = SymbolicVertex::mesh_vertex(0), a1 = SymbolicVertex::mesh_vertex(1);
+  CHECK(lrvd::coincide_unperturbed(bij, bim, ctx));
+  CHECK(lrvd::coincide_unperturbed(bim, bij, ctx));
+  CHECK(lrvd::coincide_unperturbed(bij, bij, ctx));
+  CHECK_FALSE(lrvd::coincide_unperturbed(bij, bin, ctx));
+  CHECK(lrvd::coincide_unperturbed(a0, bik, ctx));
+  CHECK(lrvd::coincide_unperturbed(bik, a0, ctx));
+  CHECK_FALSE(lrvd::coincide_unperturbed(a1, bik, ctx));
+  CHECK_FALSE(lrvd::coincide_unperturbed(a0, bij, ctx));
+  CHECK_FALSE(lrvd::coincide_unperturbed(a0, a1, ctx));
+  // The perturbation still orders the two coincident points (the lower id is the closer site).
+  CHECK(lrvd::side(bij, i, m, ctx) != Sign::Zero);
+  // Two points of different bisectors with no common label are not a polygon side.
+  CHECK_THROWS_AS(lrvd::coincide_unperturbed(SymbolicVertex::on_edge(0, 1, j, m), bin, ctx), std::logic_error);
 }

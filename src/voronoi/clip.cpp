@@ -30,6 +30,17 @@ void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const Sy
   polygon.swap(scratch);
 }
 
+unsigned along_in_the_limit(const SymbolicVertex* v, int count, const std::array<int, 3>& triangle,
+                            const SymbolicContext& ctx) {
+  unsigned along = 0;
+  for (int a = 0; a < count; ++a) {
+    const SymbolicVertex &u = v[a], &w = v[a + 1 == count ? 0 : a + 1];
+    const unsigned edge = edge_mask(u, triangle) & edge_mask(w, triangle);
+    if (edge && !(along & edge) && !coincide_unperturbed(u, w, ctx)) along |= edge;
+  }
+  return along;
+}
+
 void clip_triangle(const SurfaceMesh& mesh, int t, int k, const int* others, int other_count,
                    const SymbolicContext& ctx, std::vector<SymbolicVertex>& polygon,
                    std::vector<SymbolicVertex>& scratch) {

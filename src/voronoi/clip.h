@@ -55,6 +55,12 @@ inline PolygonEdges polygon_edges(const SymbolicVertex* v, int count, const std:
   return out;
 }
 
+//! polygon_edges(...).along of the unperturbed geometry: the edges the polygon has a side of
+//! positive exact length along. A side whose ends coincide there (coincide_unperturbed, only ever
+//! at an exact tie the perturbation resolved) counts for none.
+unsigned along_in_the_limit(const SymbolicVertex* v, int count, const std::array<int, 3>& triangle,
+                            const SymbolicContext& ctx);
+
 //! Clips an existing polygon of cell k in triangle t by bisector(k, l), in place.
 void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
                       std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch);
@@ -66,6 +72,11 @@ struct TrianglePolygon {
   int end = 0;
   std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon
 };
+
+//! A bit of TrianglePolygon::along (and of Diagram::polygon_along) beside the three edges': the
+//! polygon has zero area in the unperturbed geometry, a sliver of the perturbed diagram that is no
+//! piece of its cell. Only the LRVD's triangles whose clipping met an exact tie are looked at.
+constexpr std::uint8_t kZeroAreaInTheLimit = 8;
 
 //! A polygon vertex as CellClipper stores it, five bytes instead of a SymbolicVertex's 28: what
 //! defines it, relative to its triangle. A large mesh's diagram (MPS computes one of 650k

@@ -130,6 +130,7 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
   const int np = static_cast<int>(diagram.polygons.size());
   // The edges each polygon runs along (in parallel), then the joins.
+  if (diagram.polygon_along.size() == static_cast<size_t>(np)) return cell_components(diagram, mesh, diagram.polygon_along);
   std::vector<unsigned char> along_edges(np);
   tbb::parallel_for(tbb::blocked_range<int>(0, np, 1024), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p != range.end(); ++p) {
@@ -170,14 +171,14 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, 
     // polygon of p's cell across is found by walks that only move forward.
     for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
       unsigned edges = along_edges[p] & upper;
-      if (!edges) continue;
+      if (!edges || (along_edges[p] & kZeroAreaInTheLimit)) continue;
       const int cell = polygons[p].cell;
       do {
         const int e = __builtin_ctz(edges);
         edges &= edges - 1;
         int& r = q[e];
         while (r < q_end[e] && polygons[r].cell < cell) ++r;
-        if (r == q_end[e] || polygons[r].cell != cell) continue;
+        if (r == q_end[e] || polygons[r].cell != cell || (along_edges[r] & kZeroAreaInTheLimit)) continue;
         const int ra = find_root(p), rb = find_root(r);
         if (ra < rb) parent[rb] = ra;
         else if (rb < ra) parent[ra] = rb;
@@ -190,6 +191,10 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, 
   out.polygon_component.resize(np);
   out.count.assign(diagram.sample_count, 0);
   for (int p = 0; p < np; ++p) {
+    if (along_edges[p] & kZeroAreaInTheLimit) {  // joined to nothing, so no root of another
+      out.polygon_component[p] = -1;
+      continue;
+    }
     const int r = parent[parent[p]];
     parent[p] = r;
     out.polygon_component[p] = r == p ? out.count[polygons[p].cell]++ : out.polygon_component[r];

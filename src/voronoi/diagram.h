@@ -51,6 +51,11 @@ struct Diagram {
   std::vector<CellPolygon> polygons;     //!< ordered by triangle, then cell
   std::vector<int> triangle_offsets;     //!< polygons of triangle t: [offsets[t], offsets[t + 1])
   std::vector<Site> sites;               //!< the sites the predicates used (id == sample index)
+  //! Per polygon, the mesh edges it has a side of positive length along in the unperturbed geometry
+  //! (bit e: edge (corner e, corner e + 1)), and kZeroAreaInTheLimit when its area is zero there:
+  //! what the LRVD's connectivity restoration sees. Filled by compute_lrvd and compute_rvd; a
+  //! diagram built otherwise may leave it empty.
+  std::vector<unsigned char> polygon_along;
   DiagramStats stats;
 
   SymbolicContext context(const SurfaceMesh& mesh) const;
@@ -73,7 +78,10 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
                               const std::vector<double>* triangle_density = nullptr);
 
 //! Connected components of each cell: polygons of one cell are joined when they share a segment
-//! of positive length on a mesh edge (touching at a single point does not join them).
+//! of positive length on a mesh edge (touching at a single point does not join them). With
+//! `polygon_along`, in the unperturbed geometry: a side of the perturbed diagram whose ends
+//! coincide there joins nothing, and a polygon of zero area there is no piece (component -1, not
+//! counted). Without it (a diagram built by hand), by the perturbed diagram's sides.
 //! Returns, per polygon, its component id (0..count-1 per cell), and the count per cell.
 //! \pre the diagram's polygons are ordered by triangle, then cell, with at most one polygon per
 //!      (triangle, cell), as compute_lrvd and compute_rvd make them.
@@ -82,8 +90,8 @@ struct CellComponents {
   std::vector<int> count;  //!< per cell; 0 for a cell with no polygon
 };
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh);
-//! The same, given the edges each polygon runs along (`along[p]`: polygon_edges(...).along of
-//! polygon p, as the clipping that made it knows them).
+//! The same, given the edges each polygon runs along (`along[p]`, with kZeroAreaInTheLimit for a
+//! polygon that is no piece), as the clipping that made it knows them.
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along);
 
 }  // namespace lrvd

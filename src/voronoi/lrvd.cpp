@@ -156,6 +156,7 @@ class LrvdBuilder {
       if (!forbid_stray_pieces(diagram)) break;
       ++stats_.connectivity_rounds;
     }
+    diagram.polygon_along = along_;
     diagram.stats = stats_;
     return diagram;
   }
@@ -256,10 +257,41 @@ class LrvdBuilder {
     if (m > 1) st.verts.reserve(4 * m + 4);
     polygons.clear();
     thread_local std::vector<SymbolicVertex> unused;  // the clipper writes no unpacked vertex then
+    const std::uint64_t ties = thread_perturbations();
     clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts,
                  m > CellClipper::kMaxLabels ? st.extra().wide : unused);
     st.polygons.assign(polygons.begin(), polygons.end());
+    if (thread_perturbations() != ties) edges_in_the_limit(t);
     clipped_[t] = 1;
+  }
+
+  // After a clipping of t that met an exact tie: a polygon side along a mesh edge can be a point of
+  // the unperturbed geometry (three cells equidistant from one point of the edge, or a bisector
+  // through a corner). Such a side joins nothing, as the verification judges it: a cell that
+  // meets itself only there is in pieces, and a cell that reaches an edge only there need not go
+  // across (its polygon there would be a stray piece, e.g. a sample at the right-angled corner of
+  // a tetrahedron, whose cell would reach the opposite face at three edge midpoints). Every edge
+  // t's polygons reach is then one they have a side of positive length along, and a polygon of
+  // zero area there (a sliver collapsed to a segment or a point) is no piece of its cell.
+  void edges_in_the_limit(int t) const {
+    thread_local std::vector<SymbolicVertex> verts;
+    TrianglePolygons& st = state_[t];
+    const Triangle& tri = mesh_.triangle(t);
+    const std::vector<SymbolicVertex>* wide = st.wide();
+    int begin = 0;
+    for (TrianglePolygon& poly : st.polygons) {
+      const int end = poly.end;
+      if (end == begin) continue;  // the whole triangle
+      verts.assign(end - begin, SymbolicVertex{});
+      for (int a = begin; a < end; ++a) {
+        if (wide) verts[a - begin] = (*wide)[a];
+        else unpack(st.verts[a], tri, st.labels.data(), verts[a - begin]);
+      }
+      const int n = static_cast<int>(verts.size());
+      poly.reach = static_cast<std::uint8_t>(along_in_the_limit(verts.data(), n, tri, ctx_));
+      poly.along = poly.reach | (zero_area_unperturbed(verts.data(), n, ctx_) ? kZeroAreaInTheLimit : 0);
+      begin = end;
+    }
   }
 
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
@@ -455,7 +487,7 @@ class LrvdBuilder {
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
       const int k = poly.cell;
-      if (comps.count[k] <= 1) continue;
+      if (comps.count[k] <= 1 || comps.polygon_component[p] < 0) continue;  // < 0: no piece
       // A cell whose sample lost its own polygon keeps its first piece.
       const int keep = home_component[k] >= 0 ? home_component[k] : 0;
       if (comps.polygon_component[p] != keep) stray.emplace_back(k, poly.triangle);

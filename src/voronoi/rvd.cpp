@@ -90,6 +90,7 @@ Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weight
     if (adjacency[start_cell].empty() && samples.size() > 1)
       for (int i = 0; i < samples.size(); ++i)
         if (!adjacency[i].empty()) { start_cell = i; break; }
+    const std::uint64_t ties = thread_perturbations();
     start_cell = owner(start_cell, SymbolicVertex::mesh_vertex(tri[0]));
     pieces.clear();
     stack.assign(1, start_cell);
@@ -110,9 +111,15 @@ Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weight
       pieces.emplace_back(i, polygon);
     }
     std::sort(pieces.begin(), pieces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    // After an exact tie, the sides and areas of the unperturbed geometry (as the LRVD's).
+    const bool tied = thread_perturbations() != ties;
     for (const auto& [cell, verts] : pieces) {
-      d.polygons.push_back({t, cell, static_cast<int>(d.vertices.size()), static_cast<int>(verts.size())});
+      const int n = static_cast<int>(verts.size());
+      d.polygons.push_back({t, cell, static_cast<int>(d.vertices.size()), n});
       d.vertices.insert(d.vertices.end(), verts.begin(), verts.end());
+      d.polygon_along.push_back(static_cast<unsigned char>(
+          tied ? along_in_the_limit(verts.data(), n, tri, ctx) | (zero_area_unperturbed(verts.data(), n, ctx) ? kZeroAreaInTheLimit : 0)
+               : polygon_edges(verts.data(), n, tri).along));
     }
     d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
     ++d.stats.clipped_triangles;
