@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -133,6 +135,57 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   REQUIRE(proc.status == 2);
   REQUIRE(proc.err.find("cannot be written") != std::string::npos);
   REQUIRE_FALSE(std::ifstream(unwritten).good());
+}
+
+TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows error lines safely", "[cli]") {
+  const std::string tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  // A header that declares fewer faces than the file has: CGAL's reader stops at the count.
+  const std::string short_header = kOut + "short_header.off", word = kOut + "word_after_face.off";
+  const std::string coloured = kOut + "coloured.off", bom = kOut + "bom.off";
+  std::ofstream(short_header) << "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" << faces;
+  std::ofstream(word) << tet << "3 0 2 1 extra\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(coloured) << tet << "3 0 2 1 255 0 0\n3 0 1 3 0.5 0.5 0.5 1\n3 0 3 2\n3 1 2 3\n# the end\n\n";
+  std::ofstream(bom) << "\xef\xbb\xbf" << tet << faces;
+  const std::string empty_weights = kOut + "empty_weights.txt", corners = kOut + "corners.xyz";
+  std::ofstream(empty_weights) << "";
+  std::ofstream(corners) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"compute " + short_header + " -n 10", "more than its 1 declared faces"},
+      {"compute " + word + " -n 10", "'extra' after its 3 vertex indices"},
+      {"compute " + bom + " -n 10", "byte-order mark"},
+      {"compute " + coloured + " -n 10 -o ''", "--output: a file name may not be empty"},
+      {"compute " + coloured + " -n 10 --report ''", "--report: a file name may not be empty"},
+      {"mps " + coloured + " --radius 0.2 -o " + kOut + "m.xyz --remesh ''", "--remesh: a file name may not be empty"},
+      {"compute " + coloured + " --points " + corners + " --weights " + empty_weights + " --diagram lrpd",
+       "holds no weights"},
+      {"stress --report " + kOut + "no_such_folder/report", "does not exist"}};
+  for (const auto& [args, reason] : refused) {
+    const Run r = run(args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(lines(r.err) == 1);
+    CHECK(r.err.find(reason) != std::string::npos);
+  }
+  CHECK(run("compute " + coloured + " -n 10").status == 0);  // colours after the indices, comments after the faces
+  // A control character read from a file is shown escaped; a huge token does not make a huge line.
+  const std::string escape = kOut + "escape.xyz", long_token = kOut + "long_token.xyz";
+  std::ofstream(escape) << "0.1\x1b[31mRED 0 0\n";
+  std::ofstream(long_token) << std::string(100000, 'x') << " 0 0\n";
+  const Run esc = run("verify " + coloured + " --points " + escape);
+  CHECK(esc.status == 2);
+  CHECK(esc.err.find('\x1b') == std::string::npos);
+  CHECK(esc.err.find("\\x1b[31mRED") != std::string::npos);
+  const Run longer = run("verify " + coloured + " --points " + long_token);
+  CHECK(longer.status == 2);
+  CHECK(lines(longer.err) == 1);
+  CHECK(longer.err.size() < 500);
+  // Outputs replace the old file whole: nothing is left beside it.
+  const std::string out = kOut + "replaced.off";
+  std::ofstream(out) << "old\n";
+  REQUIRE(run("remesh " + coloured + " -n 8 -o " + out).status == 0);
+  CHECK(lrvd::read_mesh(out).mesh.vertex_count() == 8);
+  CHECK_FALSE(std::ifstream(out + ".lrvd-part").good());
 }
 
 TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verification", "[cli][remesh]") {

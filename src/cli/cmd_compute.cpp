@@ -103,7 +103,7 @@ void add_diagram_options(CLI::App* cmd, ComputeOptions& opt) {
   cmd->add_option("--diagram", opt.kind, "Diagram: lrvd, rvd, lrpd (power, weighted) or rpd")
       ->check(CLI::IsMember({"lrvd", "rvd", "lrpd", "rpd"}))
       ->capture_default_str();
-  cmd->add_option("--report", opt.report, "Write a JSON report");
+  cmd->add_option("--report", opt.report, "Write a JSON report")->check(path_validator());
 }
 
 }  // namespace
@@ -113,7 +113,8 @@ Action add_compute_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("compute", "Compute a diagram of samples on a mesh, write its cells, verify it");
   add_input_options(cmd, opt->input, true);
   add_diagram_options(cmd, *opt);
-  cmd->add_option("-o,--output", opt->output, "Write the cells as a PLY (face property 'cell' and a colour)");
+  cmd->add_option("-o,--output", opt->output, "Write the cells as a PLY (face property 'cell' and a colour)")
+      ->check(path_validator());
   cmd->add_flag("--no-verify", opt->no_verify, "Skip the verification");
   return [opt]() { return run_diagram(*opt, true); };
 }

@@ -183,7 +183,7 @@ int run_mps(const MpsCommandOptions& opt) {
 Action add_mps_command(CLI::App& app) {
   auto opt = std::make_shared<MpsCommandOptions>();
   CLI::App* cmd = app.add_subcommand("mps", "Maximal Poisson-disk sampling with LRPD gap detection, checked; optional LRRT remesh");
-  cmd->add_option("mesh", opt->mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
+  cmd->add_option("mesh", opt->mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required()->check(path_validator());
   cmd->add_option("--radius", opt->radius,
                   "Disk radius r (r_min with --adaptive), relative to the longest bounding-box side "
                   "(the model normalised into the unit cube)")
@@ -219,9 +219,10 @@ Action add_mps_command(CLI::App& app) {
       ->each([opt](const std::string&) { opt->feature_angle_given = true; })
       ->capture_default_str();
   add_repair_options(cmd, opt->repair, opt->fill_holes);
-  cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required();
-  cmd->add_option("--remesh", opt->remesh, "Also write the LRRT of the samples (.off, .obj, .ply) and check it");
-  cmd->add_option("--report", opt->report, "Write a JSON report");
+  cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required()->check(path_validator());
+  cmd->add_option("--remesh", opt->remesh, "Also write the LRRT of the samples (.off, .obj, .ply) and check it")
+      ->check(path_validator());
+  cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   cmd->add_flag("--exact", opt->exact, "Decide every vertex of the maximality check with rational arithmetic");
   return [opt]() { return run_mps(*opt); };
 }

@@ -262,18 +262,18 @@ Action add_remesh_command(CLI::App& app) {
   cmd->add_flag("--no-fit", opt->no_fit,
                 "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "
                 "never lowering the CVT's worst triangle)");
-  cmd->add_option("-o,--output", opt->output, "Output mesh (.off, .obj, .ply)")->required();
-  cmd->add_option("--report", opt->report, "Write a JSON report");
+  cmd->add_option("-o,--output", opt->output, "Output mesh (.off, .obj, .ply)")->required()->check(path_validator());
+  cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   return [opt]() { return run_remesh(*opt); };
 }
 
 Action add_quality_command(CLI::App& app) {
   auto opt = std::make_shared<QualityOptions>();
   CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
-  cmd->add_option("reference", opt->reference, "The input surface")->required();
-  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required();
+  cmd->add_option("reference", opt->reference, "The input surface")->required()->check(path_validator());
+  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required()->check(path_validator());
   add_repair_options(cmd, opt->repair, opt->fill_holes, "the reference (as for the remesh)");
-  cmd->add_option("--report", opt->report, "Write a JSON report");
+  cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   return [opt]() { return run_quality(*opt); };
 }
 

@@ -1,7 +1,6 @@
 // `lrvd stress`: list and write the stress meshes (nearby sheets, thin walls, tubes, ...).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include <fmt/format.h>
 
@@ -20,8 +19,15 @@ namespace {
 // RVD against LRVD on every stress mesh and sample count: the disconnected cells of the RVD and
 // the verification of the LRVD, as markdown and JSON tables.
 int write_stress_report(const std::string& dir, double scale, int seeds) {
+  // The folder itself is made, not its parents: a mistyped path is refused, as for every other output.
+  namespace fs = std::filesystem;
   std::error_code error;
-  std::filesystem::create_directories(dir, error);
+  fs::path folder = fs::path(dir).lexically_normal();
+  if (!folder.has_filename()) folder = folder.parent_path();  // "out/"
+  const fs::path parent = folder.parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, error))
+    throw InputError(fmt::format("--report {}: the folder {} does not exist", dir, parent.string()));
+  fs::create_directory(dir, error);
   if (error || !std::filesystem::is_directory(dir))
     throw InputError(fmt::format("cannot make the report directory {}: {}", dir,
                                  error ? error.message() : "a file of that name is in the way"));
@@ -61,9 +67,10 @@ int write_stress_report(const std::string& dir, double scale, int seeds) {
     }
   }
   write_json(dir + "/stress_report.json", {{"scale", scale}, {"seeds", seeds}, {"rows", rows}});
-  std::ofstream(dir + "/stress_report.md") << "# RVD vs LRVD on the stress meshes\n\nMeans over " << seeds
-                                           << " seed(s); meshes refined where n would crowd the triangles.\n\n"
-                                           << md;
+  write_text_file(dir + "/stress_report.md",
+                  fmt::format("# RVD vs LRVD on the stress meshes\n\nMeans over {} seed(s); meshes refined where n "
+                              "would crowd the triangles.\n\n{}",
+                              seeds, md));
   std::printf("%s", md.c_str());
   std::printf("wrote %s/stress_report.md and %s/stress_report.json\n", dir.c_str(), dir.c_str());
   return all_passed ? kOk : kCheckFailed;
@@ -82,9 +89,11 @@ Action add_stress_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("stress", "Stress meshes: list them, write one, or report RVD vs LRVD on all");
   CLI::Option* list = cmd->add_flag("--list", opt->list, "List the stress meshes");
   CLI::Option* name = cmd->add_option("name", opt->name, "Stress mesh to write");
-  CLI::Option* output = cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)");
+  CLI::Option* output =
+      cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)")->check(path_validator());
   cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")->check(CLI::Range(0.05, 10.0));
-  CLI::Option* report = cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR");
+  CLI::Option* report = cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR")
+                             ->check(path_validator());
   cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::Range(1, 100))->needs(report);
   // The three uses exclude each other: a listing, one mesh written, or the report over all.
   list->excludes(name)->excludes(output)->excludes(report);

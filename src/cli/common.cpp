@@ -65,21 +65,29 @@ void print_repair(const RepairReport& r, bool repair, double fill_holes) {
 }
 
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
-  cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required();
+  cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required()->check(path_validator());
   add_repair_options(cmd, opt.repair, opt.fill_holes);
-  CLI::Option* points = cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line");
+  CLI::Option* points =
+      cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line")->check(path_validator());
   if (allow_count) {
     CLI::Option* n = cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)");
     n->excludes(points);
   } else {
     points->required();
   }
-  cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)");
+  cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)")
+      ->check(path_validator());
   cmd->add_option("--seed", opt.seed, "Seed of the random samples")->check(seed_validator())->capture_default_str();
   cmd->add_option("--refine", opt.refine,
                   "Split long edges first: 'auto' (when the samples would crowd the triangles), 'off', or a "
                   "maximum edge length")
       ->capture_default_str();
+}
+
+CLI::Validator path_validator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string { return text.empty() ? "a file name may not be empty" : std::string(); },
+      "PATH");
 }
 
 namespace {
@@ -104,6 +112,7 @@ std::vector<double> read_weights(const std::string& path) {
       throw InputError(fmt::format("{}: '{}' is not a finite number", path, token));
     }
   }
+  if (weights.empty()) throw InputError(fmt::format("weight file '{}' holds no weights", path));
   return weights;
 }
 
@@ -126,7 +135,8 @@ Input load_input(const InputOptions& opt) {
   }
   const int n = opt.points_path.empty() ? opt.count : static_cast<int>(points.points.size());
   if (opt.points_path.empty() && n < 1)
-    throw InputError(fmt::format("give a sample count -n >= 1 or a point file --points (got -n {})", opt.count));
+    throw InputError(opt.count == 0 ? std::string("give a sample count -n >= 1 or a point file --points")
+                                    : fmt::format("give a sample count -n >= 1 or a point file --points (got -n {})", opt.count));
   if (n > kMaxSamples)
     throw InputError(fmt::format("{} samples are more than lrvd takes (limit {})", n, kMaxSamples));
 
@@ -236,12 +246,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs) {
   }
 }
 
-void write_json(const std::string& path, const nlohmann::json& report) {
-  std::ofstream out(path);
-  if (!out) throw InputError(fmt::format("cannot write report '{}'", path));
-  out << report.dump(2) << '\n';
-  if (!out) throw InputError(fmt::format("failed writing report '{}'", path));
-}
+void write_json(const std::string& path, const nlohmann::json& report) { write_text_file(path, report.dump(2) + '\n'); }
 
 void print_quality(const QualityMetrics* quality, bool of_angles) {
   if (!quality) {

@@ -34,6 +34,8 @@ void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const s
 void print_repair(const RepairReport& report, bool repair, double fill_holes);
 //! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
 CLI::Validator seed_validator();
+//! Refuses an empty file name (`-o ""`), which would otherwise read as "not given".
+CLI::Validator path_validator();
 
 struct Input {
   LoadedMesh loaded;          //!< as read (and repaired)

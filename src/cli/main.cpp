@@ -3,12 +3,33 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <string>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
 #include "cli/commands.h"
 #include "common/error.h"
+
+namespace {
+
+// An error line as the terminal should show it: control characters (an escape sequence read from a
+// file) written as \xNN, and a line longer than a screen or two (a 200 kB token echoed from a
+// file) shortened in the middle.
+std::string printable(const std::string& message) {
+  constexpr std::size_t kLongest = 400, kHead = 300, kTail = 80;
+  std::string out;
+  for (unsigned char c : message) {
+    if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
+    else out += static_cast<char>(c);
+  }
+  if (out.size() > kLongest)
+    out = out.substr(0, kHead) + fmt::format(" [... {} characters ...] ", out.size() - kHead - kTail) +
+          out.substr(out.size() - kTail);
+  return out;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lrvd::cli;
@@ -43,10 +64,10 @@ int main(int argc, char** argv) {
       for (const std::string& extra : app.remaining())
         if (!extra.empty() && extra[0] != '-') {
           std::fprintf(stderr, "lrvd: error: unknown subcommand '%s': compute, verify, remesh, quality, mps or stress (see --help)\n",
-                       extra.c_str());
+                       printable(extra).c_str());
           return kBadInput;
         }
-    std::fprintf(stderr, "lrvd: error: %s (see --help)\n", e.what());
+    std::fprintf(stderr, "lrvd: error: %s (see --help)\n", printable(e.what()).c_str());
     return kBadInput;
   }
   std::unique_ptr<tbb::global_control> thread_limit;
@@ -56,13 +77,13 @@ int main(int argc, char** argv) {
     for (auto& [command, action] : actions)
       if (command->parsed()) return action();
   } catch (const lrvd::InputError& e) {
-    std::fprintf(stderr, "lrvd: error: %s\n", e.what());
+    std::fprintf(stderr, "lrvd: error: %s\n", printable(e.what()).c_str());
     return kBadInput;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "lrvd: error: out of memory\n");
     return kInternalError;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lrvd: internal error: %s\n", e.what());
+    std::fprintf(stderr, "lrvd: internal error: %s\n", printable(e.what()).c_str());
     return kInternalError;
   }
   return kInternalError;

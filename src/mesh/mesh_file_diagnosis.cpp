@@ -156,7 +156,20 @@ std::string diagnose_off(const std::string& path) {
       if (index < 0 || index >= nv)
         return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
     }
+    // A face may end with a colour (an index or three or four numbers), nothing else.
+    for (std::size_t k = n + 1; k < tokens.size(); ++k) {
+      double value = 0;
+      if (!parse_double(tokens[k], value))
+        return fmt::format("face {} (line {}): '{}' after its {} vertex indices is not a number (only a colour may "
+                           "follow them)",
+                           f, lines.line_number(), tokens[k], n);
+    }
   }
+  // CGAL stops after the declared faces; lines after them would be dropped without a word.
+  if (lines.next(tokens))
+    return fmt::format("has more than its {} declared faces: line {} ('{}') follows them (does the header's face "
+                       "count match the face lines?)",
+                       nf, lines.line_number(), tokens[0]);
   return "";
 }
 
@@ -320,6 +333,10 @@ std::string diagnose_stl(const std::string& path) {
 }  // namespace
 
 std::string diagnose_unreadable_mesh_file(const std::string& path, MeshFileFormat format) {
+  // Editors on Windows often start a text file with one; CGAL's readers take it for data.
+  char bom[3] = {};
+  if (std::ifstream(path, std::ios::binary).read(bom, 3) && bom[0] == '\xef' && bom[1] == '\xbb' && bom[2] == '\xbf')
+    return "starts with a UTF-8 byte-order mark, which CGAL's reader does not accept: save the file without it";
   std::string reason;
   if (format == MeshFileFormat::Off) reason = diagnose_off(path);
   if (format == MeshFileFormat::Obj) reason = diagnose_obj(path);

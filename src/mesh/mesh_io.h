@@ -97,4 +97,9 @@ struct PolygonMesh {
 //!        or an index is out of range.
 void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
 
+//! Writes `text` to `path` whole or not at all (as every writer here: into a file beside it that
+//! replaces it when complete; a device or a pipe is written in place).
+//! \throw InputError when the path cannot be written.
+void write_text_file(const std::string& path, const std::string& text);
+
 }  // namespace lrvd

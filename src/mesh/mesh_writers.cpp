@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -18,26 +19,43 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path + ": " + reason); }
 
+// A file written whole or not at all: the data go to `path`.lrvd-part beside it, which replaces
+// `path` when closed, so a run stopped while writing (or a full disk) leaves the old file or none,
+// never a truncated one. A device, a pipe or a symbolic link that is there already (-o /dev/null)
+// is written in place.
 class OutputFile {
  public:
-  explicit OutputFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
+  explicit OutputFile(const std::string& path) : path_(path) {
+    namespace fs = std::filesystem;
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    in_place_ = fs::exists(status) && !fs::is_regular_file(status);
+    part_ = in_place_ ? path : path + ".lrvd-part";
+    file_ = std::fopen(part_.c_str(), "wb");
     if (!file_) fail(path, fmt::format("cannot be opened for writing ({})", std::strerror(errno)));
   }
   ~OutputFile() {
-    if (file_) std::fclose(file_);
+    if (!file_) return;
+    std::fclose(file_);
+    if (!in_place_) std::remove(part_.c_str());
   }
-  void write(const fmt::memory_buffer& buffer) {
-    if (std::fwrite(buffer.data(), 1, buffer.size(), file_) != buffer.size()) fail(path_, "write failed");
+  void write(const char* data, std::size_t size) {
+    if (std::fwrite(data, 1, size, file_) != size) fail(path_, "write failed");
   }
+  void write(const fmt::memory_buffer& buffer) { write(buffer.data(), buffer.size()); }
   void close() {
     const bool ok = std::fclose(file_) == 0;
     file_ = nullptr;
-    if (!ok) fail(path_, "write failed");
+    if (ok && (in_place_ || std::rename(part_.c_str(), path_.c_str()) == 0)) return;
+    const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
+    if (!in_place_) std::remove(part_.c_str());
+    fail(path_, reason);
   }
 
  private:
-  std::string path_;
-  std::FILE* file_;
+  std::string path_, part_;
+  bool in_place_ = false;
+  std::FILE* file_ = nullptr;
 };
 
 void put_le(fmt::memory_buffer& out, uint64_t bits, int bytes) {
@@ -58,6 +76,12 @@ void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
 }
 
 }  // namespace
+
+void write_text_file(const std::string& path, const std::string& text) {
+  OutputFile file(path);
+  file.write(text.data(), text.size());
+  file.close();
+}
 
 const std::vector<std::string> kMeshWriteExtensions = {".off", ".obj", ".ply"};
 

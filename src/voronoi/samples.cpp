@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numeric>
 #include <queue>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
+#include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
 
 namespace lrvd {
@@ -231,14 +233,13 @@ PointFile read_xyz(const std::string& path) {
 }
 
 void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights) {
-  std::ofstream out(path);
-  if (!out) throw InputError(fmt::format("cannot write '{}'", path));
+  fmt::memory_buffer out;
   for (size_t i = 0; i < points.size(); ++i) {
-    out << fmt::format("{:.17g} {:.17g} {:.17g}", points[i].x, points[i].y, points[i].z);
-    if (!weights.empty()) out << fmt::format(" {:.17g}", weights[i]);
-    out << '\n';
+    fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {:.17g}", points[i].x, points[i].y, points[i].z);
+    if (!weights.empty()) fmt::format_to(std::back_inserter(out), " {:.17g}", weights[i]);
+    out.push_back('\n');
   }
-  if (!out) throw InputError(fmt::format("failed writing '{}'", path));
+  write_text_file(path, std::string(out.data(), out.size()));
 }
 
 }  // namespace lrvd
