@@ -447,7 +447,13 @@ TEST_CASE("A bisector through a mesh vertex, and one along a mesh edge", "[predi
       REQUIRE(pr::side2(j, i, l, a, b) == pr::side2(i, j, l, a, b));
       REQUIRE(pr::side2(i, j, l, b, a) == pr::side2(i, j, l, a, b));
       REQUIRE(pr::side3(i, j, l, l, a, b, c) == Sign::Zero);  // l repeats a defining site
+      // The tie itself, before the perturbation resolves it: the edge point is on bisector(i, l)
+      // (the weighted l ties only with its weight, which the largest scales drop).
+      if (std::abs(e) < 1000) REQUIRE(pr::side2_unperturbed(i, j, l, a, b) == Sign::Zero);
     }
+    REQUIRE(pr::side1_unperturbed(i, j, a) == Sign::Zero);
+    REQUIRE(pr::side1(i, j, a) != Sign::Zero);
+    REQUIRE(pr::side1_unperturbed(i, j, b) == pr::side1(i, j, b));  // no tie at the other end
     // bisector(i, k) is the plane y = 0 holding edge (q1, q2): both ends tie the same way, and
     // the type (b) vertex does not exist.
     const Site k = scaled(Site{{1, -1, 0}, 0, 6}, e);
