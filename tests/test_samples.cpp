@@ -5,9 +5,13 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "common/error.h"
 #include "mesh/closest_point.h"
+#include "mesh/mesh_io.h"
+#include "mesh/surface_mesh.h"
 #include "test_meshes.h"
 #include "voronoi/samples.h"
 
@@ -163,6 +167,35 @@ TEST_CASE("Points are located on the mesh by closest point") {
                                                       mesh.position(f[2])).distance);
     }
     REQUIRE(index.query(pushed[i]).distance == best);
+  }
+}
+
+TEST_CASE("Points located on edges of a refined mesh get barycentric coordinates that are not negative") {
+  // Centroids and edge midpoints of CGAL's ellipsoid on its refinement for 300 samples: many lie on
+  // the new edges, where the closest point's 1 - v - w can round below zero, and the verification
+  // would then put the sample outside its own triangle.
+  const SurfaceMesh input = read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/ellipsoid.off").mesh;
+  const SurfaceMesh mesh = refine_long_edges(input, suggested_refinement_length(input, 300));
+  std::vector<Vec3> points;
+  for (int t = 0; t < input.triangle_count(); ++t) {
+    const Triangle& tri = input.triangle(t);
+    const Vec3 &a = input.position(tri[0]), &b = input.position(tri[1]), &c = input.position(tri[2]);
+    points.push_back((a + b + c) / 3.0);
+    if (tri[0] < tri[1]) points.push_back(0.5 * (a + b));
+  }
+  const ClosestPointIndex index(mesh);
+  int rounded_below = 0;
+  for (const Vec3& p : points) {
+    const Vec3 b = index.query(p).barycentric;
+    rounded_below += b.x < 0 || b.y < 0 || b.z < 0;
+  }
+  CHECK(rounded_below > 0);  // the case is met
+  const Samples samples = locate_points(mesh, points);
+  for (int i = 0; i < samples.size(); ++i) {
+    INFO("point " << i);
+    const Vec3& b = samples.barycentric[i];
+    REQUIRE((b.x >= 0 && b.y >= 0 && b.z >= 0));
+    REQUIRE(b.x + b.y + b.z > 0.5);
   }
 }
 

@@ -171,7 +171,11 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
                                    i, p.x, p.y, p.z, c.distance, tolerance));
     samples.positions.push_back(c.point);
     samples.triangles.push_back(c.triangle);
-    samples.barycentric.push_back(c.barycentric);
+    // Inside the triangle near an edge, 1 - v - w can round to a hair below zero (a point given
+    // on a refined mesh's edge): the closest point is in the closed triangle, so its coordinates
+    // are not negative.
+    samples.barycentric.push_back({std::max(c.barycentric.x, 0.0), std::max(c.barycentric.y, 0.0),
+                                   std::max(c.barycentric.z, 0.0)});
     component_hit[mesh.triangle_components()[c.triangle]] = 1;
   }
   // Coincident samples have no bisector between them: refuse them.
