@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
+#include <set>
 #include <string>
 #include <tuple>
 
@@ -213,6 +215,60 @@ TEST_CASE("Samples on the corners of a right-angled tetrahedron: a connected LRV
   } while (std::next_permutation(order.begin(), order.end()));
   CHECK(orders == 24);
   CHECK(predicate_stats().total.perturbations > 0);  // the ties were met
+}
+
+TEST_CASE("Samples on a cube's lattice: the RVD's neighbours include every two on one empty sphere",
+          "[verification][degenerate][rvd]") {
+  // The surface of the cube [0, 2]^3 in unit squares, each split in two, the diagonals alternating.
+  std::map<std::array<int, 3>, int> index;
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  auto vertex = [&](std::array<int, 3> p) {
+    auto [it, added] = index.emplace(p, static_cast<int>(positions.size()));
+    if (added) positions.push_back({double(p[0]), double(p[1]), double(p[2])});
+    return it->second;
+  };
+  const int n = 2;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {0, n})
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int u, int v) {
+            std::array<int, 3> p{};
+            p[axis] = side, p[(axis + 1) % 3] = u, p[(axis + 2) % 3] = v;
+            return vertex(p);
+          };
+          const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+          const bool even = (i + j) % 2 == 0;
+          if (side == 0) {
+            if (even) triangles.insert(triangles.end(), {{a, c, b}, {a, d, c}});
+            else triangles.insert(triangles.end(), {{a, d, b}, {b, d, c}});
+          } else {
+            if (even) triangles.insert(triangles.end(), {{a, b, c}, {a, c, d}});
+            else triangles.insert(triangles.end(), {{a, b, d}, {b, c, d}});
+          }
+        }
+  const SurfaceMesh cube(positions, triangles);
+  // Every lattice point, and the midpoints of every third edge: 8 samples at the corners of each
+  // unit cube are on one empty sphere, and CGAL's triangulation of them need not join the pairs
+  // the diagram's perturbation makes neighbours.
+  std::vector<Vec3> points = positions;
+  std::set<std::pair<int, int>> edges;
+  for (const Triangle& t : triangles)
+    for (int e = 0; e < 3; ++e) edges.insert(std::minmax(t[e], t[(e + 1) % 3]));
+  int k = 0;
+  for (const auto& [a, b] : edges)
+    if (k++ % 3 == 0) points.push_back(0.5 * (positions[a] + positions[b]));
+  const double length = suggested_refinement_length(cube, static_cast<int>(points.size()));
+  const SurfaceMesh mesh = refine_long_edges(cube, length);
+  const Samples samples = locate_points(mesh, points);
+  for (DiagramKind kind : {DiagramKind::Rvd, DiagramKind::Lrvd}) {
+    const Diagram d = compute_diagram(mesh, samples, kind);
+    const DiagramVerification v = verify_diagram(mesh, samples, d);
+    INFO(to_string(kind) << "\n" << v.summary());
+    CHECK(v.passed);
+    CHECK(v.equidistant.passed);
+  }
 }
 
 TEST_CASE("Power diagrams do not promise that a sample lies in its cell", "[verification]") {

@@ -3,6 +3,7 @@
 // the cell of one corner, and each is clipped by all its neighbours' bisectors exactly.
 #include <algorithm>
 #include <chrono>
+#include <map>
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -19,16 +20,67 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 
+// The most samples on one empty sphere that are all made neighbours (see neighbours_of).
+constexpr std::size_t kMostCosphericalSamples = 32;
+
 // Neighbours of each sample in the 3D Delaunay (or regular) triangulation, as sorted lists.
-template <class Triangulation>
-std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n) {
+//
+// Samples on one empty sphere (or power sphere) have several Delaunay triangulations, and CGAL
+// builds one by its own tie rule, while the diagram's perturbation (the lower id is closer) may
+// make neighbours of two samples that CGAL's triangulation does not join (the other diagonal of a
+// cospherical cube's face, say). So the cells whose spheres are exactly one sphere are grouped
+// (a cell and its neighbour across a facet are, when the neighbour's far vertex is on the cell's
+// sphere: exact `side_of_sphere`), and every two samples of a group are neighbours.
+// `on_sphere(cell, vertex)` is that exact test.
+template <class Triangulation, class OnSphere>
+std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n, OnSphere on_sphere) {
   std::vector<std::vector<int>> adjacency(n);
   for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
     const int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
     adjacency[a].push_back(b);
     adjacency[b].push_back(a);
   }
-  for (auto& list : adjacency) std::sort(list.begin(), list.end());
+  using Cell = typename Triangulation::Cell_handle;
+  std::map<Cell, Cell> parent;
+  auto find = [&](Cell c) {
+    auto it = parent.find(c);
+    while (it != parent.end() && it->second != c) {
+      c = it->second;
+      it = parent.find(c);
+    }
+    return c;
+  };
+  for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c)
+    for (int i = 0; i < 4; ++i) {
+      const Cell other = c->neighbor(i);
+      if (Cell(c) < other && on_sphere(Cell(c), other->vertex(other->index(Cell(c))))) {
+        const Cell a = find(c), b = find(other);
+        parent.emplace(a, a);
+        parent.emplace(b, b);
+        if (a != b) parent[b] = a;
+      }
+    }
+  std::map<Cell, std::vector<int>> groups;
+  for (const auto& [cell, up] : parent) {
+    std::vector<int>& members = groups[find(cell)];
+    for (int i = 0; i < 4; ++i)
+      if (!tr.is_infinite(cell->vertex(i))) members.push_back(cell->vertex(i)->info());
+  }
+  for (auto& [root, members] : groups) {
+    std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
+    // Samples all on one sphere (the vertices of a sphere mesh) would make every two neighbours
+    // and every clipping as long as the samples: such groups keep CGAL's triangulation, and the
+    // verification reports it if the diagram then breaks.
+    if (members.size() > kMostCosphericalSamples) continue;
+    for (int a : members)
+      for (int b : members)
+        if (a != b) adjacency[a].push_back(b);
+  }
+  for (auto& list : adjacency) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
   return adjacency;
 }
 
@@ -39,7 +91,13 @@ std::vector<std::vector<int>> delaunay_neighbours(const std::vector<Site>& sites
   std::vector<std::pair<K::Point_3, int>> points;
   for (const Site& s : sites) points.emplace_back(K::Point_3(s.p.x, s.p.y, s.p.z), s.id);
   const Dt dt(points.begin(), points.end());
-  return neighbours_of(dt, static_cast<int>(sites.size()));
+  const auto oriented_sphere = K().side_of_oriented_sphere_3_object();
+  return neighbours_of(dt, static_cast<int>(sites.size()), [&](typename Dt::Cell_handle c, typename Dt::Vertex_handle v) {
+    if (dt.is_infinite(v)) return false;
+    if (dt.is_infinite(c)) return dt.side_of_sphere(c, v->point()) == CGAL::ON_BOUNDARY;
+    return oriented_sphere(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point(),
+                           v->point()) == CGAL::ON_ORIENTED_BOUNDARY;
+  });
 }
 
 std::vector<std::vector<int>> regular_neighbours(const std::vector<Site>& sites) {
@@ -49,7 +107,9 @@ std::vector<std::vector<int>> regular_neighbours(const std::vector<Site>& sites)
   std::vector<std::pair<K::Weighted_point_3, int>> points;
   for (const Site& s : sites) points.emplace_back(K::Weighted_point_3(K::Point_3(s.p.x, s.p.y, s.p.z), s.w), s.id);
   const Rt rt(points.begin(), points.end());
-  return neighbours_of(rt, static_cast<int>(sites.size()));
+  return neighbours_of(rt, static_cast<int>(sites.size()), [&](typename Rt::Cell_handle c, typename Rt::Vertex_handle v) {
+    return !rt.is_infinite(v) && rt.side_of_power_sphere(c, v->point()) == CGAL::ON_BOUNDARY;
+  });
 }
 
 }  // namespace
