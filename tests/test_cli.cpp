@@ -147,6 +147,8 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
   std::ofstream(word) << tet << "3 0 2 1 extra\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   std::ofstream(coloured) << tet << "3 0 2 1 255 0 0\n3 0 1 3 0.5 0.5 0.5 1\n3 0 3 2\n3 1 2 3\n# the end\n\n";
   std::ofstream(bom) << "\xef\xbb\xbf" << tet << faces;
+  const std::string truncated_stl = kOut + "truncated.stl";
+  std::ofstream(truncated_stl) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n";
   const std::string empty_weights = kOut + "empty_weights.txt", corners = kOut + "corners.xyz";
   std::ofstream(empty_weights) << "";
   std::ofstream(corners) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
@@ -159,7 +161,8 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
       {"mps " + coloured + " --radius 0.2 -o " + kOut + "m.xyz --remesh ''", "--remesh: a file name may not be empty"},
       {"compute " + coloured + " --points " + corners + " --weights " + empty_weights + " --diagram lrpd",
        "holds no weights"},
-      {"stress --report " + kOut + "no_such_folder/report", "does not exist"}};
+      {"stress --report " + kOut + "no_such_folder/report", "does not exist"},
+      {"compute " + truncated_stl + " -n 5", "no complete facet"}};
   for (const auto& [args, reason] : refused) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);

@@ -107,9 +107,12 @@ void check_soup(const std::string& path, Format format, const std::vector<Point>
     const std::string scanned = diagnose_unreadable_mesh_file(path, format);
     fail(path, scanned.rfind("cannot be parsed", 0) == 0 ? reason : scanned);
   };
-  if (polygons.empty())
+  if (polygons.empty()) {
+    // An STL file is made of facets only: corners without one are a facet cut short.
+    if (format == Format::Stl && !points.empty()) fail(path, "has no complete facet (is the file truncated?)");
     fail(path, points.empty() ? "has no vertices and no faces"
                               : fmt::format("has {} vertices but no faces (a point cloud?)", points.size()));
+  }
   for (std::size_t v = 0; v < points.size(); ++v) {
     const Point& p = points[v];
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))

@@ -70,7 +70,8 @@ void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const Sy
 struct TrianglePolygon {
   int cell = -1;
   int end = 0;
-  std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon
+  std::uint8_t reach = 0, along = 0;  //!< polygon_edges() of the polygon (the LRVD may take them in
+                                      //!< the limit after a tie, and mark along kZeroAreaInTheLimit)
 };
 
 //! A bit of TrianglePolygon::along (and of Diagram::polygon_along) beside the three edges': the

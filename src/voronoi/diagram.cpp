@@ -129,8 +129,8 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
 
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
   const int np = static_cast<int>(diagram.polygons.size());
-  // The edges each polygon runs along (in parallel), then the joins.
   if (diagram.polygon_along.size() == static_cast<size_t>(np)) return cell_components(diagram, mesh, diagram.polygon_along);
+  // The edges each polygon runs along (in parallel), then the joins.
   std::vector<unsigned char> along_edges(np);
   tbb::parallel_for(tbb::blocked_range<int>(0, np, 1024), [&](const tbb::blocked_range<int>& range) {
     for (int p = range.begin(); p != range.end(); ++p) {
