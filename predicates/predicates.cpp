@@ -333,7 +333,7 @@ bool in_filter_range(const Site& s) { return in_range(s); }
 namespace {
 
 // sign(-f_il(q)) of the unperturbed weights, Zero on an exact tie; counted as one side1 call.
-Sign side1_unperturbed_counted(ThreadCounters& c, const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
+[[gnu::always_inline]] inline Sign side1_unperturbed_counted(ThreadCounters& c, const Site& i, const Site& l, const Vec3& q, bool inputs_in_range) {
   bump(c, kSide1, kCalls);
   if (inputs_in_range || (in_range(i) && in_range(l) && in_range(q))) {
     if (Sign s = side1_fpf(i, l, q); s != Sign::Zero) return s;
@@ -405,7 +405,7 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
 namespace {
 
 // side2's filters: the sign when they decide it, else Zero (then counted as going exact).
-Sign side2_filtered(ThreadCounters& c, const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
+[[gnu::always_inline]] inline Sign side2_filtered(ThreadCounters& c, const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
                     bool inputs_in_range) {
   bump(c, kSide2, kCalls);
   if (inputs_in_range || (in_range(i) && in_range(j) && in_range(l) && in_range(q1) && in_range(q2))) {
