@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -220,6 +221,31 @@ TEST_CASE("Closest-point queries answer alike at any scale of the mesh") {
         REQUIRE(b.point == s * a.point);
         REQUIRE(b.distance == s * a.distance);
       }
+  }
+}
+
+TEST_CASE("Closest-point queries on a model far from the origin find the nearest triangle") {
+  // A sphere of radius 1 at 1e8: in floats its triangles' boxes would be a few values apart, so
+  // the index sees it relative to its centre. Every answer is the brute-force nearest.
+  const SurfaceMesh sphere = test::icosphere(3);
+  std::vector<Vec3> far = sphere.positions();
+  for (Vec3& p : far) p = p + Vec3{1e8, -1e8, 3e8};
+  const SurfaceMesh mesh(far, sphere.triangles());
+  const ClosestPointIndex index(mesh);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int k = 0; k < 500; ++k) {
+    const int t = static_cast<int>(rng() % mesh.triangle_count());
+    const Triangle& tri = mesh.triangle(t);
+    const Vec3 on = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+    const Vec3 p = on + 0.2 * Vec3{unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5};
+    double best = std::numeric_limits<double>::infinity();
+    for (int u = 0; u < mesh.triangle_count(); ++u) {
+      const Triangle& v = mesh.triangle(u);
+      best = std::min(best, closest_point_on_triangle(p, mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])).distance);
+    }
+    INFO("query " << k);
+    REQUIRE(index.query(p).distance == best);
   }
 }
 

@@ -88,6 +88,11 @@ struct ClosestPointIndex::Impl {
   // coordinate into [1, 2), so that squared distances neither overflow nor vanish whatever the
   // model's unit. Scaling by a power of two is exact, so the traversal is the same at any scale.
   double scale = 1;
+  // A model far from the origin for its size (a part at 1e8 in a plant's coordinates) would have
+  // all its boxes within a few floats of each other, and every query would visit every triangle:
+  // Embree then sees it relative to the centre of its bounding box (`origin`), a translation that
+  // only the boxes and the query point take. Distances are measured on the input's doubles.
+  Vec3 origin;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
 };
@@ -112,10 +117,17 @@ void triangle_bounds(const RTCBoundsFunctionArguments* args) {
       lo[c] = std::min(lo[c], impl->positions[tri[k]][c]);
       hi[c] = std::max(hi[c], impl->positions[tri[k]][c]);
     }
-  lo = impl->scale * lo, hi = impl->scale * hi;
+  lo = impl->scale * (lo - impl->origin), hi = impl->scale * (hi - impl->origin);
   RTCBounds* box = args->bounds_o;
   box->lower_x = round_down(lo.x), box->lower_y = round_down(lo.y), box->lower_z = round_down(lo.z);
   box->upper_x = round_up(hi.x), box->upper_y = round_up(hi.y), box->upper_z = round_up(hi.z);
+  if (impl->origin != Vec3{}) {  // one float more on every side covers the rounded subtraction
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    box->lower_x = std::nextafter(box->lower_x, -inf), box->lower_y = std::nextafter(box->lower_y, -inf);
+    box->lower_z = std::nextafter(box->lower_z, -inf);
+    box->upper_x = std::nextafter(box->upper_x, inf), box->upper_y = std::nextafter(box->upper_y, inf);
+    box->upper_z = std::nextafter(box->upper_z, inf);
+  }
 }
 
 struct QueryState {
@@ -147,8 +159,21 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
     : impl_(std::make_unique<Impl>()) {
   impl_->positions = positions;
   impl_->triangles = triangles;
+  if (!positions.empty()) {
+    Vec3 lo = positions[0], hi = lo;
+    for (const Vec3& p : positions)
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
+    const Vec3 centre = 0.5 * lo + 0.5 * hi;
+    const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    // Only where floats would lose the model: elsewhere the boxes are as they always were.
+    if (is_finite(centre) && std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) > 64 * size)
+      impl_->origin = centre;
+  }
   double largest = 0;
-  for (const Vec3& p : positions) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  for (const Vec3& p : positions) {
+    const Vec3 d = p - impl_->origin;
+    largest = std::max({largest, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+  }
   // (A subnormal largest coordinate would need a factor beyond the doubles: it gets 2^1000.)
   if (largest > 0 && std::isfinite(largest)) impl_->scale = std::ldexp(1.0, std::min(-std::ilogb(largest), 1000));
   impl_->device = rtcNewDevice("threads=1");
@@ -177,10 +202,12 @@ ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const { return qu
 
 ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, int g, int hint) const {
   RTCPointQuery q;
-  const Vec3 scaled = impl_->scale * p;
+  const Vec3 scaled = impl_->scale * (p - impl_->origin);
   q.x = static_cast<float>(scaled.x), q.y = static_cast<float>(scaled.y), q.z = static_cast<float>(scaled.z);
   const Vec3 rounded{q.x, q.y, q.z};
-  QueryState state{impl_.get(), p, distance(scaled, rounded), group, g, {}};
+  // With an origin, the subtraction's rounding (at most 2^-53 of each coordinate) is added.
+  const double offset = distance(scaled, rounded) + (impl_->origin != Vec3{} ? 0x1p-51 * norm(scaled) : 0.0);
+  QueryState state{impl_.get(), p, offset, group, g, {}};
   q.time = 0;
   q.radius = std::numeric_limits<float>::infinity();
   if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size()) && (!group || group[hint] == g)) {
