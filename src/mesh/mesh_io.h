@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -100,6 +101,6 @@ void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
 //! Writes `text` to `path` whole or not at all (as every writer here: into a file beside it that
 //! replaces it when complete; a device or a pipe is written in place).
 //! \throw InputError when the path cannot be written.
-void write_text_file(const std::string& path, const std::string& text);
+void write_text_file(const std::string& path, std::string_view text);
 
 }  // namespace lrvd

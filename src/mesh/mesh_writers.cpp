@@ -77,7 +77,7 @@ void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
 
 }  // namespace
 
-void write_text_file(const std::string& path, const std::string& text) {
+void write_text_file(const std::string& path, std::string_view text) {
   OutputFile file(path);
   file.write(text.data(), text.size());
   file.close();

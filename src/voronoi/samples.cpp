@@ -243,7 +243,7 @@ void write_xyz(const std::string& path, const std::vector<Vec3>& points, const s
     if (!weights.empty()) fmt::format_to(std::back_inserter(out), " {:.17g}", weights[i]);
     out.push_back('\n');
   }
-  write_text_file(path, std::string(out.data(), out.size()));
+  write_text_file(path, {out.data(), out.size()});
 }
 
 }  // namespace lrvd
