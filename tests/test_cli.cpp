@@ -125,6 +125,24 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
     REQUIRE(lines(r.err) >= 1);
     if (args.rfind("nosuch", 0) != 0) REQUIRE(lines(r.err) == 1);
   }
+  // A refinement the coordinates cannot hold: the line names the file and the splitting, not only
+  // a triangle of a mesh the user never saw.
+  {
+    const lrvd::SurfaceMesh sphere = lrvd::test::icosphere(3);
+    std::vector<lrvd::Vec3> far = sphere.positions();
+    for (lrvd::Vec3& p : far) p = p * 20.0 + lrvd::Vec3{3e14, 3e14, 3e14};
+    const std::string far_sphere = kOut + "far_sphere.off";
+    lrvd::write_mesh(far_sphere, far, sphere.triangles());
+    for (const std::string& args : {"remesh " + far_sphere + " -n 50 --refine 0.3 -o " + kOut + "far_remesh.off",
+                                    "mps " + far_sphere + " --radius 0.00375 -o " + kOut + "far_mps.xyz"}) {
+      const Run r = run(args);
+      INFO(args << "\n" << r.err);
+      REQUIRE(r.status == 2);
+      REQUIRE(lines(r.err) == 1);
+      REQUIRE(r.err.find("lrvd: error: " + far_sphere + ": splitting edges longer than") != std::string::npos);
+      REQUIRE(r.err.find("made a zero-area triangle") != std::string::npos);
+    }
+  }
   REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
   REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
   // A report no one can write (not even root, under /proc): refused before the remesh, whose mesh

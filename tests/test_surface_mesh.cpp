@@ -194,6 +194,25 @@ TEST_CASE("Refinement bounds every edge and keeps the surface") {
   REQUIRE_THROWS_AS(refine_long_edges(mesh, 0.0), InputError);
 }
 
+TEST_CASE("A refinement whose rounded midpoints make a zero-area triangle says so, not just which triangle") {
+  // At 3e14 a double steps by 1/16: a sphere of radius 20 there is fine as given, but edges split
+  // down to 0.3 are a few steps long and some rounded midpoints fall on a line through two corners.
+  const SurfaceMesh sphere = test::icosphere(3);
+  std::vector<Vec3> far = sphere.positions();
+  for (Vec3& p : far) p = p * 20.0 + Vec3{3e14, 3e14, 3e14};
+  const SurfaceMesh mesh(far, sphere.triangles());
+  REQUIRE_THROWS_WITH(refine_long_edges(mesh, 0.3),
+                      Catch::Contains("splitting edges longer than 0.3 made a zero-area triangle (refined mesh:") &&
+                          Catch::Contains("move the model nearer the origin"));
+  std::vector<double> lengths(mesh.vertex_count(), 0.3);
+  REQUIRE_THROWS_WITH(refine_to_length_field(mesh, lengths),
+                      Catch::Contains("edges longer than the length field (down to 0.3) made a zero-area triangle"));
+  // The same sphere at the origin refines without complaint.
+  std::vector<Vec3> near = sphere.positions();
+  for (Vec3& p : near) p = p * 20.0;
+  REQUIRE(refine_long_edges(SurfaceMesh(near, sphere.triangles()), 0.3).max_edge_length() <= 0.3);
+}
+
 TEST_CASE("Refinement carries a field that is linear over each input triangle to the new vertices") {
   // f = a·x + b is linear everywhere, so the mean at each split must equal f at the new vertex.
   const SurfaceMesh mesh = test::octahedron();

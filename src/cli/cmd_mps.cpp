@@ -73,7 +73,15 @@ int run_mps(const MpsCommandOptions& opt) {
   options.feature_angle = opt.feature_angle;
   options.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
-  const MpsResult result = maximal_poisson_disk_sampling(input, options);
+  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
+  // message names the file, as the loader's do.
+  const MpsResult result = [&] {
+    try {
+      return maximal_poisson_disk_sampling(input, options);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", opt.mesh_path, e.what()));
+    }
+  }();
   const Samples& samples = result.samples;
   write_xyz(opt.output, samples.positions, samples.weights);
 

@@ -161,7 +161,11 @@ Input load_input(const InputOptions& opt) {
                                    opt.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
     progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
     input.refined_from = input.loaded.mesh.triangle_count();
-    input.mesh = refine_long_edges(input.loaded.mesh, length);
+    try {
+      input.mesh = refine_long_edges(input.loaded.mesh, length);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", opt.mesh_path, e.what()));
+    }
   } else {
     input.mesh = input.loaded.mesh;
   }

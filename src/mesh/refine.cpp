@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -258,6 +259,21 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
           live_edges, std::move(components)};
 }
 
+// The refined mesh's zero-area error, told in its context. Halving an edge exactly never makes a
+// zero-area triangle, but a midpoint is rounded to doubles: far from the origin for its length, an
+// edge is a few units in the last place long and its midpoint can land on a line through two other
+// corners. The mesh's check then names a triangle the user never gave, so the message says where
+// it came from and what to change.
+[[noreturn]] void throw_refined_zero_area(const InputError& error, const SurfaceMesh& input, const std::string& split) {
+  const BoundingBox box = input.bounding_box();
+  const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                                 std::abs(box.max.y), std::abs(box.max.z)});
+  throw InputError(fmt::format("splitting {} made a zero-area triangle (refined mesh: {}): at coordinates up to "
+                               "{:.3g} doubles are too coarse for edges that short; move the model nearer the origin or "
+                               "split less finely",
+                               split, error.what(), reach));
+}
+
 }  // namespace
 
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
@@ -269,8 +285,12 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
   // The splitting's edge records, queue and unordered arrays are gone before the mesh builds its
   // vertex lists, which can then reuse some of that memory.
   Refinement r = split_long_edges(mesh, max_length, vertex_values, false, order);
-  return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
-                     std::move(r.components), mesh.component_count());
+  try {
+    return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
+                       std::move(r.components), mesh.component_count());
+  } catch (const InputError& e) {
+    throw_refined_zero_area(e, mesh, fmt::format("edges longer than {:.6g}", max_length));
+  }
 }
 
 SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths, RefineOrder order) {
@@ -279,9 +299,14 @@ SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>&
   for (double length : vertex_lengths)
     if (!(length > 0) || !std::isfinite(length))
       throw InputError(fmt::format("refinement lengths must be positive (got {})", length));
+  const double shortest = *std::min_element(vertex_lengths.begin(), vertex_lengths.end());
   Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true, order);
-  return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
-                     std::move(r.components), mesh.component_count());
+  try {
+    return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
+                       std::move(r.components), mesh.component_count());
+  } catch (const InputError& e) {
+    throw_refined_zero_area(e, mesh, fmt::format("edges longer than the length field (down to {:.6g})", shortest));
+  }
 }
 
 double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_length) {
