@@ -314,6 +314,20 @@ TEST_CASE("lrvd refuses a triangle soup naming --repair, and --repair welds it",
   const std::string report = kOut + "soup.json";
   REQUIRE(run("compute " + soup + " -n 10 --repair --report " + report).status == 0);
   REQUIRE(read_json(report)["input"]["closed"] == true);
+
+  // Corners a rounding apart: refused naming --weld, which implies --repair and welds them.
+  const std::string jittered = std::string(LRVD_SOURCE_DIR) + "/tests/data/soup_jittered.off";
+  const Run near = run("compute " + jittered + " -n 10");
+  REQUIRE(near.status == 2);
+  REQUIRE(lines(near.err) == 1);
+  REQUIRE(near.err.find("rerun with --repair --weld 1e-09") != std::string::npos);
+  const Run welded = run("compute " + jittered + " -n 10 --weld 1e-9 --report " + report);
+  INFO(welded.err);
+  REQUIRE(welded.status == 0);
+  REQUIRE(welded.out.find("repair: welded 18 vertices") != std::string::npos);
+  REQUIRE(read_json(report)["input"]["closed"] == true);
+  REQUIRE(read_json(report)["input"]["vertices"] == 6);
+  for (const std::string& bad : {"0", "-1e-6", "x", "inf"}) REQUIRE(run("compute " + jittered + " -n 10 --weld " + bad).status == 2);
 }
 
 TEST_CASE("lrvd gives the same output with one thread and with several", "[cli][remesh]") {

@@ -12,6 +12,7 @@
 
 #include "common/error.h"
 #include "mesh/mesh_io.h"
+#include "mesh/weld.h"
 
 using namespace lrvd;
 using Catch::Contains;
@@ -223,6 +224,60 @@ TEST_CASE("an unwelded triangle soup is refused without --repair and welded into
   REQUIRE(loaded.repair.merged_vertices == 18);
   REQUIRE(loaded.repair.reoriented_faces == 0);
   REQUIRE(loaded.repair.changed());
+}
+
+TEST_CASE("a soup whose corners nearly coincide is refused naming --weld, and --weld welds it") {
+  // soup_jittered.off: the octahedron soup with its corner copies 1e-10 to 2.3e-9 apart. The exact
+  // twin test sees no seam; the near one does, and suggests a weld that takes every pair.
+  REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off")),
+                      Contains("soup_jittered.off: looks like a triangle soup whose corners nearly coincide: vertices "
+                               "0 and 10 are 1e-09 apart") &&
+                          Contains("(24 boundary vertices have such a twin); rerun with --repair --weld 1e-09"));
+  // Exact welding alone leaves the seams open: said, not remeshed as 8 loose triangles.
+  REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off"), {true}),
+                      Contains("after --repair, vertices") && Contains("--weld 1e-09"));
+  for (const double weld : {1e-9, 1e-6}) {
+    ReadOptions options;
+    options.repair = true;
+    options.weld = weld;
+    const LoadedMesh loaded = read_mesh(data("soup_jittered.off"), options);
+    REQUIRE(loaded.mesh.vertex_count() == 6);
+    REQUIRE(loaded.mesh.triangle_count() == 8);
+    REQUIRE(loaded.mesh.is_closed());
+    REQUIRE(loaded.mesh.euler_characteristic() == 2);
+    REQUIRE(loaded.repair.welded_vertices == 18);
+    REQUIRE(loaded.repair.merged_vertices == 0);
+    REQUIRE(signed_volume(loaded.mesh) == Approx(4.0 / 3.0));
+  }
+  // Too small a weld leaves some seams, and says so again.
+  ReadOptions small;
+  small.repair = true;
+  small.weld = 1e-10;
+  REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off"), small), Contains("nearly coincide"));
+}
+
+TEST_CASE("Welding takes points to the earliest representative within the tolerance, without chains") {
+  const std::vector<Vec3> line = {{0, 0, 0}, {0.6, 0, 0}, {1.2, 0, 0}, {1.7, 0, 0}, {5, 0, 0}, {0, 0.99, 0}};
+  // 1.2 is within 1 of 0.6 but not of 0, the representative that took 0.6: it starts its own.
+  REQUIRE(weld_representatives(line, 1.0) == std::vector<int>{0, 0, 2, 2, 4, 0});
+  REQUIRE(weld_representatives(line, 0.0) == std::vector<int>{0, 1, 2, 3, 4, 5});
+  // A distance equal to the tolerance is not within it.
+  REQUIRE(weld_representatives({{0, 0, 0}, {0.5, 0, 0}}, 0.5) == std::vector<int>{0, 1});
+
+  // Near twins: not at the same point, not joined, among the candidates only.
+  const std::vector<Vec3> points = {{0, 0, 0}, {0, 0, 0}, {0.1, 0, 0}, {0.15, 0, 0}, {3, 0, 0}, {3.05, 0, 0}};
+  const auto never = [](int, int) { return false; };
+  NearTwins twins = find_near_twins(points, {0, 1, 2, 3, 4, 5}, 0.2, never);
+  REQUIRE(twins.count == 6);
+  REQUIRE(twins.a == 0);
+  REQUIRE(twins.b == 2);
+  REQUIRE(twins.distance == Approx(0.1));
+  REQUIRE(twins.max_distance == Approx(0.15));
+  const auto edge_2_3 = [](int a, int b) { return std::min(a, b) == 2 && std::max(a, b) == 3; };
+  twins = find_near_twins(points, {2, 3, 4}, 0.2, edge_2_3);
+  REQUIRE(twins.count == 0);
+  REQUIRE(twins.a == -1);
+  REQUIRE(find_near_twins(points, {0, 1}, 0.2, never).count == 0);  // the same point is an exact twin
 }
 
 TEST_CASE("Repair orients, removes duplicates and degenerate faces, and cuts non-manifold configurations") {

@@ -24,8 +24,7 @@ constexpr double kMaxRelativeRadius = 10;  //!< --radius, relative to the longes
 
 struct MpsCommandOptions {
   std::string mesh_path;
-  bool repair = false;
-  double fill_holes = 0;
+  ReadOptions read;  //!< --repair, --weld, --fill-holes
   double radius = 0;
   bool adaptive = false;
   double max_radius_ratio = MpsOptions{}.max_radius_ratio;
@@ -54,9 +53,9 @@ int run_mps(const MpsCommandOptions& opt) {
   check_outputs({{opt.output, "-o", {}, kMeshReadExtensions},
                  {opt.remesh, "--remesh", kMeshWriteExtensions},
                  {opt.report, "--report", {}, kMeshReadExtensions}});
-  const LoadedMesh loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair, opt.fill_holes});
+  const LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
   const SurfaceMesh& input = loaded.mesh;
-  print_repair(loaded.repair, opt.repair, opt.fill_holes);
+  print_repair(loaded.repair, opt.read);
 
   MpsOptions options;
   options.radius = opt.radius;
@@ -226,7 +225,7 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::Range(1.0, 179.0))
       ->each([opt](const std::string&) { opt->feature_angle_given = true; })
       ->capture_default_str();
-  add_repair_options(cmd, opt->repair, opt->fill_holes);
+  add_repair_options(cmd, opt->read);
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required()->check(path_validator());
   cmd->add_option("--remesh", opt->remesh, "Also write the LRRT of the samples (.off, .obj, .ply) and check it")
       ->check(path_validator());

@@ -209,14 +209,13 @@ int run_remesh(const RemeshCommandOptions& opt) {
 
 struct QualityOptions {
   std::string reference, mesh, report;
-  bool repair = false;    //!< of the reference, as the remesh's input was
-  double fill_holes = 0;  //!< of the reference, as the remesh's input was
+  ReadOptions read;  //!< of the reference, as the remesh's input was
 };
 
 int run_quality(const QualityOptions& opt) {
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}});
-  const LoadedMesh loaded = read_mesh(opt.reference, ReadOptions{opt.repair, opt.fill_holes});
-  print_repair(loaded.repair, opt.repair, opt.fill_holes);
+  const LoadedMesh loaded = read_mesh(opt.reference, opt.read);
+  print_repair(loaded.repair, opt.read);
   const SurfaceMesh& reference = loaded.mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh);
   const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
@@ -272,7 +271,7 @@ Action add_quality_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
   cmd->add_option("reference", opt->reference, "The input surface")->required()->check(path_validator());
   cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required()->check(path_validator());
-  add_repair_options(cmd, opt->repair, opt->fill_holes, "the reference (as for the remesh)");
+  add_repair_options(cmd, opt->read, "the reference (as for the remesh)");
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   return [opt]() { return run_quality(*opt); };
 }

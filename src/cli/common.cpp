@@ -31,42 +31,58 @@ CLI::Validator seed_validator() {
       "UINT64");
 }
 
-void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what) {
-  cmd->add_flag("--repair", repair,
+namespace {
+
+// A positive, finite fraction of the bounding-box diagonal.
+CLI::Validator fraction_validator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !(value > 0) || !std::isfinite(value))
+          return "a positive fraction of the bounding-box diagonal, not '" + text + "'";
+        return std::string();
+      },
+      "FRACTION");
+}
+
+}  // namespace
+
+void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what) {
+  cmd->add_flag("--repair", read.repair,
                 fmt::format("Weld, clean, orient and stitch {} before use (a triangle soup, non-manifold edges)", what));
-  cmd->add_option("--fill-holes", fill_holes,
+  cmd->add_option("--weld", read.weld,
+                  fmt::format("Repair {}, first welding every vertex to an earlier one closer than this fraction of "
+                              "its bounding-box diagonal (e.g. 1e-6: a soup whose corners were written with "
+                              "rounding noise)",
+                              what))
+      ->check(fraction_validator())
+      ->each([&read](const std::string&) { read.repair = true; });
+  cmd->add_option("--fill-holes", read.fill_holes,
                   fmt::format("Fill every hole of {} whose boundary is at most this fraction of its bounding-box "
                               "diagonal long (e.g. 0.05); the other holes are kept",
                               what))
-      ->check(CLI::Validator(
-          [](std::string& text) -> std::string {
-            char* end = nullptr;
-            const double value = std::strtod(text.c_str(), &end);
-            if (text.empty() || *end != '\0' || !(value > 0) || !std::isfinite(value))
-              return "a positive fraction of the bounding-box diagonal, not '" + text + "'";
-            return std::string();
-          },
-          "FRACTION"));
+      ->check(fraction_validator());
 }
 
-void print_repair(const RepairReport& r, bool repair, double fill_holes) {
-  if (repair)
+void print_repair(const RepairReport& r, const ReadOptions& read) {
+  if (read.repair)
     std::printf("repair: %s\n", r.soup_changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
                                                          "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
                                                          "copied {} non-manifold vertices, triangulated {} polygons",
-                                                         r.merged_vertices, r.removed_degenerate_faces,
+                                                         r.welded_vertices + r.merged_vertices, r.removed_degenerate_faces,
                                                          r.removed_duplicate_faces, r.removed_unreferenced_vertices,
                                                          r.reoriented_faces, r.stitched_edges,
                                                          r.duplicated_nonmanifold_vertices, r.triangulated_faces)
                                                  .c_str()
                                            : "nothing to change");
-  if (!repair && !(fill_holes > 0)) return;
+  if (!read.repair && !(read.fill_holes > 0)) return;
   for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
 }
 
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
   cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required()->check(path_validator());
-  add_repair_options(cmd, opt.repair, opt.fill_holes);
+  add_repair_options(cmd, opt.read);
   CLI::Option* points =
       cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line")->check(path_validator());
   if (allow_count) {
@@ -121,10 +137,10 @@ std::vector<double> read_weights(const std::string& path) {
 
 Input load_input(const InputOptions& opt) {
   Input input;
-  input.loaded = read_mesh(opt.mesh_path, ReadOptions{opt.repair, opt.fill_holes});
+  input.loaded = read_mesh(opt.mesh_path, opt.read);
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
   require_workable_size(input.loaded.mesh, "lrvd");
-  print_repair(input.loaded.repair, opt.repair, opt.fill_holes);
+  print_repair(input.loaded.repair, opt.read);
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {

@@ -18,8 +18,7 @@ namespace lrvd::cli {
 //! Options every command that reads a mesh and samples shares.
 struct InputOptions {
   std::string mesh_path;
-  bool repair = false;
-  double fill_holes = 0;      //!< --fill-holes: largest hole filled, as a fraction of the bbox diagonal
+  ReadOptions read;           //!< --repair, --weld, --fill-holes
   int count = 0;              //!< -n: random samples
   std::string points_path;    //!< --points: samples from a file
   std::string weights_path;   //!< --weights: one weight per line (or 4th column of --points)
@@ -28,10 +27,10 @@ struct InputOptions {
 };
 
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count);
-//! --repair and --fill-holes for the mesh file called `what`.
-void add_repair_options(CLI::App* cmd, bool& repair, double& fill_holes, const std::string& what = "the mesh");
-//! What --repair and --fill-holes changed, one "repair: ..." line each (nothing when neither is given).
-void print_repair(const RepairReport& report, bool repair, double fill_holes);
+//! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
+void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");
+//! What --repair, --weld and --fill-holes changed, one "repair: ..." line each (nothing when none is given).
+void print_repair(const RepairReport& report, const ReadOptions& read);
 //! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
 CLI::Validator seed_validator();
 //! Refuses an empty file name (`-o ""`), which would otherwise read as "not given".

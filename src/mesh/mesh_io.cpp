@@ -32,6 +32,7 @@
 
 #include "common/error.h"
 #include "mesh/mesh_file_diagnosis.h"
+#include "mesh/weld.h"
 #include "metrics/self_intersections.h"
 
 namespace lrvd {
@@ -217,10 +218,19 @@ int drop_unreferenced(std::vector<Vec3>& positions, std::vector<Triangle>& trian
   return dropped;
 }
 
-// An unwelded soup: two vertices with identical coordinates, both on boundary edges, i.e. a seam
-// that welding would close. (Closed meshes touching themselves at a point are not refused.)
+// Boundary corners closer than this fraction of the bounding-box diagonal, yet not at the same
+// point, are a seam written with rounding noise (docs/input.md, "Near-coincident corners"): a
+// float's rounding at the model's size is about 6e-8 of it, a coordinate printed with six digits
+// about 1e-6 of its value.
+constexpr double kNearTwinFraction = 1e-6;
+
+// An unwelded soup: two vertices on boundary edges at the same point (a seam that welding would
+// close), or, failing that, two within kNearTwinFraction of the model's size (a seam --weld would
+// close). Closed meshes touching themselves at a point are not refused. After --repair only the
+// near twins are looked for (the orientation step copies vertices at non-manifold points), and the
+// vertices are the repaired mesh's.
 void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& positions,
-                          const std::vector<Triangle>& triangles, const std::vector<int>& original) {
+                          const std::vector<Triangle>& triangles, const std::vector<int>& original, bool repaired) {
   std::unordered_map<uint64_t, int> edge_uses;
   edge_uses.reserve(triangles.size() * 2);
   const auto key = [](int a, int b) {
@@ -235,23 +245,39 @@ void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& posi
   std::vector<int> order;
   for (int v = 0; v < static_cast<int>(positions.size()); ++v)
     if (on_boundary[v]) order.push_back(v);
-  const auto less = [&](int a, int b) {
-    const Vec3 &p = positions[a], &q = positions[b];
-    return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
-  };
-  std::sort(order.begin(), order.end(), less);
-  int coincident = 0, first_a = -1, first_b = -1;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const bool same_as_prev = i > 0 && positions[order[i]] == positions[order[i - 1]];
-    const bool same_as_next = i + 1 < order.size() && positions[order[i]] == positions[order[i + 1]];
-    if (same_as_prev || same_as_next) ++coincident;
-    if (same_as_next && (first_a < 0 || original[order[i]] < first_a))
-      first_a = original[order[i]], first_b = original[order[i + 1]];
+  if (order.empty()) return;
+  if (!repaired) {
+    const auto less = [&](int a, int b) {
+      const Vec3 &p = positions[a], &q = positions[b];
+      return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+    };
+    std::vector<int> sorted = order;
+    std::sort(sorted.begin(), sorted.end(), less);
+    int coincident = 0, first_a = -1, first_b = -1;
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+      const bool same_as_prev = i > 0 && positions[sorted[i]] == positions[sorted[i - 1]];
+      const bool same_as_next = i + 1 < sorted.size() && positions[sorted[i]] == positions[sorted[i + 1]];
+      if (same_as_prev || same_as_next) ++coincident;
+      if (same_as_next && (first_a < 0 || original[sorted[i]] < first_a))
+        first_a = original[sorted[i]], first_b = original[sorted[i + 1]];
+    }
+    if (coincident > 0)
+      fail(path, fmt::format("looks like a triangle soup: vertices {} and {} coincide but are not shared ({} boundary "
+                             "vertices have a twin); rerun with --repair to weld them",
+                             first_a, first_b, coincident));
   }
-  if (coincident > 0)
-    fail(path, fmt::format("looks like a triangle soup: vertices {} and {} coincide but are not shared ({} boundary "
-                           "vertices have a twin); rerun with --repair to weld them",
-                           first_a, first_b, coincident));
+  const double diagonal = bounding_box(positions).diagonal();
+  const NearTwins near = find_near_twins(positions, order, kNearTwinFraction * diagonal,
+                                         [&](int a, int b) { return edge_uses.count(key(a, b)) > 0; });
+  if (near.count == 0) return;
+  // A tolerance that takes every near twin found: the power of ten above the largest distance.
+  const double weld = std::pow(10.0, std::floor(std::log10(near.max_distance / diagonal)) + 1);
+  const int a = repaired ? near.a : original[near.a], b = repaired ? near.b : original[near.b];
+  fail(path, fmt::format("looks like a triangle soup whose corners nearly coincide: {}vertices {} and {} are {:.3g} "
+                         "apart ({:.2g} of the bounding-box diagonal) on separate boundary edges ({} boundary vertices "
+                         "have such a twin); rerun with --repair --weld {:g} to weld them",
+                         repaired ? "after --repair, " : "", std::min(a, b), std::max(a, b), near.distance,
+                         near.distance / diagonal, near.count, weld));
 }
 
 SurfaceMesh validated_mesh(const std::string& path, std::vector<Vec3> positions, std::vector<Triangle> triangles,
@@ -288,8 +314,38 @@ struct RepairedSoup {
   std::vector<char> reversed;  // per triangle: reversed by the orientation step
 };
 
+// Every point moved onto an earlier one closer than `tolerance` (weld_representatives), and the
+// points left alone renumbered in their order.
+int weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double tolerance) {
+  std::vector<Vec3> positions;
+  positions.reserve(points.size());
+  for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
+  const std::vector<int> representative = weld_representatives(positions, tolerance);
+  std::vector<std::size_t> new_index(points.size());
+  std::vector<Point> kept;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (representative[i] == static_cast<int>(i)) {
+      new_index[i] = kept.size();
+      kept.push_back(points[i]);
+    }
+  for (Polygon& polygon : polygons)
+    for (std::size_t& v : polygon) v = new_index[representative[v]];
+  const int welded = static_cast<int>(points.size() - kept.size());
+  points.swap(kept);
+  return welded;
+}
+
 RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
-                         RepairReport& report) {
+                         double weld, RepairReport& report) {
+  if (weld > 0) {
+    std::vector<Vec3> positions;
+    positions.reserve(points.size());
+    for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
+    const double tolerance = weld * bounding_box(positions).diagonal();
+    report.welded_vertices = weld_near_points(points, polygons, tolerance);
+    report.notes.push_back(fmt::format("welded {} vertices into another within {:.3g} ({:g} of the bounding-box diagonal)",
+                                       report.welded_vertices, tolerance, weld));
+  }
   report.merged_vertices = static_cast<int>(PMP::merge_duplicate_points_in_polygon_soup(points, polygons));
   // Welding can repeat a vertex inside a polygon: drop consecutive repeats and what collapses.
   std::vector<Polygon> simple;
@@ -383,7 +439,7 @@ void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed
 }  // namespace
 
 bool RepairReport::soup_changed() const {
-  return merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
+  return welded_vertices || merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
          reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
 }
 
@@ -569,7 +625,7 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   std::vector<Triangle> triangles;
   std::vector<char> reversed;
   if (options.repair) {
-    RepairedSoup repaired = repair_soup(path, std::move(points), std::move(polygons), report);
+    RepairedSoup repaired = repair_soup(path, std::move(points), std::move(polygons), options.weld, report);
     positions = std::move(repaired.positions);
     triangles = std::move(repaired.triangles);
     reversed = std::move(repaired.reversed);
@@ -590,7 +646,7 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
     numbering_note += fmt::format("{}dropping {} unreferenced vertices", numbering_note.empty() ? "" : " and ",
                                   report.removed_unreferenced_vertices);
   if (!numbering_note.empty()) numbering_note = " (numbering after " + numbering_note + ")";
-  if (!options.repair) refuse_triangle_soup(path, positions, triangles, original);
+  refuse_triangle_soup(path, positions, triangles, original, options.repair);
   loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
   if (options.repair) {
     choose_component_orientation(loaded.mesh, reversed, report);

@@ -17,10 +17,14 @@ struct ReadOptions {
   //! If > 0: after validation (and repair), fill every hole whose boundary loop is at most this
   //! fraction of the bounding-box diagonal long (fill_small_holes).
   double fill_holes = 0;
+  //! If > 0 (with repair): first weld every vertex to an earlier one closer than this fraction of
+  //! the bounding-box diagonal (weld_representatives: no chains; the earlier vertex's position).
+  double weld = 0;
 };
 
 //! What reading changed between the file and the returned mesh. Indices in the notes are 0-based.
 struct RepairReport {
+  int welded_vertices = 0;                  //!< vertices welded into an earlier one within ReadOptions::weld
   int merged_vertices = 0;                  //!< vertices welded into an earlier one with identical coordinates
   int removed_degenerate_faces = 0;         //!< zero-area faces (exact test) and faces repeating a vertex
   int removed_duplicate_faces = 0;          //!< faces on the same vertices as an earlier face, any orientation
@@ -46,7 +50,9 @@ struct LoadedMesh {
 //! and stitched first (see docs/input.md).
 //! \throw InputError "<path>: <reason>" for a missing/unreadable file, an unknown extension, an
 //!        empty, truncated or unparsable file, non-finite coordinates, out-of-range indices, an
-//!        unwelded triangle soup (suggests --repair), and every SurfaceMesh precondition.
+//!        unwelded triangle soup (suggests --repair), boundary corners within 1e-6 of the bounding-box
+//!        diagonal of each other but not at one point (suggests --repair --weld), and every
+//!        SurfaceMesh precondition.
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
 
 //! The mesh with every hole whose boundary loop is at most `max_length` long (the sum of its edge
