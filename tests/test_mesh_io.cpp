@@ -174,6 +174,17 @@ TEST_CASE("read_mesh refuses face indices out of range") {
   const std::string tetra_obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n";
   write_file(scratch("index_zero.obj"), tetra_obj + "f 2 3 0\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("index_zero.obj")), Contains("face 3 (line 8): '0' is not a vertex index"));
+  // Indices beyond 64 bits are shown as the file writes them, not clamped (nor, negative, taken
+  // for a short face).
+  for (const std::string index : {"99999999999999999999", "-99999999999999999999", "-9223372036854775808"}) {
+    write_file(scratch("huge_index.obj"), tetra_obj + "f 2 3 " + index + "\n");
+    REQUIRE_THROWS_WITH(read_mesh(scratch("huge_index.obj")),
+                        Contains("face 3 (line 8) refers to vertex " + index + ", but the file has 4 vertices"));
+  }
+  write_file(scratch("huge_index.off"), "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n"
+                                        "3 1 2 -99999999999999999999\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("huge_index.off")),
+                      Contains("face 3 has vertex index -99999999999999999999 out of range [0, 4)"));
   write_file(scratch("letters.obj"), tetra_obj + "f a b c\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("letters.obj")), Contains("'a' is not a vertex index"));
   // What CGAL reads as something else and does not refuse: a fractional index, a word after a

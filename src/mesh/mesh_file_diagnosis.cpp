@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -32,10 +33,19 @@ bool parse_double(const std::string& token, double& value) {
   return !token.empty() && *end == '\0';
 }
 
+// False also for an integer beyond 64 bits (which strtoll would clamp): see is_integer_text.
 bool parse_long(const std::string& token, long long& value) {
   char* end = nullptr;
+  errno = 0;
   value = std::strtoll(token.c_str(), &end, 10);
-  return !token.empty() && *end == '\0';
+  return !token.empty() && *end == '\0' && errno != ERANGE;
+}
+
+// An optional sign and decimal digits: an index, whether or not it fits in 64 bits.
+bool is_integer_text(const std::string& token) {
+  const std::size_t first = !token.empty() && (token[0] == '-' || token[0] == '+') ? 1 : 0;
+  return token.size() > first &&
+         std::all_of(token.begin() + first, token.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 // Non-blank lines of a text file with '#' comments removed, split into tokens.
@@ -152,7 +162,9 @@ std::string diagnose_off(const std::string& path) {
     for (long long k = 1; k <= n; ++k) {
       long long index = 0;
       if (!parse_long(tokens[k], index))
-        return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
+        return is_integer_text(tokens[k])
+                   ? fmt::format("face {} has vertex index {} out of range [0, {})", f, tokens[k], nv)
+                   : fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
       if (index < 0 || index >= nv)
         return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
     }
@@ -208,9 +220,13 @@ std::string diagnose_obj(const std::string& path) {
     if (tokens[0] != "f") continue;
     for (std::size_t k = 1; k < tokens.size(); ++k) {
       long long index = 0;
-      if (!parse_long(tokens[k].substr(0, tokens[k].find('/')), index) || index == 0)
+      const std::string text = tokens[k].substr(0, tokens[k].find('/'));
+      if (!parse_long(text, index) && is_integer_text(text))  // beyond 64 bits: out of range either way
+        return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
+                           lines.line_number(), text, text[0] == '-' ? seen : nv);
+      if (!parse_long(text, index) || index == 0)
         return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
-      if (index > nv || -index > seen)
+      if (index > nv || index < -seen)
         return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
                            lines.line_number(), index, index > 0 ? nv : seen);
     }
