@@ -327,7 +327,7 @@ TEST_CASE("lrvd refuses a triangle soup naming --repair, and --repair welds it",
   REQUIRE(welded.out.find("repair: welded 18 vertices") != std::string::npos);
   REQUIRE(read_json(report)["input"]["closed"] == true);
   REQUIRE(read_json(report)["input"]["vertices"] == 6);
-  for (const std::string& bad : {"0", "-1e-6", "x", "inf"}) REQUIRE(run("compute " + jittered + " -n 10 --weld " + bad).status == 2);
+  for (const char* bad : {"0", "-1e-6", "x", "inf"}) REQUIRE(run("compute " + jittered + " -n 10 --weld " + bad).status == 2);
 }
 
 TEST_CASE("lrvd gives the same output with one thread and with several", "[cli][remesh]") {

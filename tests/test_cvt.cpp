@@ -453,6 +453,38 @@ TEST_CASE("A cell at a sharp tip that meets two cells sharing two arcs round it 
   CHECK(defects.cornered.empty());
 }
 
+TEST_CASE("A ring cell round the narrowing part below a tip cap is named with the cap", "[cvt][remesh]") {
+  // The closed cone of the test above: a sample near the apex, one lower down whose cell wraps
+  // round the cone below the apex's (the cap meets only that one, a ring), three further down and
+  // three on the base. The third run lowers the density on both, so the cap can grow over the ring
+  // (a sphere stretched 100 times at 2000 vertices ended with such a pair at each tip).
+  const int k = 12;
+  std::vector<Vec3> positions = {{0, 0, 10}, {0, 0, 0}};
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < k; ++i) positions.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0});
+  for (int i = 0; i < k; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % k;
+    triangles.push_back({0, a, b});
+    triangles.push_back({1, b, a});
+  }
+  const SurfaceMesh cone(positions, triangles);
+  auto side = [](double z, double degrees) {
+    const double r = (10 - z) / 10, a = degrees * M_PI / 180;
+    return Vec3{r * std::cos(a), r * std::sin(a), z};
+  };
+  std::vector<Vec3> points = {side(9.5, 0), side(8, 180), side(5, 10), side(5, 130), side(5, 250)};
+  for (double d : {60.0, 180.0, 300.0}) points.push_back({0.5 * std::cos(d * M_PI / 180), 0.5 * std::sin(d * M_PI / 180), 0});
+  const Samples samples = locate_points(cone, points);
+  const Diagram diagram = compute_lrvd(cone, samples);
+  const DualMesh dual = compute_dual(diagram, cone, samples);
+  const DualDefects defects = find_dual_defects(dual, diagram, cone, true, false);
+  CHECK(defects.topological == std::vector<int>{0});
+  CHECK(defects.tip_caps == std::vector<int>{0});
+  CHECK(defects.tip_cap_rings == std::vector<int>{1});
+  CHECK(std::find(defects.cell_topology.begin(), defects.cell_topology.end(), 1) != defects.cell_topology.end());
+  CHECK_FALSE(defects.euler_ok);
+}
+
 TEST_CASE("On an open sheet the fitting takes the boundary vertices out to the boundary and hardly past it", "[cvt][remesh][fit]") {
   // The unit square: the dual's boundary runs through the boundary cells' samples, inside the
   // square; the boundary's planes in the cells' quadrics take it out to the square's sides. Before

@@ -24,6 +24,10 @@ namespace lrvd {
 
 namespace {
 
+// Rounds of the third run without a better state after which the rings round the tip caps
+// (DualDefects::tip_cap_rings) get the caps' lower density too, for the rest of the run.
+constexpr int kRingLoweringAfter = 3;
+
 // Cells that are not disks (more than one boundary loop: a ring around a thin tube; or an Euler
 // characteristic V - E + F below 1: a handle inside the cell, smaller than it) and pairs of
 // cells that share more than one boundary arc (paper Fig. 13): the dual is wrong there even when
@@ -281,7 +285,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   // a strip narrower than the cells, each with two neighbours, needs more samples, not fewer.) A
   // cell at a defect that meets exactly two others and no boundary is a tip cap too when it holds
   // that much: the two share two arcs round it, and its two triangles repeat each other.
-  std::vector<int> cornered, tip_caps;
+  std::vector<int> cornered, tip_caps, tip_cap_rings;
   if (!defect.empty()) {  // unused samples are among the defects
     std::vector<char> at_defect(used.size(), 0), on_boundary(used.size(), 0);
     for (int i : defect) at_defect[i] = 1;
@@ -340,7 +344,11 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
       std::vector<double> gathered(used.size(), 0.0);
       for (const auto& [cell, vertex] : inside) gathered[cell] += deficit[vertex];
       for (int i : capped)
-        if (gathered[i] > M_PI) tip_caps.push_back(i);
+        if (gathered[i] > M_PI) {
+          tip_caps.push_back(i);
+          for (const int n : {neighbours[i].first, neighbours[i].second})
+            if (n >= 0 && hints.count(n)) tip_cap_rings.push_back(n);
+        }
     }
   }
   // Two used cells that meet across a strip narrower than them: the dual lacks their edge and comes
@@ -366,6 +374,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   out.cell_topology.assign(hints.begin(), hints.end());
   out.cornered = std::move(cornered);
   out.tip_caps = std::move(tip_caps);
+  std::sort(tip_cap_rings.begin(), tip_cap_rings.end());
+  tip_cap_rings.erase(std::unique(tip_cap_rings.begin(), tip_cap_rings.end()), tip_cap_rings.end());
+  out.tip_cap_rings = std::move(tip_cap_rings);
   out.closed_over_loops = std::move(closed_over);
   out.euler_ok = euler_ok;
   out.crossing_pairs = pairs;
@@ -553,6 +564,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     RemeshResult best = result;
     best_defects = defects;
     std::vector<double> best_density = first.triangle_density;
+    int rounds_without_progress = 0;  // since the best state so far
+    bool lower_rings = false;         // the third run's caps stalled: their rings are lowered from then on
     // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
     // characteristic that no defect finder locates).
     for (int round = 0; round < options.repair_rounds && !defects.empty() && !defects.where_to_act().empty(); ++round) {
@@ -563,7 +576,12 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       std::vector<int> lowered = defects.cornered;
       if (lower_tip_caps) {
         lowered.insert(lowered.end(), defects.tip_caps.begin(), defects.tip_caps.end());
+        // No better state for kRingLoweringAfter rounds: from then on the rings round the caps
+        // are lowered too, so a cap can take the narrowing part below it (a larger cap).
+        lower_rings = lower_rings || rounds_without_progress >= kRingLoweringAfter;
+        if (lower_rings) lowered.insert(lowered.end(), defects.tip_cap_rings.begin(), defects.tip_cap_rings.end());
         std::sort(lowered.begin(), lowered.end());
+        lowered.erase(std::unique(lowered.begin(), lowered.end()), lowered.end());
       }
       std::vector<int> raised;
       if (lowered.empty())
@@ -577,8 +595,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       progress(lowered.empty()
                    ? fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours", round + 1,
                                  options.repair_rounds, options.repair_factor, raised.size())
-                   : fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours, /{} in the "
-                                 "cells of {} samples in no triangle",
+                   : fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours, /{} in "
+                                 "{} cells at sharp corners or tips",
                                  round + 1, options.repair_rounds, options.repair_factor, raised.size(),
                                  options.repair_factor, lowered.size()));
       // The second run also moves samples into the defect cells (the first, whose raised density
@@ -602,6 +620,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
         best_defects = defects;
         best = result;
         best_density = again.triangle_density;
+        rounds_without_progress = 0;
+      } else {
+        ++rounds_without_progress;
       }
     }
     // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density
