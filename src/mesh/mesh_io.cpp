@@ -314,12 +314,15 @@ struct RepairedSoup {
   std::vector<char> reversed;  // per triangle: reversed by the orientation step
 };
 
-// Every point moved onto an earlier one closer than `tolerance` (weld_representatives), and the
-// points left alone renumbered in their order.
-int weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double tolerance) {
+// Every point moved onto an earlier one closer than `fraction` of the bounding-box diagonal
+// (weld_representatives), and the points left alone renumbered in their order. Returns the
+// distance used.
+double weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double fraction,
+                        int& welded) {
   std::vector<Vec3> positions;
   positions.reserve(points.size());
   for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
+  const double tolerance = fraction * bounding_box(positions).diagonal();
   const std::vector<int> representative = weld_representatives(positions, tolerance);
   std::vector<std::size_t> new_index(points.size());
   std::vector<Point> kept;
@@ -330,19 +333,15 @@ int weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons,
     }
   for (Polygon& polygon : polygons)
     for (std::size_t& v : polygon) v = new_index[representative[v]];
-  const int welded = static_cast<int>(points.size() - kept.size());
+  welded = static_cast<int>(points.size() - kept.size());
   points.swap(kept);
-  return welded;
+  return tolerance;
 }
 
 RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
                          double weld, RepairReport& report) {
   if (weld > 0) {
-    std::vector<Vec3> positions;
-    positions.reserve(points.size());
-    for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
-    const double tolerance = weld * bounding_box(positions).diagonal();
-    report.welded_vertices = weld_near_points(points, polygons, tolerance);
+    const double tolerance = weld_near_points(points, polygons, weld, report.welded_vertices);
     report.notes.push_back(fmt::format("welded {} vertices into another within {:.3g} ({:g} of the bounding-box diagonal)",
                                        report.welded_vertices, tolerance, weld));
   }
@@ -439,8 +438,9 @@ void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed
 }  // namespace
 
 bool RepairReport::soup_changed() const {
-  return welded_vertices || merged_vertices || removed_degenerate_faces || removed_duplicate_faces || removed_unreferenced_vertices ||
-         reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || triangulated_faces;
+  return welded_vertices || merged_vertices || removed_degenerate_faces || removed_duplicate_faces ||
+         removed_unreferenced_vertices || reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges ||
+         triangulated_faces;
 }
 
 bool RepairReport::changed() const { return soup_changed() || filled_holes; }

@@ -78,8 +78,8 @@ struct DualDefects {
   //! three cells of its own size fit, at any scale, so more samples repeat the pattern; a larger cap
   //! meets more cells.
   std::vector<int> tip_caps;
-  //! Neighbours of the tip caps that are in `cell_topology` (a ring round the narrowing part below
-  //! the cap). When its caps have not grown past them for a few rounds, the third run lowers the
+  //! Neighbours of the tip caps that are in `cell_topology` (a ring round the narrowing part below a
+  //! cap, or two cells sharing two arcs round it). When its caps have not grown past them for a few rounds, the third run lowers the
   //! density there too, so a cap can take the narrowing part.
   std::vector<int> tip_cap_rings;
   //! Boundary loops of the mesh (indices into SurfaceMesh::boundary_loops) that fewer than three
