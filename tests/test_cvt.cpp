@@ -485,6 +485,34 @@ TEST_CASE("A ring cell round the narrowing part below a tip cap is named with th
   CHECK_FALSE(defects.euler_ok);
 }
 
+TEST_CASE("A repair round that would raise the density everywhere stops the run: a torus thinner than its cells", "[cvt][remesh]") {
+  // A torus of radii 1 and 0.001 at 100 vertices: cells about 0.02 across, the tube 0.006 round, so
+  // every cell wraps it. A density raised on every triangle leaves the CVT as it is: the runs stop
+  // at their first round instead of going on for 24 rounds each, and say so.
+  const int around = 100, across = 6;
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      const double u = 2 * M_PI * i / around, v = 2 * M_PI * j / across, r = 1 + 0.001 * std::cos(v);
+      positions.push_back({r * std::cos(u), r * std::sin(u), 0.001 * std::sin(v)});
+    }
+  auto at = [&](int i, int j) { return (i % around) * across + (j % across); };
+  for (int i = 0; i < around; ++i)
+    for (int j = 0; j < across; ++j) {
+      triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  const SurfaceMesh torus(positions, triangles);
+  REQUIRE(torus.euler_characteristic() == 0);
+  const SurfaceMesh mesh = for_samples(torus, 100);
+  const RemeshResult r = remesh_cvt(torus, mesh, sample_uniform(mesh, 100, 1));
+  REQUIRE_FALSE(verify_remesh(torus, r.dual.positions, r.dual.triangles, 100).passed);
+  REQUIRE(r.repair_saturated);
+  REQUIRE(r.repair_rounds == 0);
+  REQUIRE(r.dual.positions.size() == 100);
+}
+
 TEST_CASE("On an open sheet the fitting takes the boundary vertices out to the boundary and hardly past it", "[cvt][remesh][fit]") {
   // The unit square: the dual's boundary runs through the boundary cells' samples, inside the
   // square; the boundary's planes in the cells' quadrics take it out to the square's sides. Before

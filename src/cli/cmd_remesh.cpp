@@ -144,6 +144,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["tip_caps_lowered"] = remeshed.tip_caps_lowered;
   // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
   report["polished"] = remeshed.polished;
+  // A run stopped because every cell was at a defect or next to one (docs/results.md, "Session 27").
+  report["repair_saturated"] = remeshed.repair_saturated;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.
@@ -188,6 +190,9 @@ int run_remesh(const RemeshCommandOptions& opt) {
       where = fmt::format("; the first at vertex {}, ({:.6g}, {:.6g}, {:.6g})", first, p.x, p.y, p.z);
     }
     std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
+    if (remeshed.repair_saturated)
+      std::printf("repair: every cell was at a defect or next to one, where a higher density changes nothing: the "
+                  "surface is thinner than the cells everywhere; give more vertices\n");
   }
   if (!check.passed && holes.count > 0) {
     const std::string which = holes.fillable == holes.count ? (holes.count == 1 ? "it" : "them")

@@ -409,6 +409,21 @@ void raise_density(const Diagram& diagram, const std::vector<int>& defect, doubl
     }
 }
 
+// Whether raise_density would multiply the density on every triangle: every cell is at a defect
+// or next to one. The CVT does not change when the density is multiplied everywhere by one factor,
+// so such a round could only go on iterating.
+bool raises_everywhere(const Diagram& diagram, const std::vector<int>& defect, std::size_t triangle_count) {
+  const std::vector<char> involved = defect_neighbourhood(diagram, defect);
+  std::vector<char> raised(triangle_count, 0);
+  std::size_t count = 0;
+  for (const CellPolygon& poly : diagram.polygons)
+    if (involved[poly.cell] && !raised[poly.triangle]) {
+      raised[poly.triangle] = 1;
+      ++count;
+    }
+  return count == triangle_count;
+}
+
 // Divides the density on the triangles of the given cells (their own, not their neighbours'), so
 // that the CVT makes those cells larger.
 void lower_density(const Diagram& diagram, const std::vector<int>& cells, double factor, std::vector<double>& density) {
@@ -532,6 +547,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     DualDefects defects;
   };
   std::optional<Start> sheets_start;
+  bool saturated = false;  // some run stopped at a round that would have raised the density everywhere
   auto optimise_and_repair = [&](bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
                                  bool& saw_tip_caps) {
     CvtOptions first = options.cvt;
@@ -589,6 +605,15 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       else
         std::set_difference(defects.topological.begin(), defects.topological.end(), lowered.begin(), lowered.end(),
                             std::back_inserter(raised));
+      // Every cell at a defect or next to one, and none to lower: the surface is thinner than the
+      // cells (or has more handles than they can hold) everywhere, which only more vertices mend.
+      if (lowered.empty() && raises_everywhere(result.cvt.diagram, raised, again.triangle_density.size())) {
+        saturated = true;
+        progress(fmt::format("repair round {}: every cell is at a defect or next to one, and a density raised "
+                             "everywhere changes nothing: the run stops",
+                             round + 1));
+        break;
+      }
       if (!lowered.empty()) lower_density(result.cvt.diagram, lowered, options.repair_factor, again.triangle_density);
       if (!raised.empty()) raise_density(result.cvt.diagram, raised, options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
@@ -725,6 +750,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   result.untangled_from = {};
+  result.repair_saturated = saturated && !defects.empty();
   result.defects = std::move(defects);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
