@@ -67,6 +67,26 @@ void require_none_turned_over(const DualMesh& before, const DualMesh& moved) {
   for (const Triangle& f : moved.triangles) REQUIRE(dot(normal(before, f), normal(moved, f)) > 0);
 }
 
+// A closed cone 10 high on a unit disk (12 sides): its apex's angles sum to about 35°.
+SurfaceMesh closed_cone() {
+  const int k = 12;
+  std::vector<Vec3> positions = {{0, 0, 10}, {0, 0, 0}};
+  std::vector<Triangle> triangles;
+  for (int i = 0; i < k; ++i) positions.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0});
+  for (int i = 0; i < k; ++i) {
+    const int a = 2 + i, b = 2 + (i + 1) % k;
+    triangles.push_back({0, a, b});
+    triangles.push_back({1, b, a});
+  }
+  return SurfaceMesh(positions, triangles);
+}
+
+// The point of closed_cone's side at height z, `degrees` round the axis.
+Vec3 on_cone(double z, double degrees) {
+  const double r = (10 - z) / 10, a = degrees * M_PI / 180;
+  return Vec3{r * std::cos(a), r * std::sin(a), z};
+}
+
 }  // namespace
 
 TEST_CASE("The CVT gradient 2 m_i (x_i - c_i) matches finite differences", "[cvt]") {
@@ -423,22 +443,9 @@ TEST_CASE("A cell at a sharp tip that meets two cells sharing two arcs round it 
   // near the apex, two lower down on either side, three further down, three on the base: the apex
   // cell meets only the two side cells, which share two arcs round it, so the dual has the triangle
   // of the three twice (Horse at 20000 has this at a tip whose angles sum to 175°).
-  const int k = 12;
-  std::vector<Vec3> positions = {{0, 0, 10}, {0, 0, 0}};
-  std::vector<Triangle> triangles;
-  for (int i = 0; i < k; ++i) positions.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0});
-  for (int i = 0; i < k; ++i) {
-    const int a = 2 + i, b = 2 + (i + 1) % k;
-    triangles.push_back({0, a, b});
-    triangles.push_back({1, b, a});
-  }
-  const SurfaceMesh cone(positions, triangles);
+  const SurfaceMesh cone = closed_cone();
   REQUIRE(cone.is_closed());
-  auto side = [](double z, double degrees) {
-    const double r = (10 - z) / 10, a = degrees * M_PI / 180;
-    return Vec3{r * std::cos(a), r * std::sin(a), z};
-  };
-  std::vector<Vec3> points = {side(9.5, 0), side(8.5, 90), side(8.5, 265), side(5, 10), side(5, 130), side(5, 250)};
+  std::vector<Vec3> points = {on_cone(9.5, 0), on_cone(8.5, 90), on_cone(8.5, 265), on_cone(5, 10), on_cone(5, 130), on_cone(5, 250)};
   for (double d : {60.0, 180.0, 300.0}) points.push_back({0.5 * std::cos(d * M_PI / 180), 0.5 * std::sin(d * M_PI / 180), 0});
   const Samples samples = locate_points(cone, points);
   const Diagram diagram = compute_lrvd(cone, samples);
@@ -458,21 +465,8 @@ TEST_CASE("A ring cell round the narrowing part below a tip cap is named with th
   // round the cone below the apex's (the cap meets only that one, a ring), three further down and
   // three on the base. The third run lowers the density on both, so the cap can grow over the ring
   // (a sphere stretched 100 times at 2000 vertices ended with such a pair at each tip).
-  const int k = 12;
-  std::vector<Vec3> positions = {{0, 0, 10}, {0, 0, 0}};
-  std::vector<Triangle> triangles;
-  for (int i = 0; i < k; ++i) positions.push_back({std::cos(2 * M_PI * i / k), std::sin(2 * M_PI * i / k), 0});
-  for (int i = 0; i < k; ++i) {
-    const int a = 2 + i, b = 2 + (i + 1) % k;
-    triangles.push_back({0, a, b});
-    triangles.push_back({1, b, a});
-  }
-  const SurfaceMesh cone(positions, triangles);
-  auto side = [](double z, double degrees) {
-    const double r = (10 - z) / 10, a = degrees * M_PI / 180;
-    return Vec3{r * std::cos(a), r * std::sin(a), z};
-  };
-  std::vector<Vec3> points = {side(9.5, 0), side(8, 180), side(5, 10), side(5, 130), side(5, 250)};
+  const SurfaceMesh cone = closed_cone();
+  std::vector<Vec3> points = {on_cone(9.5, 0), on_cone(8, 180), on_cone(5, 10), on_cone(5, 130), on_cone(5, 250)};
   for (double d : {60.0, 180.0, 300.0}) points.push_back({0.5 * std::cos(d * M_PI / 180), 0.5 * std::sin(d * M_PI / 180), 0});
   const Samples samples = locate_points(cone, points);
   const Diagram diagram = compute_lrvd(cone, samples);
