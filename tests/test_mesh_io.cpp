@@ -10,6 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/weld.h"
@@ -241,8 +243,8 @@ TEST_CASE("a soup whose corners nearly coincide is refused naming --weld, and --
   // soup_jittered.off: the octahedron soup with its corner copies 1e-10 to 2.3e-9 apart. The exact
   // twin test sees no seam; the near one does, and suggests a weld that takes every pair.
   REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off")),
-                      Contains("soup_jittered.off: looks like a triangle soup whose corners nearly coincide: vertices "
-                               "0 and 10 are 1e-09 apart") &&
+                      Contains("soup_jittered.off: looks like a triangle soup or a seam whose corners nearly "
+                               "coincide: vertices 0 and 10 are 1e-09 apart") &&
                           Contains("(24 boundary vertices have such a twin); rerun with --repair --weld 1e-09"));
   // Exact welding alone leaves the seams open: said, not remeshed as 8 loose triangles.
   REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off"), {true}),
@@ -265,6 +267,51 @@ TEST_CASE("a soup whose corners nearly coincide is refused naming --weld, and --
   small.repair = true;
   small.weld = 1e-10;
   REQUIRE_THROWS_WITH(read_mesh(data("soup_jittered.off"), small), Contains("nearly coincide"));
+}
+
+TEST_CASE("The suggested --weld closes the seams also when a corner's copies lie further apart than the closest pairs") {
+  // The octahedron soup with the k-th copy of each corner moved k * 0.9e-6 of the diagonal along x:
+  // the closest pairs are 0.9e-6 apart, but a corner's copies span 2.7e-6 (or 1.8e-6), which a
+  // weld of 1e-6 from the first copy does not reach. The suggestion is where the seams stop closing.
+  const double step = 0.9e-6 * 2 * std::sqrt(3.0);  // the diagonal of [-1, 1]^3
+  std::string off = "OFF\n24 8 0\n";
+  const double corners[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  const int faces[8][3] = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  int copies[6] = {};
+  for (const auto& face : faces)
+    for (int c : face)
+      off += fmt::format("{:.17g} {:.17g} {:.17g}\n", corners[c][0] + step * copies[c]++, corners[c][1], corners[c][2]);
+  for (int f = 0; f < 8; ++f) off += fmt::format("3 {} {} {}\n", 3 * f, 3 * f + 1, 3 * f + 2);
+  write_file(scratch("chain.off"), off);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("chain.off")), Contains("nearly coincide") && Contains("--weld 1e-05 to weld"));
+  ReadOptions options;
+  options.repair = true;
+  options.weld = 1e-5;
+  const LoadedMesh loaded = read_mesh(scratch("chain.off"), options);
+  REQUIRE(loaded.mesh.vertex_count() == 6);
+  REQUIRE(loaded.mesh.is_closed());
+  // The smallest power of ten above the closest pairs leaves the soup open: refused again, after
+  // the repair, with the same advice.
+  options.weld = 1e-6;
+  REQUIRE_THROWS_WITH(read_mesh(scratch("chain.off"), options), Contains("after --repair") && Contains("--weld 1e-05"));
+}
+
+TEST_CASE("A disk whose outline has two short edges in a row is no soup, and exact and near twins are named together") {
+  // A fan of six triangles round the origin; corners 0, 1, 2 of its outline 1e-9 apart in a row.
+  std::string fan = "OFF\n7 6 0\n0 0 0\n1 0 0\n1 1e-9 0\n1 2e-9 0\n-0.5 0.8 0\n-1 0 0\n0 -1 0\n";
+  fan += "3 0 1 2\n3 0 2 3\n3 0 3 4\n3 0 4 5\n3 0 5 6\n3 0 6 1\n";
+  write_file(scratch("fan_short_edges.off"), fan);
+  const LoadedMesh disk = read_mesh(scratch("fan_short_edges.off"));
+  REQUIRE(disk.mesh.triangle_count() == 6);
+  REQUIRE(disk.mesh.boundary_loops().size() == 1);
+  // The octahedron soup with one corner copy moved by 1e-9: exact twins and a near one, one advice.
+  std::string soup = read_file(data("soup.off"));
+  const std::string first = "\n1 0 0\n";
+  soup.replace(soup.find(first), first.size(), "\n1.000000001 0 0\n");
+  write_file(scratch("soup_one_near.off"), soup);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("soup_one_near.off")),
+                      Contains("coincide but are not shared") && Contains("a twin nearly at the same point") &&
+                          Contains("rerun with --repair --weld 1e-09 to weld them"));
 }
 
 TEST_CASE("Welding takes points to the earliest representative within the tolerance, without chains") {

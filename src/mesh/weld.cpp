@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -31,10 +32,12 @@ struct PointCloud {
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 3>;
 
 // The tree's radius search compares squared distances with `<`: within the tolerance, excluded.
+// A tolerance whose square underflows still takes the points at the same place.
 std::vector<std::pair<unsigned, double>> within(const KdTree& tree, const Vec3& p, double tolerance) {
   std::vector<std::pair<unsigned, double>> found;
   const double query[3] = {p.x, p.y, p.z};
-  tree.radiusSearch(query, tolerance * tolerance, found, nanoflann::SearchParams(32, 0, true));
+  const double squared = std::max(tolerance * tolerance, std::numeric_limits<double>::denorm_min());
+  tree.radiusSearch(query, squared, found, nanoflann::SearchParams(32, 0, true));
   return found;
 }
 
