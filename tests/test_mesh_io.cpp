@@ -187,6 +187,15 @@ TEST_CASE("read_mesh refuses face indices out of range") {
                                         "3 1 2 -99999999999999999999\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("huge_index.off")),
                       Contains("face 3 has vertex index -99999999999999999999 out of range [0, 4)"));
+  // An ascii PLY index beyond CGAL's int: named with its line, not "the body does not match".
+  const std::string ply_header = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+                                 "property double z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+  for (const std::string index : {"99999999999999999999", "3000000000"}) {
+    write_file(scratch("huge_index.ply"), ply_header + "3 0 1 " + index + "\n");
+    REQUIRE_THROWS_WITH(read_mesh(scratch("huge_index.ply")),
+                        Contains("face 0 (line 13) has vertex index " + index + " out of range [0, 3)"));
+  }
   write_file(scratch("letters.obj"), tetra_obj + "f a b c\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("letters.obj")), Contains("'a' is not a vertex index"));
   // What CGAL reads as something else and does not refuse: a fractional index, a word after a

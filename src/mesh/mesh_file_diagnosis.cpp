@@ -295,6 +295,7 @@ std::string diagnose_ply(const std::string& path) {
     return generic;
   std::vector<std::string> tokens;
   long long body_lines = 0;
+  const bool faces_follow = elements.size() > 1 && elements[1].first == "face";
   while (std::getline(in, line)) {
     ++line_number;
     std::istringstream words(line);
@@ -306,6 +307,18 @@ std::string diagnose_ply(const std::string& path) {
       if (std::string problem = check_coordinates(tokens, first, fmt::format("vertex {}", body_lines), line_number);
           !problem.empty())
         return problem;
+    } else if (faces_follow && body_lines < nv + nf) {
+      // A face: its vertex count, then that many indices into the vertices (CGAL reads them as
+      // ints, and refuses the body at one it cannot).
+      const long long f = body_lines - nv;
+      long long n = 0;
+      if (parse_long(tokens[0], n) && n >= 0 && static_cast<long long>(tokens.size()) > n)
+        for (long long k = 1; k <= n; ++k) {
+          long long index = 0;
+          if (is_integer_text(tokens[k]) && (!parse_long(tokens[k], index) || index < 0 || index >= nv))
+            return fmt::format("face {} (line {}) has vertex index {} out of range [0, {})", f, line_number, tokens[k],
+                               nv);
+        }
     }
     ++body_lines;
   }
