@@ -67,10 +67,14 @@ void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& wha
 
 void print_repair(const RepairReport& r, const ReadOptions& read) {
   if (read.repair)
-    std::printf("repair: %s\n", r.soup_changed() ? fmt::format("merged {} vertices, removed {} degenerate and {} duplicate faces and "
+    std::printf("repair: %s\n", r.soup_changed() ? fmt::format("merged {} vertices{}, removed {} degenerate and {} duplicate faces and "
                                                          "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
                                                          "copied {} non-manifold vertices, triangulated {} polygons",
-                                                         r.welded_vertices + r.merged_vertices, r.removed_degenerate_faces,
+                                                         r.welded_vertices + r.merged_vertices,
+                                                         r.welded_vertices > 0
+                                                             ? fmt::format(" ({} within --weld)", r.welded_vertices)
+                                                             : std::string(),
+                                                         r.removed_degenerate_faces,
                                                          r.removed_duplicate_faces, r.removed_unreferenced_vertices,
                                                          r.reoriented_faces, r.stitched_edges,
                                                          r.duplicated_nonmanifold_vertices, r.triangulated_faces)
