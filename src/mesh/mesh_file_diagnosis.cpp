@@ -221,10 +221,11 @@ std::string diagnose_obj(const std::string& path) {
     for (std::size_t k = 1; k < tokens.size(); ++k) {
       long long index = 0;
       const std::string text = tokens[k].substr(0, tokens[k].find('/'));
-      if (!parse_long(text, index) && is_integer_text(text))  // beyond 64 bits: out of range either way
+      const bool parsed = parse_long(text, index);
+      if (!parsed && is_integer_text(text))  // beyond 64 bits: out of range either way
         return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,
                            lines.line_number(), text, text[0] == '-' ? seen : nv);
-      if (!parse_long(text, index) || index == 0)
+      if (!parsed || index == 0)
         return fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
       if (index > nv || index < -seen)
         return fmt::format("face {} (line {}) refers to vertex {}, but the file has {} vertices", f,

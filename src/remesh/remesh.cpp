@@ -398,30 +398,21 @@ std::vector<char> defect_neighbourhood(const Diagram& diagram, const std::vector
 }
 
 // Multiplies the density on the triangles of the defect cells and of their neighbours, so that the
-// CVT draws more samples into the thin part they wrap.
-void raise_density(const Diagram& diagram, const std::vector<int>& defect, double factor, std::vector<double>& density) {
+// CVT draws more samples into the thin part they wrap. Returns how many triangles it raised: all of
+// them when every cell is at a defect or next to one, which leaves the CVT as it was (its energy
+// and gradient only scale).
+std::size_t raise_density(const Diagram& diagram, const std::vector<int>& defect, double factor,
+                          std::vector<double>& density) {
   const std::vector<char> involved = defect_neighbourhood(diagram, defect);
   std::vector<char> raised(density.size(), 0);
-  for (const CellPolygon& poly : diagram.polygons)
-    if (involved[poly.cell] && !raised[poly.triangle]) {
-      raised[poly.triangle] = 1;
-      density[poly.triangle] *= factor;
-    }
-}
-
-// Whether raise_density would multiply the density on every triangle: every cell is at a defect
-// or next to one. The CVT does not change when the density is multiplied everywhere by one factor,
-// so such a round could only go on iterating.
-bool raises_everywhere(const Diagram& diagram, const std::vector<int>& defect, std::size_t triangle_count) {
-  const std::vector<char> involved = defect_neighbourhood(diagram, defect);
-  std::vector<char> raised(triangle_count, 0);
   std::size_t count = 0;
   for (const CellPolygon& poly : diagram.polygons)
     if (involved[poly.cell] && !raised[poly.triangle]) {
       raised[poly.triangle] = 1;
+      density[poly.triangle] *= factor;
       ++count;
     }
-  return count == triangle_count;
+  return count;
 }
 
 // Divides the density on the triangles of the given cells (their own, not their neighbours'), so
@@ -605,17 +596,19 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       else
         std::set_difference(defects.topological.begin(), defects.topological.end(), lowered.begin(), lowered.end(),
                             std::back_inserter(raised));
-      // Every cell at a defect or next to one, and none to lower: the surface is thinner than the
+      if (!lowered.empty()) lower_density(result.cvt.diagram, lowered, options.repair_factor, again.triangle_density);
+      const std::size_t raised_triangles =
+          raised.empty() ? 0 : raise_density(result.cvt.diagram, raised, options.repair_factor, again.triangle_density);
+      // Every cell at a defect or next to one, and none lowered: the surface is thinner than the
       // cells (or has more handles than they can hold) everywhere, which only more vertices mend.
-      if (lowered.empty() && raises_everywhere(result.cvt.diagram, raised, again.triangle_density.size())) {
+      // (`again` is not used after the loop: the density raised here goes with the run.)
+      if (lowered.empty() && raised_triangles == again.triangle_density.size()) {
         saturated = true;
         progress(fmt::format("repair round {}: every cell is at a defect or next to one, and a density raised "
                              "everywhere changes nothing: the run stops",
                              round + 1));
         break;
       }
-      if (!lowered.empty()) lower_density(result.cvt.diagram, lowered, options.repair_factor, again.triangle_density);
-      if (!raised.empty()) raise_density(result.cvt.diagram, raised, options.repair_factor, again.triangle_density);
       ++result.repair_rounds;
       progress(lowered.empty()
                    ? fmt::format("repair round {} of {}: density x{} around {} samples and their neighbours", round + 1,
