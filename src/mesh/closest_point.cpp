@@ -160,11 +160,9 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
   impl_->positions = positions;
   impl_->triangles = triangles;
   if (!positions.empty()) {
-    Vec3 lo = positions[0], hi = lo;
-    for (const Vec3& p : positions)
-      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
-    const Vec3 centre = 0.5 * lo + 0.5 * hi;
-    const double size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    const BoundingBox box = bounding_box(positions);
+    const Vec3 centre = 0.5 * box.min + 0.5 * box.max, extent = box.max - box.min;
+    const double size = std::max({extent.x, extent.y, extent.z});
     // Only where floats would lose the model: elsewhere the boxes are as they always were.
     if (is_finite(centre) && std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) > 64 * size)
       impl_->origin = centre;
