@@ -323,6 +323,37 @@ TEST_CASE("A disk whose outline has two short edges in a row is no soup, and exa
                           Contains("rerun with --repair --weld 1e-09 to weld them"));
 }
 
+TEST_CASE("A --weld above the file's shortest edge says it collapsed edges, and names that weld when the read fails") {
+  // The octahedron with its edge from (1, 0, 0) to (0, 0, 1) split 0.001 from its first end: a
+  // closed mesh whose shortest edge is 0.0014 long, 4.1e-4 of the diagonal.
+  std::string off = "OFF\n7 10 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n0.999 0 0.001\n";
+  off += "3 0 2 6\n3 6 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 6\n3 3 6 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
+  write_file(scratch("short_edge.off"), off);
+  const double half_shortest = std::sqrt(2.0) * 0.001 / (2 * std::sqrt(12.0));
+  ReadOptions options;
+  options.repair = true;
+  options.weld = 1e-3;
+  const LoadedMesh welded = read_mesh(scratch("short_edge.off"), options);
+  REQUIRE(welded.mesh.vertex_count() == 6);
+  REQUIRE(welded.mesh.is_closed());
+  REQUIRE(welded.repair.weld_collapsed_sides == 2);
+  REQUIRE_THAT(welded.repair.notes.back(),
+               Contains("--weld 0.001 collapsed 2 face sides of the file, up to 0.00141 long (below " +
+                        fmt::format("{:.3g}", half_shortest)) &&
+                   Contains("the surface lost those edges"));
+  // Just below half the shortest edge, nothing collapses and nothing is said.
+  options.weld = 0.99 * half_shortest;
+  const LoadedMesh kept = read_mesh(scratch("short_edge.off"), options);
+  REQUIRE(kept.mesh.vertex_count() == 7);
+  REQUIRE(kept.repair.weld_collapsed_sides == 0);
+  for (const std::string& note : kept.repair.notes) REQUIRE_THAT(note, !Contains("collapsed"));
+  // A weld that tears CGAL's elk apart is named as the cause, not the file.
+  options.weld = 0.09;
+  REQUIRE_THROWS_WITH(read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/elk.off", options),
+                      Contains("elk.off: --weld 0.09 collapsed") && Contains("and left seams open") &&
+                          !Contains("rerun with"));
+}
+
 TEST_CASE("Welding takes points to the earliest representative within the tolerance, without chains") {
   const std::vector<Vec3> line = {{0, 0, 0}, {0.6, 0, 0}, {1.2, 0, 0}, {1.7, 0, 0}, {5, 0, 0}, {0, 0.99, 0}};
   // 1.2 is within 1 of 0.6 but not of 0, the representative that took 0.6: it starts its own.

@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <unistd.h>
 
 #include "common/error.h"
@@ -32,6 +33,11 @@ CLI::Validator seed_validator() {
 }
 
 namespace {
+
+// "1 vertex", "3 vertices": a count with its noun in the right number.
+std::string counted(int count, const char* one, const char* many) {
+  return fmt::format("{} {}", count, count == 1 ? one : many);
+}
 
 // A positive, finite fraction of the bounding-box diagonal.
 CLI::Validator fraction_validator() {
@@ -66,20 +72,29 @@ void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& wha
 }
 
 void print_repair(const RepairReport& r, const ReadOptions& read) {
-  if (read.repair)
-    std::printf("repair: %s\n", r.soup_changed() ? fmt::format("merged {} vertices{}, removed {} degenerate and {} duplicate faces and "
-                                                         "{} unreferenced vertices, reoriented {} faces, stitched {} edges, "
-                                                         "copied {} non-manifold vertices, triangulated {} polygons",
-                                                         r.welded_vertices + r.merged_vertices,
-                                                         r.welded_vertices > 0
-                                                             ? fmt::format(" ({} within --weld)", r.welded_vertices)
-                                                             : std::string(),
-                                                         r.removed_degenerate_faces,
-                                                         r.removed_duplicate_faces, r.removed_unreferenced_vertices,
-                                                         r.reoriented_faces, r.stitched_edges,
-                                                         r.duplicated_nonmanifold_vertices, r.triangulated_faces)
-                                                 .c_str()
-                                           : "nothing to change");
+  if (read.repair) {
+    std::vector<std::string> changes;
+    const int merged = r.welded_vertices + r.merged_vertices;
+    if (merged > 0)
+      changes.push_back(fmt::format("merged {}{}", counted(merged, "vertex", "vertices"),
+                                    r.welded_vertices > 0 ? fmt::format(" ({} within --weld)", r.welded_vertices)
+                                                          : std::string()));
+    if (r.removed_degenerate_faces > 0)
+      changes.push_back("removed " + counted(r.removed_degenerate_faces, "degenerate face", "degenerate faces"));
+    if (r.removed_duplicate_faces > 0)
+      changes.push_back("removed " + counted(r.removed_duplicate_faces, "duplicate face", "duplicate faces"));
+    if (r.removed_unreferenced_vertices > 0)
+      changes.push_back("removed " +
+                        counted(r.removed_unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"));
+    if (r.reoriented_faces > 0) changes.push_back("reoriented " + counted(r.reoriented_faces, "face", "faces"));
+    if (r.stitched_edges > 0) changes.push_back("stitched " + counted(r.stitched_edges, "edge", "edges"));
+    if (r.duplicated_nonmanifold_vertices > 0)
+      changes.push_back("copied " + counted(r.duplicated_nonmanifold_vertices, "non-manifold vertex",
+                                            "non-manifold vertices"));
+    if (r.triangulated_faces > 0)
+      changes.push_back("triangulated " + counted(r.triangulated_faces, "polygon", "polygons"));
+    std::printf("repair: %s\n", changes.empty() ? "nothing to change" : fmt::format("{}", fmt::join(changes, ", ")).c_str());
+  }
   if (!read.repair && !(read.fill_holes > 0)) return;
   for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
 }

@@ -266,7 +266,7 @@ double suggested_weld(const std::vector<Vec3>& positions, const std::vector<int>
 // vertices are the repaired mesh's.
 void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& positions,
                           const std::vector<Triangle>& triangles, const std::vector<int>& original, bool repaired,
-                          double weld) {
+                          double weld, const std::string& weld_damage) {
   std::unordered_map<uint64_t, int> edge_uses;
   edge_uses.reserve(triangles.size() * 2);
   const auto key = [](int a, int b) {
@@ -332,6 +332,11 @@ void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& posi
                            weld_advice));
   if (near.count == 0) return;
   const int a = repaired ? near.a : original[near.a], b = repaired ? near.b : original[near.b];
+  // A weld that collapsed the file's own edges tore the surface: the seams it left are its doing.
+  if (!weld_damage.empty())
+    fail(path, fmt::format("{}, and left seams open: after --repair, vertices {} and {} are {:.3g} apart on separate "
+                           "boundary edges ({} boundary vertices have such a twin)",
+                           weld_damage, std::min(a, b), std::max(a, b), near.distance, near.count));
   fail(path, fmt::format("looks like a triangle soup or a seam whose corners nearly coincide: {}vertices {} and {} are "
                          "{:.3g} apart ({:.2g} of the bounding-box diagonal) on separate boundary edges ({} boundary "
                          "vertices have such a twin); rerun with --repair{} to weld them",
@@ -371,18 +376,36 @@ struct RepairedSoup {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
   std::vector<char> reversed;  // per triangle: reversed by the orientation step
+  std::string weld_damage;     // the file's edges --weld collapsed, or "": a likely cause if the read fails
 };
 
 // Every point moved onto an earlier one closer than `fraction` of the bounding-box diagonal
-// (weld_representatives), and the points left alone renumbered in their order. Returns the
-// distance used.
-double weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double fraction,
-                        int& welded) {
+// (weld_representatives), and the points left alone renumbered in their order. Notes how many
+// points moved, and how many of the file's own edges lost their length: a weld is meant for the
+// copies of one corner, and a value above an edge's length collapses that edge as well. Returns
+// that second note, or "" when no edge collapsed.
+std::string weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double fraction,
+                      RepairReport& report) {
   std::vector<Vec3> positions;
   positions.reserve(points.size());
   for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
-  const double tolerance = fraction * bounding_box(positions).diagonal();
+  const double diagonal = bounding_box(positions).diagonal();
+  const double tolerance = fraction * diagonal;
   const std::vector<int> representative = weld_representatives(positions, tolerance);
+  int collapsed = 0;
+  double longest_collapsed = 0;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const Polygon& polygon : polygons)
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const std::size_t a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+      if (a == b || points[a] == points[b]) continue;
+      const double length = distance(positions[a], positions[b]);
+      shortest = std::min(shortest, length);
+      if (representative[a] == representative[b]) {
+        ++collapsed;
+        longest_collapsed = std::max(longest_collapsed, length);
+      }
+    }
   std::vector<std::size_t> new_index(points.size());
   std::vector<Point> kept;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -392,18 +415,25 @@ double weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygo
     }
   for (Polygon& polygon : polygons)
     for (std::size_t& v : polygon) v = new_index[representative[v]];
-  welded = static_cast<int>(points.size() - kept.size());
+  report.welded_vertices = static_cast<int>(points.size() - kept.size());
   points.swap(kept);
-  return tolerance;
+  report.notes.push_back(fmt::format("welded {} vert{} into another within {:.3g} ({:g} of the bounding-box diagonal)",
+                                     report.welded_vertices, report.welded_vertices == 1 ? "ex" : "ices", tolerance,
+                                     fraction));
+  // Face sides are counted once per face, so an edge two faces share counts twice.
+  report.weld_collapsed_sides = collapsed;
+  if (collapsed == 0) return std::string();
+  const std::string damage = fmt::format(
+      "--weld {:g} collapsed {} face side{} of the file, up to {:.3g} long (below {:.3g}, half its shortest edge "
+      "as a fraction of the diagonal, it collapses none)",
+      fraction, collapsed, collapsed == 1 ? "" : "s", longest_collapsed, shortest / 2 / diagonal);
+  report.notes.push_back(damage + ": the surface lost those edges");
+  return damage;
 }
 
 RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
                          double weld, RepairReport& report) {
-  if (weld > 0) {
-    const double tolerance = weld_near_points(points, polygons, weld, report.welded_vertices);
-    report.notes.push_back(fmt::format("welded {} vertices into another within {:.3g} ({:g} of the bounding-box diagonal)",
-                                       report.welded_vertices, tolerance, weld));
-  }
+  const std::string weld_damage = weld > 0 ? weld_near_points(points, polygons, weld, report) : std::string();
   report.merged_vertices = static_cast<int>(PMP::merge_duplicate_points_in_polygon_soup(points, polygons));
   // Welding can repeat a vertex inside a polygon: drop consecutive repeats and what collapses.
   std::vector<Polygon> simple;
@@ -425,12 +455,13 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
   triangles.erase(std::remove_if(triangles.begin(), triangles.end(), degenerate), triangles.end());
   report.removed_degenerate_faces += static_cast<int>(before - triangles.size());
   if (triangles.empty())
-    fail(path, weld > 0 ? fmt::format("has no faces left after --weld {:g} joined their corners: use a smaller value",
-                                      weld)
+    fail(path, weld > 0 ? fmt::format("has no faces left after --weld {:g} joined their corners: {}", weld,
+                                      weld_damage.empty() ? "use a smaller value" : weld_damage)
                         : std::string("has no faces left after --repair removed the degenerate ones"));
   report.removed_duplicate_faces = static_cast<int>(PMP::merge_duplicate_polygons_in_polygon_soup(points, triangles));
 
   RepairedSoup out;
+  out.weld_damage = weld_damage;
   out.reversed.assign(triangles.size(), 0);
   OrientationRecorder recorder(&out.reversed, &report.duplicated_nonmanifold_vertices);
   PMP::orient_polygon_soup(points, triangles, CGAL::parameters::visitor(recorder));
@@ -686,11 +717,13 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   std::vector<Vec3> positions;
   std::vector<Triangle> triangles;
   std::vector<char> reversed;
+  std::string weld_damage;
   if (options.repair) {
     RepairedSoup repaired = repair_soup(path, std::move(points), std::move(polygons), options.weld, report);
     positions = std::move(repaired.positions);
     triangles = std::move(repaired.triangles);
     reversed = std::move(repaired.reversed);
+    weld_damage = std::move(repaired.weld_damage);
   } else {
     for (const SoupTriangle& t : triangulate(points, polygons, report))
       triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
@@ -708,13 +741,22 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
     numbering_note += fmt::format("{}dropping {} unreferenced vertices", numbering_note.empty() ? "" : " and ",
                                   report.removed_unreferenced_vertices);
   if (!numbering_note.empty()) numbering_note = " (numbering after " + numbering_note + ")";
-  refuse_triangle_soup(path, positions, triangles, original, options.repair, options.repair ? options.weld : 0.0);
-  loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
+  try {
+    refuse_triangle_soup(path, positions, triangles, original, options.repair, options.repair ? options.weld : 0.0,
+                         weld_damage);
+    loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
+  } catch (const InputError& e) {
+    if (weld_damage.empty() || std::string(e.what()).find(weld_damage) != std::string::npos) throw;
+    const std::string reason = e.what();
+    throw InputError(fmt::format("{}: {}, and the welded mesh is refused: {}", path, weld_damage,
+                                 reason.substr(std::min(reason.size(), path.size() + 2))));
+  }
   if (options.repair) {
     choose_component_orientation(loaded.mesh, reversed, report);
-    if (report.changed() && !loaded.mesh.is_closed())
-      report.notes.push_back(
-          fmt::format("the repaired mesh has {} boundary loops", loaded.mesh.boundary_loops().size()));
+    if (report.changed() && !loaded.mesh.is_closed()) {
+      const std::size_t loops = loaded.mesh.boundary_loops().size();
+      report.notes.push_back(fmt::format("the repaired mesh has {} boundary loop{}", loops, loops == 1 ? "" : "s"));
+    }
   }
   if (options.fill_holes > 0) {
     try {

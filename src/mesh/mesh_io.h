@@ -25,6 +25,7 @@ struct ReadOptions {
 //! What reading changed between the file and the returned mesh. Indices in the notes are 0-based.
 struct RepairReport {
   int welded_vertices = 0;                  //!< vertices welded into an earlier one within ReadOptions::weld
+  int weld_collapsed_sides = 0;             //!< face sides of the file whose two ends that weld joined
   int merged_vertices = 0;                  //!< vertices welded into an earlier one with identical coordinates
   int removed_degenerate_faces = 0;         //!< zero-area faces (exact test) and faces repeating a vertex
   int removed_duplicate_faces = 0;          //!< faces on the same vertices as an earlier face, any orientation
