@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -330,6 +331,31 @@ TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's t
       if (mesh_name == "interpenetrating_spheres") REQUIRE(r.check.inherited_intersecting_pairs > 0);
     }
   }
+}
+
+TEST_CASE("A run whose line search backtracks counts L-BFGS iterations, within the caps, not evaluations", "[cvt][remesh]") {
+  // Elk 300's repair rounds backtrack often (about 2.7 diagrams per iteration), and some end on a
+  // failed line search; such a round was once reported with its evaluations as iterations (105 and
+  // 124 against a cap of 30, 525 in all).
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  RemeshOptions options;
+  std::vector<std::string> lines;
+  options.on_progress = [&](const std::string& line) { lines.push_back(line); };
+  const RemeshResult r = remesh_cvt(elk, elk, sample_uniform(elk, 300, 1), options);
+  REQUIRE(r.repair_rounds > 0);
+  REQUIRE(r.total_iterations <= options.cvt.iterations + r.repair_rounds * options.repair_iterations +
+                                    (r.polished ? options.polish_steps : 0));
+  REQUIRE(2 * r.total_iterations < r.diagram_evaluations);
+  int rounds_seen = 0;
+  for (const std::string& line : lines) {
+    int round = 0, iterations = 0;
+    if (std::sscanf(line.c_str(), "repair round %d: %d iterations", &round, &iterations) != 2) continue;
+    ++rounds_seen;
+    INFO(line);
+    REQUIRE(iterations >= 1);
+    REQUIRE(iterations <= options.repair_iterations);
+  }
+  REQUIRE(rounds_seen == r.repair_rounds);
 }
 
 TEST_CASE("Remeshing CGAL's models gives valid meshes of the requested size and quality", "[cvt][remesh]") {

@@ -22,6 +22,20 @@ namespace lrvd {
 
 namespace {
 
+// LBFGS++'s backtracking line search, counting the line searches that end with a step taken: the
+// L-BFGS iterations done, which the solver's return value gives only when it does not throw (a
+// line search that fails ends the run with an exception).
+thread_local int completed_line_searches = 0;
+template <typename Scalar>
+struct CountedBacktracking {
+  template <typename Function, typename Vector>
+  static void LineSearch(Function& f, Scalar& fx, Vector& x, Vector& grad, Scalar& step, const Vector& drt,
+                         const Vector& xp, const LBFGSpp::LBFGSParam<Scalar>& param) {
+    LBFGSpp::LineSearchBacktracking<Scalar>::LineSearch(f, fx, x, grad, step, drt, xp, param);
+    ++completed_line_searches;
+  }
+};
+
 // The mesh triangles of each sample's cell in a diagram: where a sample may be projected when the
 // closest point of the whole mesh lies on a sheet facing the other way (see `project`).
 using CellTriangles = std::vector<std::vector<int>>;
@@ -226,19 +240,20 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     param.delta = options.relative_energy_change;
     param.max_iterations = options.iterations - iteration;
     param.max_linesearch = 20;
-    LBFGSpp::LBFGSSolver<double> solver(param);
+    LBFGSpp::LBFGSSolver<double, CountedBacktracking> solver(param);
     Eigen::VectorXd x(3 * n);
     for (int i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) x[3 * i + c] = samples.positions[i][c] / unit;
     double fx = 0;
     int lbfgs_iterations = 0;
+    completed_line_searches = 0;
     try {
       lbfgs_iterations = solver.minimize(objective, x, fx);
     } catch (const std::exception&) {
       // The line search can fail where the energy is not smooth (cells appearing or vanishing);
-      // the best state seen so far stands.
+      // the best state seen so far stands. The iteration whose line search failed counts.
       result.line_search_stopped = true;
-      lbfgs_iterations = lbfgs_evaluations;
+      lbfgs_iterations = completed_line_searches + 1;
     }
     iteration += lbfgs_iterations;
     project(index, best.positions, samples, true, &mesh, &cells);
