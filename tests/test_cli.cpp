@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -153,6 +154,51 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   REQUIRE(proc.status == 2);
   REQUIRE(proc.err.find("cannot be written") != std::string::npos);
   REQUIRE_FALSE(std::ifstream(unwritten).good());
+}
+
+TEST_CASE("lrvd refuses an output on a file it reads, also through a link, and leaves that file as it was", "[cli]") {
+  const std::string mesh = kOut + "own_input.off", points = kOut + "own_points.xyz", link = kOut + "own_link.off";
+  const std::string elk_text = [&] {
+    std::ifstream in(kData + "/elk.off");
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }();
+  std::ofstream(mesh) << elk_text;
+  std::ofstream(points) << "0.5 0.5 0.5\n";
+  const std::string json_link = kOut + "own_link.json";
+  for (const std::string& l : {link, json_link}) {
+    std::remove(l.c_str());
+    std::filesystem::create_symlink(std::filesystem::path(mesh).filename(), l);
+  }
+  struct Case {
+    std::string args, expected;
+  };
+  for (const Case& c :
+       {Case{"remesh " + mesh + " -n 100 -o " + mesh, "-o " + mesh + " is the input mesh, which it would overwrite"},
+        Case{"remesh " + link + " -n 100 -o " + mesh, "is the input mesh"},
+        Case{"remesh " + mesh + " -n 100 -o " + link, "is the input mesh"},
+        Case{"verify " + mesh + " --points " + points + " --report " + points, "is the --points file"},
+        Case{"mps " + mesh + " --radius 0.05 -o " + kOut + "own.xyz --remesh " + mesh, "is the input mesh"},
+        Case{"quality " + kData + "/elk.off " + mesh + " --report " + json_link, "is the measured mesh"}}) {
+    const Run r = run(c.args);
+    INFO(c.args << "\n" << r.err);
+    REQUIRE(r.status == 2);
+    REQUIRE(lines(r.err) == 1);
+    REQUIRE(r.err.find(c.expected) != std::string::npos);
+  }
+  std::ifstream in(mesh);
+  std::stringstream after;
+  after << in.rdbuf();
+  REQUIRE(after.str() == elk_text);
+  // A link to an output that is not there yet is that output.
+  const std::string target = kOut + "own_target.xyz", report_link = kOut + "own_report_link.json";
+  std::remove(target.c_str());
+  std::remove(report_link.c_str());
+  std::filesystem::create_symlink(std::filesystem::path(target).filename(), report_link);
+  const Run both = run("mps " + kData + "/elk.off --radius 0.05 -o " + target + " --report " + report_link);
+  REQUIRE(both.status == 2);
+  REQUIRE(both.err.find("is also another output of this command") != std::string::npos);
 }
 
 TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows error lines safely", "[cli]") {

@@ -42,7 +42,8 @@ struct ComputeOptions {
 
 int run_diagram(const ComputeOptions& opt, bool write_cells) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
-  check_outputs({{write_cells ? opt.output : std::string(), "-o", {".ply"}}, {opt.report, "--report", {}, kMeshReadExtensions}});
+  check_outputs({{write_cells ? opt.output : std::string(), "-o", {".ply"}}, {opt.report, "--report", {}, kMeshReadExtensions}},
+                read_files(opt.input));
   Input input = load_input(opt.input);
   if (!opt.no_verify) require_memory_for_verification(input.samples.size(), write_cells);
   if (is_power(kind) && !input.samples.weighted())

@@ -52,7 +52,8 @@ int run_mps(const MpsCommandOptions& opt) {
   // The samples are text, 'x y z r^2' per line: not a mesh file.
   check_outputs({{opt.output, "-o", {}, kMeshReadExtensions},
                  {opt.remesh, "--remesh", kMeshWriteExtensions},
-                 {opt.report, "--report", {}, kMeshReadExtensions}});
+                 {opt.report, "--report", {}, kMeshReadExtensions}},
+                {{opt.mesh_path, "the input mesh"}});
   const LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
   const SurfaceMesh& input = loaded.mesh;
   print_repair(loaded.repair, opt.read);

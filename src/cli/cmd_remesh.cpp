@@ -91,7 +91,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
   if (opt.output.empty()) throw InputError("give an output file with -o");
-  check_outputs({{opt.output, "-o", kMeshWriteExtensions}, {opt.report, "--report", {}, kMeshReadExtensions}});
+  check_outputs({{opt.output, "-o", kMeshWriteExtensions}, {opt.report, "--report", {}, kMeshReadExtensions}},
+                read_files(opt.input));
   Input input = load_input(opt.input);
   if (input.samples.weighted())
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
@@ -218,7 +219,8 @@ struct QualityOptions {
 };
 
 int run_quality(const QualityOptions& opt) {
-  check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}});
+  check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}},
+                {{opt.reference, "the reference mesh"}, {opt.mesh, "the measured mesh"}});
   const LoadedMesh loaded = read_mesh(opt.reference, opt.read);
   print_repair(loaded.repair, opt.read);
   const SurfaceMesh& reference = loaded.mesh;
@@ -250,7 +252,7 @@ int run_quality(const QualityOptions& opt) {
 Action add_remesh_command(CLI::App& app) {
   auto opt = std::make_shared<RemeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand("remesh", "Remesh to exactly N vertices with a CVT on the LRVD, check the output");
-  add_input_options(cmd, opt->input, true);
+  add_input_options(cmd, opt->input, true, false);
   cmd->add_option("--diagram", opt->kind, "Diagram of the CVT: lrvd (default) or rvd (the baseline)")
       ->check(CLI::IsMember({"lrvd", "rvd"}))
       ->capture_default_str();

@@ -91,12 +91,17 @@ Action add_stress_command(CLI::App& app) {
   CLI::Option* name = cmd->add_option("name", opt->name, "Stress mesh to write");
   CLI::Option* output =
       cmd->add_option("-o,--output", opt->output, "Output mesh file (.off, .obj, .ply)")->check(path_validator());
-  cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")->check(CLI::Range(0.05, 10.0));
+  CLI::Option* scale = cmd->add_option("--scale", opt->scale, "Resolution scale (multiplies subdivision counts)")
+                           ->check(CLI::Range(0.05, 10.0))
+                           ->capture_default_str();
   CLI::Option* report = cmd->add_option("--report", opt->report_dir, "Compute RVD and LRVD on every stress mesh, write tables to DIR")
                              ->check(path_validator());
-  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")->check(CLI::Range(1, 100))->needs(report);
+  cmd->add_option("--seeds", opt->seeds, "Seeds per (mesh, n) for --report")
+      ->check(CLI::Range(1, 100))
+      ->needs(report)
+      ->capture_default_str();
   // The three uses exclude each other: a listing, one mesh written, or the report over all.
-  list->excludes(name)->excludes(output)->excludes(report);
+  list->excludes(name)->excludes(output)->excludes(report)->excludes(scale);
   report->excludes(name)->excludes(output);
   return [opt]() -> int {
     if (!opt->report_dir.empty()) return write_stress_report(opt->report_dir, opt->scale, opt->seeds);
@@ -107,6 +112,7 @@ Action add_stress_command(CLI::App& app) {
     }
     if (opt->name.empty()) throw InputError("name a stress mesh (see `lrvd stress --list`)");
     if (opt->output.empty()) throw InputError("give an output file with -o");
+    check_outputs({{opt->output, "-o", kMeshWriteExtensions}});
     const SurfaceMesh mesh = make_stress_mesh(opt->name, opt->scale);
     write_mesh(opt->output, mesh);
     std::printf("%s: %d vertices, %d triangles -> %s\n", opt->name.c_str(), mesh.vertex_count(),

@@ -99,20 +99,27 @@ void print_repair(const RepairReport& r, const ReadOptions& read) {
   for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
 }
 
-void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count) {
+void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights) {
   cmd->add_option("mesh", opt.mesh_path, "Input mesh (.off, .obj, .ply, .stl)")->required()->check(path_validator());
   add_repair_options(cmd, opt.read);
   CLI::Option* points =
-      cmd->add_option("--points", opt.points_path, "Sample points, one 'x y z [w]' per line")->check(path_validator());
+      cmd->add_option("--points", opt.points_path,
+                      allow_weights ? "Sample points, one 'x y z [w]' per line" : "Sample points, one 'x y z' per line")
+          ->check(path_validator());
   if (allow_count) {
     CLI::Option* n = cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)");
     n->excludes(points);
+    // The seed draws the random samples: with --points there are none.
+    cmd->add_option("--seed", opt.seed, "Seed of the random samples")
+        ->check(seed_validator())
+        ->capture_default_str()
+        ->excludes(points);
   } else {
     points->required();
   }
-  cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)")
-      ->check(path_validator());
-  cmd->add_option("--seed", opt.seed, "Seed of the random samples")->check(seed_validator())->capture_default_str();
+  if (allow_weights)
+    cmd->add_option("--weights", opt.weights_path, "Weights of the samples, one per line (power diagrams)")
+        ->check(path_validator());
   cmd->add_option("--refine", opt.refine,
                   "Split long edges first: 'auto' (when the samples would crowd the triangles), 'off', or a "
                   "maximum edge length")
@@ -250,8 +257,30 @@ nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVe
   return q;
 }
 
-void check_outputs(const std::vector<PlannedOutput>& outputs) {
+std::vector<ReadFile> read_files(const InputOptions& input) {
+  return {{input.mesh_path, "the input mesh"}, {input.points_path, "the --points file"},
+          {input.weights_path, "the --weights file"}};
+}
+
+void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<ReadFile>& inputs) {
   namespace fs = std::filesystem;
+  // One file under two names: the same file on disk (a link, another spelling), or, for a file
+  // not made yet, the same path once the links of its folders are followed.
+  const auto resolved = [](fs::path p) {
+    std::error_code error;
+    // A link to a file not made yet is followed too (weakly_canonical stops at it).
+    for (int hops = 0; hops < 40 && fs::is_symlink(p, error); ++hops) {
+      const fs::path target = fs::read_symlink(p, error);
+      if (error) break;
+      p = target.is_absolute() ? target : p.parent_path() / target;
+    }
+    const fs::path canonical = fs::weakly_canonical(p, error);
+    return error ? fs::absolute(p, error).lexically_normal() : canonical;
+  };
+  const auto same_file = [&](const fs::path& a, const fs::path& b) {
+    std::error_code error;
+    return fs::equivalent(a, b, error) || resolved(a) == resolved(b);
+  };
   std::vector<fs::path> seen;
   for (const PlannedOutput& out : outputs) {
     if (out.path.empty()) continue;
@@ -272,10 +301,14 @@ void check_outputs(const std::vector<PlannedOutput>& outputs) {
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(folder, error))
       throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
-    const fs::path normal = fs::absolute(path, error).lexically_normal();
-    if (std::find(seen.begin(), seen.end(), normal) != seen.end())
-      throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
-    seen.push_back(normal);
+    for (const ReadFile& in : inputs)
+      if (!in.path.empty() && same_file(path, in.path))
+        throw InputError(fmt::format("{} {} is {}, which it would overwrite: write to another file", out.option,
+                                     out.path, in.what));
+    for (const fs::path& other : seen)
+      if (same_file(path, other))
+        throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
+    seen.push_back(path);
     // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
     // so that a long run does not end on a file it cannot write.
     const bool existed = fs::exists(path, error);

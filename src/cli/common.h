@@ -26,7 +26,9 @@ struct InputOptions {
   std::string refine = "auto";  //!< auto | off | a maximum edge length
 };
 
-void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count);
+//! The mesh, its repair options, the samples (--points, and with `allow_count` -n and --seed),
+//! --weights when the command takes weighted samples (`allow_weights`), --refine.
+void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
 //! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");
 //! What --repair, --weld and --fill-holes changed, one "repair: ..." line each (nothing when none is given).
@@ -62,10 +64,18 @@ struct PlannedOutput {
   std::vector<std::string> extensions;
   std::vector<std::string> refused = {};
 };
+//! A file a command reads, with what the user calls it ("the input mesh", "--points").
+struct ReadFile {
+  std::string path;
+  const char* what;
+};
 //! Refuses, before any work, outputs that could not be written at the end: an extension the
-//! writer does not know, a folder that does not exist, a path that is a folder, or two outputs
-//! on one file. Empty paths (outputs not asked for) are skipped.
-void check_outputs(const std::vector<PlannedOutput>& outputs);
+//! writer does not know, a folder that does not exist, a path that is a folder, two outputs on
+//! one file, or an output on a file the command reads (also through a link). Empty paths
+//! (outputs not asked for, inputs not given) are skipped.
+void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<ReadFile>& inputs = {});
+//! The files of `input` a command reads: the mesh, --points and --weights.
+std::vector<ReadFile> read_files(const InputOptions& input);
 //! The console line of a remesh's quality, or that it was not measured (null: the remesh has no
 //! triangles). The share under 30 degrees is of the angles (`of_angles`) or of the triangles.
 void print_quality(const QualityMetrics* quality, bool of_angles);
