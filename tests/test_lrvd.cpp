@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 
+#include <fmt/format.h>
+
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
@@ -326,6 +328,16 @@ TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") 
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {0, 0, 1}}), Catch::Contains("coincide"));
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 1}, {0, NAN, 1}}), Catch::Contains("non-finite"));
   REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 3}}), Catch::Contains("from the surface"));
+  // The first point that repeats an earlier one is named, with that one, and the lines when known.
+  const std::vector<Vec3> repeated = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
+  REQUIRE_THROWS_WITH(locate_points(mesh, repeated), Catch::StartsWith("points 1 and 3 coincide"));
+  REQUIRE_THROWS_WITH(locate_points(mesh, repeated, {}, {2, 3, 5, 6, 7}),
+                      Catch::StartsWith("points 1 (line 3) and 3 (line 6) coincide"));
+  // The distance limit is named as such, beside the diagonal it is 1% of.
+  REQUIRE_THROWS_WITH(locate_points(mesh, {{0, 0, 3}}),
+                      Catch::Contains("farther than " + fmt::format("{:.3g}", 0.01 * mesh.bounding_box().diagonal()) +
+                                      " (1% of the bounding-box diagonal, " +
+                                      fmt::format("{:.4g}", mesh.bounding_box().diagonal()) + ")"));
   REQUIRE_THROWS_WITH(sample_uniform(mesh, 0, 1), Catch::Contains("at least 1"));
   // A component without a sample would have no cell (the CVT once handed such samples over and the
   // builder wrote out of bounds): refused, naming the component.

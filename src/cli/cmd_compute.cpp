@@ -88,8 +88,10 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
   }
   if (!opt.report.empty()) write_json(opt.report, report);
 
-  std::printf("%s: %d samples on %d triangles, %zu polygons, %d cell(s) in several pieces, %.3f s\n",
-              opt.kind.c_str(), input.samples.size(), input.mesh.triangle_count(), diagram.polygons.size(), multiple,
+  std::printf("%s: %s on %s, %s, %s in several pieces, %.3f s\n", opt.kind.c_str(),
+              counted(input.samples.size(), "sample", "samples").c_str(),
+              counted(input.mesh.triangle_count(), "triangle", "triangles").c_str(),
+              counted(diagram.polygons.size(), "polygon", "polygons").c_str(), counted(multiple, "cell", "cells").c_str(),
               diagram.stats.time_s);
   if (opt.no_verify) {
     std::printf("verification: skipped (--no-verify)\n");

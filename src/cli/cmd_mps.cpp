@@ -154,29 +154,35 @@ int run_mps(const MpsCommandOptions& opt) {
     report["verification"] = remesh_check.to_json();
     report["remesh"] = {{"path", opt.remesh}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
     remesh_ok = remesh_check.passed;
-    std::printf("remesh (LRRT): %zu vertices, %zu triangles -> %s; verification: %s\n", dual.positions.size(),
-                dual.triangles.size(), opt.remesh.c_str(), remesh_ok ? "passed" : "FAILED");
+    std::printf("remesh (LRRT): %s, %s -> %s; verification: %s\n",
+                counted(dual.positions.size(), "vertex", "vertices").c_str(),
+                counted(dual.triangles.size(), "triangle", "triangles").c_str(), opt.remesh.c_str(),
+                remesh_ok ? "passed" : "FAILED");
     if (!remesh_ok) std::fputs(remesh_check.summary().c_str(), stdout);
     print_quality(measurable ? &quality : nullptr, true);
   }
   report["predicates"] = predicates_json();
   if (!opt.report.empty()) write_json(opt.report, report);
 
-  std::printf("mps (%s, r = %g): %d samples (%d by dart throwing, %d in gaps), %.3f s "
+  std::printf("mps (%s, r = %g): %s (%d by dart throwing, %d in gaps), %.3f s "
               "(init %.3f, darts %.3f, gaps %.3f) -> %s\n",
-              opt.adaptive ? "adaptive" : "uniform", opt.radius, samples.size(), result.dart_samples, result.gap_samples,
+              opt.adaptive ? "adaptive" : "uniform", opt.radius, counted(samples.size(), "sample", "samples").c_str(),
+              result.dart_samples, result.gap_samples,
               result.time_s.total, result.time_s.init, result.time_s.dart_throwing, result.time_s.gap_filling,
               opt.output.c_str());
   const std::string ratio = std::isnan(check.min_distance_ratio)
-                                ? std::string("no two samples near each other")
+                                ? std::string(check.close_pairs_not_local > 0
+                                                  ? "no two samples local to each other, the only kind it bounds"
+                                                  : "no two samples near each other")
                                 : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
   // Closer pairs the disk condition does not cover (docs/mps.md, "Conflict rule"): said, not hidden.
   if (check.close_pairs_not_local > 0)
-    std::printf("  %lld pair(s) of samples closer than their radius are not local to each other (another component, "
+    std::printf("  %s of samples closer than their radius %s not local to each other (another component, "
                 "the other side of a sheet, or past a turn of the surface of more than 90 degrees): allowed\n",
-                static_cast<long long>(check.close_pairs_not_local));
+                counted(check.close_pairs_not_local, "pair", "pairs").c_str(),
+                check.close_pairs_not_local == 1 ? "is" : "are");
   if (check.polygons_outside_own_ball > 0)
     std::printf("  %lld LRPD polygons reach outside their cell's ball; in %lld of their triangles disks of samples "
                 "that are no LRPD candidate there cover them\n",

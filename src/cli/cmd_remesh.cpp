@@ -176,8 +176,10 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["predicates"] = predicates_json();
   if (!opt.report.empty()) write_json(opt.report, report);
 
-  std::printf("remesh (%s): %zu vertices, %zu triangles, %d iterations, %.3f s -> %s\n", opt.kind.c_str(),
-              dual.positions.size(), dual.triangles.size(), remeshed.total_iterations, remeshed.time_s, opt.output.c_str());
+  std::printf("remesh (%s): %s, %s, %s, %.3f s -> %s\n", opt.kind.c_str(),
+              counted(dual.positions.size(), "vertex", "vertices").c_str(),
+              counted(dual.triangles.size(), "triangle", "triangles").c_str(),
+              counted(remeshed.total_iterations, "iteration", "iterations").c_str(), remeshed.time_s, opt.output.c_str());
   print_quality(measurable ? &quality : nullptr, false);
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
@@ -219,6 +221,7 @@ struct QualityOptions {
 };
 
 int run_quality(const QualityOptions& opt) {
+  if (opt.mesh.empty()) throw InputError("give the mesh to measure after the reference: lrvd quality REFERENCE MESH");
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}},
                 {{opt.reference, "the reference mesh"}, {opt.mesh, "the measured mesh"}});
   const LoadedMesh loaded = read_mesh(opt.reference, opt.read);
@@ -232,7 +235,8 @@ int run_quality(const QualityOptions& opt) {
   report["quality"] = remesh_quality_json(quality, check);
   report["verification"] = check.to_json();
   if (!opt.report.empty()) write_json(opt.report, report);
-  std::printf("%s: %d vertices, %d triangles\n", opt.mesh.c_str(), quality.vertices, quality.triangles);
+  std::printf("%s: %s, %s\n", opt.mesh.c_str(), counted(quality.vertices, "vertex", "vertices").c_str(),
+              counted(quality.triangles, "triangle", "triangles").c_str());
   std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%% RMS %.3f%%\n",
               quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
               quality.hausdorff_pct, quality.rms_pct);
@@ -277,7 +281,8 @@ Action add_quality_command(CLI::App& app) {
   auto opt = std::make_shared<QualityOptions>();
   CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
   cmd->add_option("reference", opt->reference, "The input surface")->required()->check(path_validator());
-  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->required()->check(path_validator());
+  // Not required by CLI11, whose "mesh is required" reads oddly after one mesh was given.
+  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->check(path_validator());
   add_repair_options(cmd, opt->read, "the reference (as for the remesh)");
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   return [opt]() { return run_quality(*opt); };

@@ -115,8 +115,8 @@ Action add_stress_command(CLI::App& app) {
     check_outputs({{opt->output, "-o", kMeshWriteExtensions}});
     const SurfaceMesh mesh = make_stress_mesh(opt->name, opt->scale);
     write_mesh(opt->output, mesh);
-    std::printf("%s: %d vertices, %d triangles -> %s\n", opt->name.c_str(), mesh.vertex_count(),
-                mesh.triangle_count(), opt->output.c_str());
+    std::printf("%s: %s, %s -> %s\n", opt->name.c_str(), counted(mesh.vertex_count(), "vertex", "vertices").c_str(),
+                counted(mesh.triangle_count(), "triangle", "triangles").c_str(), opt->output.c_str());
     return kOk;
   };
 }

@@ -19,6 +19,35 @@
 
 namespace lrvd::cli {
 
+namespace {
+
+// The most samples a command takes; the refinement they call for is bounded by
+// kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
+constexpr int kMaxSamples = 5'000'000;
+
+// -n: a whole number; CLI11 alone says "Could not convert: --samples = abc". Zero and negative
+// counts pass here and get their own message with the other sample checks.
+CLI::Validator count_validator() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        const bool digits = text.size() > (text[0] == '-' ? 1u : 0u) &&
+                            text.find_first_not_of("0123456789", text[0] == '-' ? 1 : 0) == std::string::npos;
+        if (!digits) return "a sample count (-n) is a whole number, not '" + text + "'";
+        errno = 0;
+        const long long n = std::strtoll(text.c_str(), nullptr, 10);
+        if (errno == ERANGE || n > kMaxSamples)
+          return fmt::format("{} samples are more than lrvd takes (limit {})", text, kMaxSamples);
+        return std::string();
+      },
+      "INT");
+}
+
+}  // namespace
+
+std::string counted(long long count, const char* one, const char* many) {
+  return fmt::format("{} {}", count, count == 1 ? one : many);
+}
+
 CLI::Validator seed_validator() {
   // CLI11 would take "-1" as 2^64 - 1 and clamp a longer number: only decimal digits that fit.
   return CLI::Validator(
@@ -33,11 +62,6 @@ CLI::Validator seed_validator() {
 }
 
 namespace {
-
-// "1 vertex", "3 vertices": a count with its noun in the right number.
-std::string counted(int count, const char* one, const char* many) {
-  return fmt::format("{} {}", count, count == 1 ? one : many);
-}
 
 // A positive, finite fraction of the bounding-box diagonal.
 CLI::Validator fraction_validator() {
@@ -107,7 +131,8 @@ void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool 
                       allow_weights ? "Sample points, one 'x y z [w]' per line" : "Sample points, one 'x y z' per line")
           ->check(path_validator());
   if (allow_count) {
-    CLI::Option* n = cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)");
+    CLI::Option* n =
+        cmd->add_option("-n,--samples", opt.count, "Number of random samples (uniform by area)")->check(count_validator());
     n->excludes(points);
     // The seed draws the random samples: with --points there are none.
     cmd->add_option("--seed", opt.seed, "Seed of the random samples")
@@ -134,9 +159,6 @@ CLI::Validator path_validator() {
 
 namespace {
 
-// The most samples a command takes; the refinement they call for is bounded by
-// kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
-constexpr int kMaxSamples = 5'000'000;
 
 std::vector<double> read_weights(const std::string& path) {
   std::error_code error;
@@ -220,7 +242,11 @@ Input load_input(const InputOptions& opt) {
       input.samples.weights = points.weights;
     }
   } else {
-    input.samples = locate_points(input.mesh, points.points, points.weights);
+    try {
+      input.samples = locate_points(input.mesh, points.points, points.weights, points.lines);
+    } catch (const InputError& e) {
+      throw InputError(fmt::format("{}: {}", opt.points_path, e.what()));
+    }
   }
   return input;
 }

@@ -28,6 +28,9 @@ struct InputOptions {
 
 //! The mesh, its repair options, the samples (--points, and with `allow_count` -n and --seed),
 //! --weights when the command takes weighted samples (`allow_weights`), --refine.
+//! "1 vertex", "3 vertices": a count with its noun in the right number.
+std::string counted(long long count, const char* one, const char* many);
+
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
 //! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");

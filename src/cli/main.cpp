@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
   add(add_quality_command);
   add(add_mps_command);
   add(add_stress_command);
+  for (CLI::App* command : app.get_subcommands({}))
+    command->footer("--threads N, before or after the subcommand, limits the worker threads (default: every core); "
+                    "the results do not depend on it.");
 
   try {
     app.parse(argc, argv);

@@ -63,8 +63,8 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
   if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
   const int components = mesh.component_count();
   if (n < components)
-    throw InputError(fmt::format("{} samples cannot cover the mesh's {} connected components: each needs one",
-                                 n, components));
+    throw InputError(fmt::format("{} sample{} cannot cover the mesh's {} connected components: each needs one",
+                                 n, n == 1 ? "" : "s", components));
   const int m = mesh.triangle_count();
   std::vector<double> cumulative(m);
   double total = 0;
@@ -108,8 +108,8 @@ Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const
     throw std::invalid_argument("sample_by_component: one minimum per component");
   const long long fewest = std::accumulate(minimum.begin(), minimum.end(), 0LL);
   if (n < fewest)
-    throw InputError(fmt::format("{} samples are too few for the mesh's {} components: they need {} at least", n,
-                                 components, fewest));
+    throw InputError(fmt::format("{} sample{} too few for the mesh's {} components: they need {} at least", n,
+                                 n == 1 ? " is" : "s are", components, fewest));
   // Each component's triangles with their cumulative areas.
   std::vector<std::vector<int>> triangles(components);
   std::vector<std::vector<double>> cumulative(components);
@@ -150,25 +150,30 @@ Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const
   return samples;
 }
 
-Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const std::vector<double>& weights) {
+Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const std::vector<double>& weights,
+                      const std::vector<int>& lines) {
   if (points.empty()) throw InputError("no sample points were given");
   if (!weights.empty() && weights.size() != points.size())
     throw InputError(fmt::format("{} weights were given for {} points", weights.size(), points.size()));
-  const double tolerance = 0.01 * mesh.bounding_box().diagonal();
+  const auto label = [&](std::size_t i) {
+    return i < lines.size() ? fmt::format("{} (line {})", i, lines[i]) : std::to_string(i);
+  };
+  const double diagonal = mesh.bounding_box().diagonal();
+  const double tolerance = 0.01 * diagonal;
   ClosestPointIndex index(mesh);
   Samples samples;
   samples.weights = weights;
   std::vector<char> component_hit(mesh.component_count(), 0);
   for (size_t i = 0; i < points.size(); ++i) {
     const Vec3& p = points[i];
-    if (!is_finite(p)) throw InputError(fmt::format("point {} has a non-finite coordinate", i));
+    if (!is_finite(p)) throw InputError(fmt::format("point {} has a non-finite coordinate", label(i)));
     if (!weights.empty() && !std::isfinite(weights[i]))
-      throw InputError(fmt::format("point {} has a non-finite weight", i));
+      throw InputError(fmt::format("point {} has a non-finite weight", label(i)));
     const ClosestPoint c = index.query(p);
     if (c.distance > tolerance)
-      throw InputError(fmt::format("point {} ({}, {}, {}) is {:.3g} from the surface, more than 1% of the "
-                                   "bounding-box diagonal ({:.3g})",
-                                   i, p.x, p.y, p.z, c.distance, tolerance));
+      throw InputError(fmt::format("point {} at ({}, {}, {}) is {:.3g} from the surface, farther than {:.3g} (1% of the "
+                                   "bounding-box diagonal, {:.4g}), up to which a point is moved onto it",
+                                   label(i), p.x, p.y, p.z, c.distance, tolerance, diagonal));
     samples.positions.push_back(c.point);
     samples.triangles.push_back(c.triangle);
     // Inside the triangle near an edge, 1 - v - w can round to a hair below zero (a point given
@@ -178,18 +183,24 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
                                    std::max(c.barycentric.z, 0.0)});
     component_hit[mesh.triangle_components()[c.triangle]] = 1;
   }
-  // Coincident samples have no bisector between them: refuse them.
+  // Coincident samples have no bisector between them: refuse them, naming the first point that
+  // repeats an earlier one, and that one.
   std::vector<int> order(points.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   auto less = [&](int a, int b) {
     const Vec3 &pa = samples.positions[a], &pb = samples.positions[b];
-    return std::tie(pa.x, pa.y, pa.z) < std::tie(pb.x, pb.y, pb.z);
+    return std::tie(pa.x, pa.y, pa.z, a) < std::tie(pb.x, pb.y, pb.z, b);
   };
   std::sort(order.begin(), order.end(), less);
+  // In each run of equal positions the first entry has the lowest index and the second repeats it.
+  int first = -1, repeat = -1;
   for (size_t k = 1; k < order.size(); ++k)
-    if (samples.positions[order[k]] == samples.positions[order[k - 1]])
-      throw InputError(fmt::format("points {} and {} coincide on the surface; remove one",
-                                   std::min(order[k], order[k - 1]), std::max(order[k], order[k - 1])));
+    if (samples.positions[order[k]] == samples.positions[order[k - 1]] &&
+        (k == 1 || samples.positions[order[k - 1]] != samples.positions[order[k - 2]]) &&
+        (repeat < 0 || order[k] < repeat))
+      first = order[k - 1], repeat = order[k];
+  if (repeat >= 0)
+    throw InputError(fmt::format("points {} and {} coincide on the surface; remove one", label(first), label(repeat)));
   for (int c = 0; c < mesh.component_count(); ++c)
     if (!component_hit[c]) {
       int first = 0;
@@ -230,6 +241,7 @@ PointFile read_xyz(const std::string& path) {
     if (columns != static_cast<int>(values.size()))
       throw InputError(fmt::format("{}:{}: every line must have the same number of columns ({})", path, number, columns));
     file.points.push_back({values[0], values[1], values[2]});
+    file.lines.push_back(number);
     if (columns == 4) file.weights.push_back(values[3]);
   }
   if (file.points.empty()) throw InputError(fmt::format("point file '{}' holds no points", path));

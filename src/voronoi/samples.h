@@ -35,15 +35,17 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed);
 //! \throw InputError when n is smaller than the sum of the minima.
 Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum);
 
-//! Locates points on the mesh by closest point and moves each onto it.
+//! Locates points on the mesh by closest point and moves each onto it. `lines`, when given (one
+//! per point: where a file has it), is named with the point in the messages.
 //! \throw InputError when a point is not finite, farther from the surface than 1% of the bounding
 //!        box diagonal, when two points coincide, or when a component of the mesh gets no point.
 Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points,
-                      const std::vector<double>& weights = {});
+                      const std::vector<double>& weights = {}, const std::vector<int>& lines = {});
 
 struct PointFile {
   std::vector<Vec3> points;
   std::vector<double> weights;  // empty unless every line has a 4th column
+  std::vector<int> lines;       // the line of each point in the file, from 1
 };
 
 //! Reads `x y z [w]` lines (blank lines and lines starting with '#' are skipped).
