@@ -293,6 +293,16 @@ TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cl
   REQUIRE(failed.out.find("closed manifold: no") != std::string::npos);
   REQUIRE(failed.out.find("verification: FAILED") != std::string::npos);
   REQUIRE(read_json(report)["verification"]["passed"] == false);
+  // A mesh in another unit: its distances are said to measure that, in the console and the report.
+  const std::string big = kOut + "square_big.off", big_report = kOut + "quality_big.json";
+  std::ofstream(big) << "OFF\n4 2 0\n0 0 0\n1000 0 0\n1000 1000 0\n0 1000 0\n3 0 1 2\n3 0 2 3\n";
+  const Run scaled = run("quality " + square + " " + big + " --report " + big_report);
+  REQUIRE(scaled.status == 0);  // a valid mesh: the distances are metrics, not checks
+  REQUIRE(scaled.out.find("warning: the mesh's bounding box has 1e+03 times the reference's diagonal") !=
+          std::string::npos);
+  REQUIRE(read_json(big_report)["frame_warning"].get<std::string>().find("one unit and frame") != std::string::npos);
+  REQUIRE(open.out.find("warning") == std::string::npos);
+  REQUIRE(closed.out.find("warning") == std::string::npos);
 }
 
 TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails a check", "[cli][remesh]") {

@@ -220,6 +220,20 @@ struct QualityOptions {
   ReadOptions read;  //!< of the reference, as the remesh's input was
 };
 
+// A mesh measured against a reference of another size or place: its bounding box's diagonal more
+// than 1.5 times the reference's or less than 1/1.5 of it, or its centre further from the
+// reference's than half the reference's diagonal. "" when neither holds.
+std::string frame_mismatch(const BoundingBox& reference, const BoundingBox& mesh) {
+  constexpr double kSizeRatio = 1.5;
+  const double size = mesh.diagonal() / reference.diagonal();
+  const double offset = distance(0.5 * (mesh.min + mesh.max), 0.5 * (reference.min + reference.max));
+  if (size <= kSizeRatio && size >= 1 / kSizeRatio && offset <= 0.5 * reference.diagonal()) return std::string();
+  return fmt::format("the mesh's bounding box has {:.3g} times the reference's diagonal ({:.4g} against {:.4g}) and "
+                     "its centre is {:.3g} reference diagonals away: the distances measure that; are both in one unit "
+                     "and frame?",
+                     size, mesh.diagonal(), reference.diagonal(), offset / reference.diagonal());
+}
+
 int run_quality(const QualityOptions& opt) {
   if (opt.mesh.empty()) throw InputError("give the mesh to measure after the reference: lrvd quality REFERENCE MESH");
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}},
@@ -232,6 +246,9 @@ int run_quality(const QualityOptions& opt) {
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
   if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
+  // Two meshes in different units or frames give distances that measure that, not the remesh.
+  const std::string frame = frame_mismatch(reference.bounding_box(), bounding_box(soup.positions));
+  if (!frame.empty()) report["frame_warning"] = frame;
   report["quality"] = remesh_quality_json(quality, check);
   report["verification"] = check.to_json();
   if (!opt.report.empty()) write_json(opt.report, report);
@@ -240,6 +257,7 @@ int run_quality(const QualityOptions& opt) {
   std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%% RMS %.3f%%\n",
               quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
               quality.hausdorff_pct, quality.rms_pct);
+  if (!frame.empty()) std::printf("warning: %s\n", frame.c_str());
   // The key `closed_manifold` asks for a closed mesh only when the reference is closed.
   std::printf("%s: %s, genus preserved: %s, self-intersecting pairs: %d\n",
               reference.is_closed() ? "closed manifold" : "manifold (open, as the reference)",
