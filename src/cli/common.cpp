@@ -319,11 +319,13 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!out.extensions.empty() && !listed(out.extensions)) {
       std::string known;
       for (const std::string& e : out.extensions) known += (known.empty() ? "" : ", ") + e;
-      throw InputError(fmt::format("{} {}: {} (lrvd writes {} there)", out.option, out.path,
-                                   ext.empty() ? "no extension" : fmt::format("the extension '{}' is not one it writes", ext), known));
+      throw InputError(fmt::format("{} {}: {}; it writes {} there", out.option, out.path,
+                                   ext.empty() ? "no extension" : fmt::format("lrvd does not write '{}' files", ext), known));
     }
     if (listed(out.refused))
-      throw InputError(fmt::format("{} {}: the file would not be a '{}' file; use another extension", out.option, out.path, ext));
+      throw InputError(fmt::format("{} {}: this output is not a mesh, and a '{}' file would pass for one; use another "
+                                   "extension",
+                                   out.option, out.path, ext));
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(folder, error))
       throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
