@@ -319,8 +319,9 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!out.extensions.empty() && !listed(out.extensions)) {
       std::string known;
       for (const std::string& e : out.extensions) known += (known.empty() ? "" : ", ") + e;
-      throw InputError(fmt::format("{} {}: {}; it writes {} there", out.option, out.path,
-                                   ext.empty() ? "no extension" : fmt::format("lrvd does not write '{}' files", ext), known));
+      throw InputError(fmt::format("{} {}: {}; {} {} there", out.option, out.path,
+                                   ext.empty() ? "no extension" : fmt::format("lrvd does not write '{}' files", ext),
+                                   ext.empty() ? "lrvd writes" : "it writes", known));
     }
     if (listed(out.refused))
       throw InputError(fmt::format("{} {}: this output is not a mesh, and a '{}' file would pass for one; use another "
