@@ -199,6 +199,16 @@ TEST_CASE("lrvd refuses an output on a file it reads, also through a link, and l
   const Run both = run("mps " + kData + "/elk.off --radius 0.05 -o " + target + " --report " + report_link);
   REQUIRE(both.status == 2);
   REQUIRE(both.err.find("is also another output of this command") != std::string::npos);
+  // A report through a link to a file not made yet goes to that file, and the link stays; a run
+  // refused after the checks leaves neither the file nor a changed link.
+  const Run refused = run("mps " + kData + "/missing.off --radius 0.05 -o " + kOut + "own_s.xyz --report " + report_link);
+  REQUIRE(refused.status == 2);
+  REQUIRE(std::filesystem::is_symlink(report_link));
+  REQUIRE_FALSE(std::filesystem::exists(target));
+  const Run through = run("mps " + kData + "/elk.off --radius 0.05 -o " + kOut + "own_s.xyz --report " + report_link);
+  REQUIRE(through.status == 0);
+  REQUIRE(std::filesystem::is_symlink(report_link));
+  REQUIRE(read_json(target)["samples"].get<int>() > 0);
 }
 
 TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows error lines safely", "[cli]") {

@@ -340,10 +340,12 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     seen.push_back(path);
     // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
     // so that a long run does not end on a file it cannot write.
+    // Through a link to a file not made yet, the probe makes the link's target: that goes again,
+    // the link stays.
     const bool existed = fs::exists(path, error);
     if (!std::ofstream(out.path, std::ios::app))
       throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
-    if (!existed) fs::remove(path, error);
+    if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
   }
 }
 

@@ -35,7 +35,7 @@ struct CvtOptions {
 struct CvtResult {
   Samples samples;                   //!< final positions, on the surface
   Diagram diagram;                   //!< the diagram of the final samples
-  int iterations = 0;                //!< Lloyd steps + L-BFGS iterations (evaluations if the line search stopped)
+  int iterations = 0;                //!< Lloyd steps + L-BFGS iterations (one whose line search failed counts once)
   int diagram_evaluations = 0;
   bool line_search_stopped = false;  //!< L-BFGS ended on a failed line search (non-smooth energy)
   double energy = 0;
