@@ -12,9 +12,12 @@
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
+#include "remesh/cvt.h"
 #include "remesh/mps.h"
+#include "remesh/remesh.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
+#include "verification/mps_check.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
@@ -320,6 +323,46 @@ TEST_CASE("Cell integrals add up to the surface", "[lrvd]") {
     REQUIRE(distance(cells.centroid[i], samples.positions[i]) < std::sqrt(cells.area[i]) * 3);
   }
   REQUIRE(cells.total_energy > 0);
+}
+
+TEST_CASE("The library refuses an empty mesh and samples whose parts disagree, instead of reading past them", "[lrvd][input]") {
+  using Catch::Contains;
+  const SurfaceMesh empty;
+  REQUIRE_THROWS_AS(sample_uniform(empty, 5, 1), InputError);
+  REQUIRE_THROWS_AS(sample_by_component(empty, 3, 1, {}), InputError);
+  REQUIRE_THROWS_AS(locate_points(empty, {{0, 0, 0}}), InputError);
+  REQUIRE_THROWS_WITH(remesh_to(empty, 10), Contains("the mesh is empty"));
+  REQUIRE_THROWS_AS(empty.bounding_box(), InputError);
+
+  const SurfaceMesh mesh = test::icosphere(2);
+  const Samples good = sample_uniform(mesh, 30, 1);
+  Samples short_triangles = good;
+  short_triangles.triangles.resize(5);
+  REQUIRE_THROWS_WITH(compute_lrvd(mesh, short_triangles), Contains("30 positions but 5 triangles"));
+  REQUIRE_THROWS_WITH(compute_rvd(mesh, short_triangles), Contains("30 positions but 5 triangles"));
+  Samples short_weights = good;
+  short_weights.weights.assign(10, 0.01);
+  REQUIRE_THROWS_WITH(compute_diagram(mesh, short_weights, DiagramKind::Lrpd), Contains("30 positions but 10 weights"));
+  Samples nan_weight = good;
+  nan_weight.weights.assign(30, 0.01);
+  nan_weight.weights[2] = NAN;
+  REQUIRE_THROWS_WITH(compute_diagram(mesh, nan_weight, DiagramKind::Lrpd), Contains("sample 2 has a non-finite weight"));
+  // The maximality check's exact arithmetic once died on it (SIGFPE in GMP).
+  REQUIRE_THROWS_WITH(verify_mps(mesh, nan_weight), Contains("sample 2 has a non-finite weight"));
+  Samples nan_position = good;
+  nan_position.positions[4].y = NAN;
+  REQUIRE_THROWS_WITH(compute_lrvd(mesh, nan_position), Contains("sample 4 has a non-finite coordinate"));
+
+  // A diagram, a mesh and samples that do not belong together.
+  const Diagram diagram = compute_lrvd(mesh, good);
+  Samples fewer = good;
+  for (auto* v : {&fewer.positions, &fewer.barycentric}) v->resize(20);
+  fewer.triangles.resize(20);
+  REQUIRE_THROWS_WITH(integrate_cells(diagram, mesh, fewer), Contains("30 cells but 20 samples"));
+  REQUIRE_THROWS_WITH(integrate_cells(diagram, test::icosphere(1), good), Contains("a mesh of 320 triangles"));
+  const std::vector<double> short_density(7, 1.0);
+  REQUIRE_THROWS_WITH(integrate_cells(diagram, mesh, good, &short_density), Contains("7 densities for 320 triangles"));
+  REQUIRE_THROWS_WITH(optimize_cvt(mesh, fewer, {}, &diagram), Contains("not of these samples"));
 }
 
 TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") {

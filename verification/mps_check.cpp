@@ -429,13 +429,13 @@ std::string MpsVerification::summary() const {
 
 namespace {
 
-void check_samples(const SurfaceMesh& mesh, const Samples& samples) {
+void check_mps_samples(const SurfaceMesh& mesh, const Samples& samples) {
   if (samples.size() == 0) throw InputError("no samples to verify");
   if (static_cast<int>(samples.weights.size()) != samples.size())
     throw InputError("a Poisson-disk sampling needs a weight (radius²) for every sample");
+  lrvd::check_samples(mesh, samples);
   for (int i = 0; i < samples.size(); ++i)
-    if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
-      throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
+    if (!(samples.weights[i] >= 0)) throw InputError(fmt::format("sample {} has a negative weight (radius²)", i));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -447,7 +447,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
                            const MpsVerifyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  check_samples(mesh, samples);
+  check_mps_samples(mesh, samples);
   if (!is_power(lrpd.kind) || lrpd.sample_count != samples.size())
     throw InputError("the maximality check needs a power diagram (LRPD) of these samples");
   MpsVerification out;
@@ -463,7 +463,7 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options,
                            Diagram* lrpd_out) {
   const auto start = std::chrono::steady_clock::now();
-  check_samples(mesh, samples);
+  check_mps_samples(mesh, samples);
   MpsVerification out;
   Diagram lrpd;
   LocalRegions regions(mesh);

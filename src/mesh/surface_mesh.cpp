@@ -355,6 +355,7 @@ Vec3 SurfaceMesh::triangle_normal(int t) const {
 }
 
 BoundingBox bounding_box(const std::vector<Vec3>& points) {
+  if (points.empty()) throw std::invalid_argument("bounding_box: no points");
   BoundingBox box{points.front(), points.front()};
   for (const Vec3& p : points)
     for (int c = 0; c < 3; ++c) {
@@ -364,7 +365,10 @@ BoundingBox bounding_box(const std::vector<Vec3>& points) {
   return box;
 }
 
-BoundingBox SurfaceMesh::bounding_box() const { return lrvd::bounding_box(positions_); }
+BoundingBox SurfaceMesh::bounding_box() const {
+  if (positions_.empty()) throw InputError("the mesh is empty: it has no bounding box");
+  return lrvd::bounding_box(positions_);
+}
 
 double SurfaceMesh::boundary_loop_length(int loop) const {
   const std::vector<int>& v = boundary_loops_[loop];
@@ -394,6 +398,8 @@ void require_workable_size(const std::vector<Vec3>& positions, const char* what,
 }
 
 void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+  // A default-constructed mesh: the constructor refuses an empty one, this catches the other way.
+  if (mesh.triangle_count() == 0) throw InputError(fmt::format("the mesh is empty: {} needs triangles", task));
   require_workable_size(mesh.positions(), "the model", task);
 }
 

@@ -146,6 +146,9 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
                        const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
+  if (diagram_of_initial && (diagram_of_initial->sample_count != initial.size() ||
+                             diagram_of_initial->triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1))
+    throw InputError("optimize_cvt: the diagram given is not of these samples on this mesh");
   const auto start = std::chrono::steady_clock::now();
   const int n = initial.size();
   std::optional<ClosestPointIndex> own_index;

@@ -55,6 +55,16 @@ bool same_vertex(const SymbolicVertex& q, const SymbolicVertex& r) {
 CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
                               const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
+  // Cheap checks that the three belong together (a mismatch would read outside the vectors).
+  if (diagram.triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1)
+    throw InputError(fmt::format("integrate_cells: the diagram was built on a mesh of {} triangles, not on this one of {}",
+                                 diagram.triangle_offsets.empty() ? 0 : diagram.triangle_offsets.size() - 1,
+                                 mesh.triangle_count()));
+  if (samples.size() != n || static_cast<int>(diagram.sites.size()) != n)
+    throw InputError(fmt::format("integrate_cells: the diagram has {} cells but {} samples are given", n, samples.size()));
+  if (triangle_density && triangle_density->size() != static_cast<std::size_t>(mesh.triangle_count()))
+    throw InputError(fmt::format("integrate_cells: {} densities for {} triangles", triangle_density->size(),
+                                 mesh.triangle_count()));
   // Positions only, no side tests: the range check of context() would be wasted on every evaluation.
   const SymbolicContext ctx{mesh.positions().data(), diagram.sites.data()};
   // Each polygon's integrals in parallel, then summed per cell in polygon order: the same result

@@ -644,12 +644,9 @@ void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool w
   // Beyond this range the predicates' products overflow or vanish in double precision.
   require_workable_size(mesh, "a diagram");
   if (weighted && !samples.weighted()) throw InputError("a power diagram needs a weight for every sample");
+  check_samples(mesh, samples);
   std::vector<char> sampled(mesh.component_count(), 0);
-  for (int i = 0; i < samples.size(); ++i) {
-    if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
-      throw InputError(fmt::format("sample {} is not located on a triangle of the mesh", i));
-    sampled[mesh.triangle_components()[samples.triangles[i]]] = 1;
-  }
+  for (int i = 0; i < samples.size(); ++i) sampled[mesh.triangle_components()[samples.triangles[i]]] = 1;
   // A cell grows over the surface from its sample, so a part of the mesh without a sample would
   // be left without cells.
   const auto empty = std::find(sampled.begin(), sampled.end(), 0);

@@ -59,8 +59,28 @@ uint64_t Random::next() {  // xoshiro256**
 
 double Random::uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
 
+void check_samples(const SurfaceMesh& mesh, const Samples& samples) {
+  const std::size_t n = samples.positions.size();
+  const auto length = [n](std::size_t size, const char* field) {
+    if (size != n)
+      throw InputError(fmt::format("the samples have {} positions but {} {}: one each", n, size, field));
+  };
+  length(samples.triangles.size(), "triangles");
+  length(samples.barycentric.size(), "barycentric coordinates");
+  if (!samples.weights.empty()) length(samples.weights.size(), "weights");
+  for (std::size_t i = 0; i < n; ++i) {
+    if (samples.triangles[i] < 0 || samples.triangles[i] >= mesh.triangle_count())
+      throw InputError(fmt::format("sample {} is not located on a triangle of the mesh (triangle {} of {})", i,
+                                   samples.triangles[i], mesh.triangle_count()));
+    if (!is_finite(samples.positions[i])) throw InputError(fmt::format("sample {} has a non-finite coordinate", i));
+    if (!samples.weights.empty() && !std::isfinite(samples.weights[i]))
+      throw InputError(fmt::format("sample {} has a non-finite weight", i));
+  }
+}
+
 Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
   if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
+  require_workable_size(mesh, "sampling");
   const int components = mesh.component_count();
   if (n < components)
     throw InputError(fmt::format("{} sample{} cannot cover the mesh's {} connected components: each needs one",
@@ -103,6 +123,10 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
 }
 
 Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum) {
+  require_workable_size(mesh, "sampling");
+  if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
+  if (std::any_of(minimum.begin(), minimum.end(), [](int m) { return m < 1; }))
+    throw std::invalid_argument("sample_by_component: every component's minimum is at least 1");
   const int components = mesh.component_count();
   if (static_cast<int>(minimum.size()) != components)
     throw std::invalid_argument("sample_by_component: one minimum per component");
@@ -153,6 +177,7 @@ Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const
 Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, const std::vector<double>& weights,
                       const std::vector<int>& lines) {
   if (points.empty()) throw InputError("no sample points were given");
+  require_workable_size(mesh, "locating points");
   if (!weights.empty() && weights.size() != points.size())
     throw InputError(fmt::format("{} weights were given for {} points", weights.size(), points.size()));
   const auto label = [&](std::size_t i) {

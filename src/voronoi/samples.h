@@ -23,6 +23,12 @@ struct Samples {
   double weight(int i) const { return weights.empty() ? 0.0 : weights[i]; }
 };
 
+//! Refuses samples a diagram cannot be built from: vectors of different lengths (triangles,
+//! barycentric, and weights when there are any, one per position), a triangle index outside the
+//! mesh, a non-finite position or weight. Names the first offending sample or vector.
+//! \throw InputError
+void check_samples(const SurfaceMesh& mesh, const Samples& samples);
+
 //! n points uniformly distributed by area, reproducible from the seed on every machine. Every
 //! connected component of the mesh receives at least one sample (the first ones), the rest are
 //! drawn over the whole surface.
