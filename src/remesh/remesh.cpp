@@ -538,9 +538,11 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     DualDefects defects;
   };
   std::optional<Start> sheets_start;
-  bool saturated = false;  // some run stopped at a round that would have raised the density everywhere
+  // Runs tried, and those that stopped at a round that would have raised the density everywhere.
+  int runs = 0, saturated_runs = 0;
   auto optimise_and_repair = [&](bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
                                  bool& saw_tip_caps) {
+    ++runs;
     CvtOptions first = options.cvt;
     first.keep_to_sheets = keep_to_sheets;
     RemeshResult result;
@@ -603,7 +605,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       // cells (or has more handles than they can hold) everywhere, which only more vertices mend.
       // (`again` is not used after the loop: the density raised here goes with the run.)
       if (lowered.empty() && raised_triangles == again.triangle_density.size()) {
-        saturated = true;
+        ++saturated_runs;
         progress(fmt::format("repair round {}: every cell is at a defect or next to one, and a density raised "
                              "everywhere changes nothing: the run stops",
                              round + 1));
@@ -743,7 +745,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
   }
   result.untangled_from = {};
-  result.repair_saturated = saturated && !defects.empty();
+  // Only when no run got past such a round: a run that went on (the third, lowering the density on
+  // caps at sharp tips) and ran out of rounds may mend with more rounds, not only more vertices.
+  result.repair_saturated = saturated_runs == runs && !defects.empty();
   result.defects = std::move(defects);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

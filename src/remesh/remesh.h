@@ -119,9 +119,9 @@ struct RemeshResult {
   bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
-  //! Defects are left, and a run stopped at a round with every cell at a defect or next to one
-  //! (the raise would have been uniform, which changes no CVT): the surface is thinner than the
-  //! cells everywhere, and only more vertices mend it.
+  //! Defects are left, and every run tried stopped at a round with every cell at a defect or next
+  //! to one (the raise would have been uniform, which changes no CVT): the surface is thinner than
+  //! the cells everywhere, and only more vertices mend it.
   bool repair_saturated = false;
   //! What the repair left in `dual` as the rounds saw it, before the final fitting and untangling
   //! (the crossings those leave are in `untangle.remaining`): where a failed check comes from.
