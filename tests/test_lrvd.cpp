@@ -365,6 +365,46 @@ TEST_CASE("The library refuses an empty mesh and samples whose parts disagree, i
   REQUIRE_THROWS_WITH(optimize_cvt(mesh, fewer, {}, &diagram), Contains("not of these samples"));
 }
 
+TEST_CASE("Options out of range are refused naming the option, not clamped or passed to the solver", "[lrvd][input]") {
+  using Catch::Contains;
+  const SurfaceMesh mesh = test::icosphere(2);
+  const Samples start = sample_uniform(mesh, 30, 1);
+  CvtOptions cvt;
+  cvt.triangle_density.assign(mesh.triangle_count(), 1.0);
+  cvt.triangle_density[7] = -1;  // once "'epsilon' must be non-negative", from the L-BFGS solver
+  REQUIRE_THROWS_WITH(optimize_cvt(mesh, start, cvt), Contains("density of triangle 7 is -1"));
+  cvt.triangle_density[7] = NAN;  // once a CVT with energy nan and no error
+  REQUIRE_THROWS_WITH(optimize_cvt(mesh, start, cvt), Contains("density of triangle 7 is nan"));
+  cvt = {};
+  cvt.iterations = -1;
+  REQUIRE_THROWS_WITH(optimize_cvt(mesh, start, cvt), Contains("may not be negative"));
+
+  RemeshOptions remesh;
+  remesh.repair_rounds = -1;  // once taken as 0
+  REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, start, remesh), Contains("repair_rounds (-1)"));
+  remesh = {};
+  remesh.repair_factor = NAN;
+  REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, start, remesh), Contains("repair factor must be a number above 1"));
+  // Samples too few for the surface, and a mesh that is no refinement of the reference.
+  REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, sample_uniform(mesh, 3, 1)), Contains("3 vertices are too few"));
+  const SurfaceMesh two = test::merge(mesh, test::octahedron(), {4, 0, 0});
+  REQUIRE_THROWS_WITH(remesh_cvt(two, mesh, start), Contains("is not a refinement of the reference"));
+
+  MpsOptions mps;
+  mps.radius = 0.1;
+  mps.adaptive = true;
+  mps.max_radius_ratio = NAN;  // once a uniform sampling at r_min without a word
+  REQUIRE_THROWS_WITH(maximal_poisson_disk_sampling(mesh, mps), Contains("radius ratio"));
+  mps = {};
+  mps.radius = 1e-6;
+  mps.max_expected_samples = NAN;  // once switched the memory guard off
+  REQUIRE_THROWS_AS(maximal_poisson_disk_sampling(mesh, mps), InputError);
+
+  ReadOptions read;
+  read.weld = -1;  // once did nothing without a word
+  REQUIRE_THROWS_WITH(read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/elk.off", read), Contains("weld (-1)"));
+}
+
 TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") {
   const SurfaceMesh mesh = test::icosphere(2);
   REQUIRE_THROWS_WITH(compute_lrvd(mesh, Samples{}), Catch::Contains("no samples"));

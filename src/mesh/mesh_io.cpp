@@ -539,6 +539,7 @@ bool RepairReport::soup_changed() const {
 bool RepairReport::changed() const { return soup_changed() || filled_holes; }
 
 SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairReport* report) {
+  if (!(max_length >= 0)) throw InputError(fmt::format("fill_small_holes: the longest hole is {}, not a length", max_length));
   if (!(max_length > 0)) return mesh;
   if (mesh.is_closed()) {
     if (report) report->notes.push_back("no hole to fill: the mesh is closed");
@@ -708,6 +709,10 @@ PolygonSoup read_polygon_soup(const std::string& path) {
 }
 
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
+  if (!(options.weld >= 0) || !std::isfinite(options.weld) || !(options.fill_holes >= 0))
+    throw InputError(fmt::format("read options: weld ({}) and fill_holes ({}) are fractions of the bounding-box "
+                                 "diagonal, 0 or more (0: off)",
+                                 options.weld, options.fill_holes));
   std::vector<Point> points;
   std::vector<Polygon> polygons;
   read_checked_soup(path, points, polygons);

@@ -146,6 +146,12 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
                        const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
+  check_samples(mesh, initial);
+  if (options.iterations < 0 || options.lloyd_warmup < 0)
+    throw InputError(fmt::format("the CVT's iterations ({}) and Lloyd warm-up steps ({}) may not be negative",
+                                 options.iterations, options.lloyd_warmup));
+  if (!(options.relative_gradient >= 0) || !(options.relative_energy_change >= 0))
+    throw InputError("the CVT's stopping thresholds must be numbers of at least 0");
   if (diagram_of_initial && (diagram_of_initial->sample_count != initial.size() ||
                              diagram_of_initial->triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1))
     throw InputError("optimize_cvt: the diagram given is not of these samples on this mesh");
@@ -159,6 +165,11 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
   if (!options.triangle_density.empty()) {
     if (static_cast<int>(options.triangle_density.size()) != mesh.triangle_count())
       throw InputError("the CVT density needs one value per mesh triangle");
+    const auto bad = std::find_if(options.triangle_density.begin(), options.triangle_density.end(),
+                                  [](double rho) { return !(rho > 0) || !std::isfinite(rho); });
+    if (bad != options.triangle_density.end())
+      throw InputError(fmt::format("the CVT density of triangle {} is {}: it must be a positive number",
+                                   bad - options.triangle_density.begin(), *bad));
     density = &options.triangle_density;
   } else if (options.density == CvtDensity::Curvature) {
     density_storage = curvature_density(mesh, n);

@@ -381,6 +381,21 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     throw InputError(fmt::format("the split factor must be a number of at least 1 (got {})", options.split_factor));
   if (options.sample_features && !(options.feature_angle > 0 && options.feature_angle < 180))
     throw InputError(fmt::format("the feature angle must be between 0 and 180 degrees (got {})", options.feature_angle));
+  if (options.adaptive) {
+    if (!(options.max_radius_ratio >= 1) || !std::isfinite(options.max_radius_ratio))
+      throw InputError(fmt::format("the adaptive radius ratio r_max / r_min must be a number of at least 1 (got {})",
+                                   options.max_radius_ratio));
+    if (!(options.curvature_fraction > 0) || !std::isfinite(options.curvature_fraction))
+      throw InputError(fmt::format("the adaptive curvature fraction must be a positive number (got {})",
+                                   options.curvature_fraction));
+    if (!(options.gradation > 0) || !std::isfinite(options.gradation))
+      throw InputError(fmt::format("the adaptive gradation must be a positive number (got {})", options.gradation));
+  }
+  if (options.max_consecutive_rejections < 1)
+    throw InputError(fmt::format("max_consecutive_rejections must be at least 1 (got {})",
+                                 options.max_consecutive_rejections));
+  if (!(options.max_expected_samples > 0))
+    throw InputError(fmt::format("max_expected_samples must be a positive number (got {})", options.max_expected_samples));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
   require_workable_size(mesh, "Poisson-disk sampling");
   auto progress = [&](const std::string& message) {
@@ -393,7 +408,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   const double r_min = options.radius * result.scale;
   result.radius = r_min;
   const double expected = expected_sample_count(mesh, r_min);
-  if (expected > options.max_expected_samples)
+  if (!(expected <= options.max_expected_samples))
     throw InputError(fmt::format("radius {} is too small for this mesh: about {:.3g} samples would be needed "
                                  "(limit {:.3g}); use a larger radius",
                                  options.radius, expected, options.max_expected_samples));

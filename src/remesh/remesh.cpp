@@ -507,6 +507,23 @@ std::string DualDefects::describe() const {
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options) {
   require_workable_size(reference, "remeshing");
+  require_workable_size(mesh, "remeshing");
+  require_remesh_vertex_count(reference, initial.size());
+  if (mesh.component_count() != reference.component_count() ||
+      mesh.euler_characteristic() != reference.euler_characteristic() ||
+      mesh.boundary_loops().size() != reference.boundary_loops().size())
+    throw InputError(fmt::format("remesh_cvt: the mesh ({} components, Euler characteristic {}, {} boundary loops) is "
+                                 "not a refinement of the reference ({}, {}, {})",
+                                 mesh.component_count(), mesh.euler_characteristic(), mesh.boundary_loops().size(),
+                                 reference.component_count(), reference.euler_characteristic(),
+                                 reference.boundary_loops().size()));
+  if (options.repair_rounds < 0 || options.repair_iterations < 1 || options.polish_steps < 0)
+    throw InputError(fmt::format("remesh options: repair_rounds ({}) and polish_steps ({}) may not be negative, and "
+                                 "repair_iterations ({}) must be at least 1",
+                                 options.repair_rounds, options.polish_steps, options.repair_iterations));
+  if (!(options.repair_factor > 1) || !std::isfinite(options.repair_factor))
+    throw InputError(fmt::format("remesh options: the repair factor must be a number above 1 (got {})",
+                                 options.repair_factor));
   const auto start = std::chrono::steady_clock::now();
   const bool components_cross = components_intersect(reference);
   const ClosestPointIndex index(mesh);  // one for every CVT and repair round
