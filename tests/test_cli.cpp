@@ -360,6 +360,19 @@ TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the 
   REQUIRE(j["verification"]["passed"] == false);
   REQUIRE(j["quality"].is_null());
   REQUIRE(j["output"]["triangles"] == 0);
+  // lrvd quality checks that output as it checks any other: exit 3, the same verdict, no metrics.
+  const std::string quality_report = kOut + "elk_7_quality.json";
+  const Run q = run("quality " + kData + "/elk.off " + out + " --report " + quality_report);
+  INFO(q.err);
+  REQUIRE(q.status == 3);
+  REQUIRE(q.out.find("7 vertices, 0 triangles") != std::string::npos);
+  REQUIRE(q.out.find("quality: not measured (the mesh has no triangles)") != std::string::npos);
+  REQUIRE(q.out.find("closed manifold: no") != std::string::npos);
+  const json qj = read_json(quality_report);
+  REQUIRE(qj["quality"].is_null());
+  REQUIRE(qj["verification"]["passed"] == false);
+  // A file of vertices alone is still no input to remesh.
+  REQUIRE(run("remesh " + out + " -n 7 -o " + kOut + "elk_7_again.off").status == 2);
 }
 
 TEST_CASE("lrvd stress lists and writes the stress meshes", "[cli]") {

@@ -241,27 +241,35 @@ int run_quality(const QualityOptions& opt) {
   const LoadedMesh loaded = read_mesh(opt.reference, opt.read);
   print_repair(loaded.repair, opt.read);
   const SurfaceMesh& reference = loaded.mesh;
-  const PolygonSoup soup = read_polygon_soup(opt.mesh);
-  const QualityMetrics quality = quality_metrics(reference, soup.positions, soup.triangles);
+  const PolygonSoup soup = read_polygon_soup(opt.mesh, true);
+  // A mesh of vertices only (what remesh writes when its dual has no triangle) is checked, not measured.
+  const bool measurable = !soup.triangles.empty();
+  const QualityMetrics quality =
+      measurable ? quality_metrics(reference, soup.positions, soup.triangles) : QualityMetrics{};
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
   if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
   // Two meshes in different units or frames give distances that measure that, not the remesh.
   const std::string frame = frame_mismatch(reference.bounding_box(), bounding_box(soup.positions));
   if (!frame.empty()) report["frame_warning"] = frame;
-  report["quality"] = remesh_quality_json(quality, check);
+  report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
   report["verification"] = check.to_json();
   if (!opt.report.empty()) write_json(opt.report, report);
-  std::printf("%s: %s, %s\n", opt.mesh.c_str(), counted(quality.vertices, "vertex", "vertices").c_str(),
-              counted(quality.triangles, "triangle", "triangles").c_str());
-  std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%% RMS %.3f%%\n",
-              quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
-              quality.hausdorff_pct, quality.rms_pct);
+  std::printf("%s: %s, %s\n", opt.mesh.c_str(),
+              counted(static_cast<long long>(soup.positions.size()), "vertex", "vertices").c_str(),
+              counted(static_cast<long long>(soup.triangles.size()), "triangle", "triangles").c_str());
+  if (measurable)
+    std::printf("quality: Qmin %.3f Qavg %.3f theta %.1f/%.1f, %.2f%% triangles < 30 deg, Hausdorff %.3f%% RMS %.3f%%\n",
+                quality.q_min, quality.q_avg, quality.theta_min, quality.theta_max, quality.pct_triangles_below_30,
+                quality.hausdorff_pct, quality.rms_pct);
+  else
+    std::printf("quality: not measured (the mesh has no triangles)\n");
   if (!frame.empty()) std::printf("warning: %s\n", frame.c_str());
   // The key `closed_manifold` asks for a closed mesh only when the reference is closed.
   std::printf("%s: %s, genus preserved: %s, self-intersecting pairs: %d\n",
               reference.is_closed() ? "closed manifold" : "manifold (open, as the reference)",
-              report["quality"]["closed_manifold"].get<bool>() ? "yes" : "no", check.topology.passed ? "yes" : "no",
+              measurable && check.manifold.passed && check.closed.passed ? "yes" : "no",  // no triangle: no surface
+              check.topology.passed ? "yes" : "no",
               check.self_intersecting_pairs);
   // Like a remesh of our own: 3 when the mesh fails a check, so that a script can tell.
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");

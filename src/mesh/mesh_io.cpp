@@ -100,7 +100,7 @@ bool read_soup(const std::string& path, Format format, std::vector<Point>& point
 // What CGAL accepted but lrvd cannot use: no faces, non-finite coordinates, short faces, and
 // out-of-range indices (CGAL's PLY reader does not check them; its OBJ reader lets index n pass).
 void check_soup(const std::string& path, Format format, const std::vector<Point>& points,
-                const std::vector<Polygon>& polygons) {
+                const std::vector<Polygon>& polygons, bool allow_no_faces = false) {
   // A face CGAL read short or out of range often comes from a line it misread (a binary OFF, an
   // OBJ index 0 or a letter, header counts that do not match): the line scanner names that line
   // when it can, with what is wrong there.
@@ -108,7 +108,7 @@ void check_soup(const std::string& path, Format format, const std::vector<Point>
     const std::string scanned = diagnose_unreadable_mesh_file(path, format);
     fail(path, scanned.rfind("cannot be parsed", 0) == 0 ? reason : scanned);
   };
-  if (polygons.empty()) {
+  if (polygons.empty() && !(allow_no_faces && !points.empty() && format != Format::Stl)) {
     // An STL file is made of facets only: corners without one are a facet cut short.
     if (format == Format::Stl && !points.empty()) fail(path, "has no complete facet (is the file truncated?)");
     fail(path, points.empty() ? "has no vertices and no faces"
@@ -680,7 +680,8 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
 namespace {
 
 // The file's points and polygons, parsed and checked (finite, indices in range, faces present).
-void read_checked_soup(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons) {
+void read_checked_soup(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons,
+                       bool allow_no_faces = false) {
   check_readable(path);
   const Format format = input_format(path);
   if (format == Format::Stl)  // before CGAL, whose STL reader would weld a NaN corner into another
@@ -688,7 +689,7 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
   if (format == Format::Ply)  // CGAL reads a PLY without coordinates as points at the origin
     if (std::string problem = find_missing_ply_coordinates(path); !problem.empty()) fail(path, problem);
   if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
-  check_soup(path, format, points, polygons);
+  check_soup(path, format, points, polygons, allow_no_faces);
   // CGAL reads '3.7' as the index 3 and skips words after a face's indices: a scan of the lines
   // catches what it took for something else.
   if (std::string problem = find_misread_line(path, format); !problem.empty()) fail(path, problem);
@@ -696,10 +697,10 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
 
 }  // namespace
 
-PolygonSoup read_polygon_soup(const std::string& path) {
+PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces) {
   std::vector<Point> points;
   std::vector<Polygon> polygons;
-  read_checked_soup(path, points, polygons);
+  read_checked_soup(path, points, polygons, allow_no_faces);
   RepairReport ignored;
   PolygonSoup soup;
   for (const SoupTriangle& t : triangulate(points, polygons, ignored))

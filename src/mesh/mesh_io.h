@@ -77,7 +77,9 @@ struct PolygonSoup {
   std::vector<Vec3> positions;
   std::vector<std::array<int, 3>> triangles;
 };
-PolygonSoup read_polygon_soup(const std::string& path);
+//! With `allow_no_faces`, vertices without a face are read too (a remesh at its topological minimum
+//! can come out so; its checks then fail), except from STL, which has no vertices of its own.
+PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces = false);
 
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
