@@ -735,3 +735,24 @@ TEST_CASE("A cell with a handle inside it is where to act: a sheet with a small 
     REQUIRE(r.check.genus == 1);
   }
 }
+
+TEST_CASE("Components left at the fewest samples their topology needs get two more when one fails: CGAL's bones at 200", "[cvt][remesh]") {
+  // 26 bones, 16 of them at 4 or 5 samples by their area: four cells on an elongated bone form a
+  // chain of rings whose dual is no tetrahedron, and the second run's moves do not mend all of
+  // them. With two more samples on each such bone (32 moved from the largest ones) the runs end
+  // valid.
+  const SurfaceMesh bones = cgal_mesh("bones.off");
+  const Samples start = sample_by_component(bones, 200, 1, bones.minimum_vertex_counts());
+  RemeshOptions without;
+  without.reallocation_retry = false;
+  const RemeshResult failed = remesh_cvt(bones, bones, start, without);
+  REQUIRE_FALSE(failed.defects.empty());
+  REQUIRE(failed.samples_reallocated == 0);
+  const RemeshResult r = remesh_cvt(bones, bones, start);
+  INFO(r.defects.describe());
+  REQUIRE(r.samples_reallocated == 32);
+  REQUIRE(r.defects.empty());
+  const RemeshVerification check = verify_remesh(bones, r.dual.positions, r.dual.triangles, 200);
+  INFO(check.summary());
+  REQUIRE(check.passed);
+}

@@ -487,6 +487,69 @@ int relocate_samples(const Diagram& diagram, const SurfaceMesh& mesh, const std:
   return moved;
 }
 
+// When a defect sample of `kept` lies on a component that holds at most one sample more than its
+// topology needs in `start` (the samples the runs began from), moves two samples onto every such
+// component of `start`: each from the component with the most samples above its fewest (which
+// keeps at least two above), its highest-index one, to the centroid of the receiving component's
+// triangle farthest from that component's samples. Returns how many samples moved (0: no defect
+// there, one component, or none to spare).
+int add_samples_to_starved_components(const SurfaceMesh& mesh, const Samples& kept, const std::vector<int>& defect,
+                                      Samples& start) {
+  constexpr int kMargin = 2;
+  const int components = mesh.component_count();
+  if (components < 2) return 0;
+  const std::vector<int>& component = mesh.triangle_components();
+  const std::vector<int> fewest = mesh.minimum_vertex_counts();
+  std::vector<int> count(components, 0);
+  for (int t : start.triangles) ++count[component[t]];
+  // Any defect on such a component: every such component gets the margin (the others' samples
+  // move too, so a component spared now may fail next).
+  const bool defect_on_starved = std::any_of(defect.begin(), defect.end(), [&](int s) {
+    const int c = component[kept.triangles[s]];
+    return count[c] <= fewest[c] + 1;
+  });
+  if (!defect_on_starved) return 0;
+  std::vector<int> starved;
+  for (int c = 0; c < components; ++c)
+    if (count[c] <= fewest[c] + 1) starved.push_back(c);
+  std::vector<char> is_starved(components, 0);
+  for (int c : starved) is_starved[c] = 1;
+  std::vector<std::vector<int>> triangles_of(components);
+  for (int t = 0; t < mesh.triangle_count(); ++t) triangles_of[component[t]].push_back(t);
+  int moved = 0;
+  for (int c : starved)
+    for (int k = 0; k < kMargin; ++k) {
+      int donor = -1;
+      for (int d = 0; d < components; ++d)
+        if (!is_starved[d] && count[d] - 1 >= fewest[d] + kMargin &&
+            (donor < 0 || count[d] - fewest[d] > count[donor] - fewest[donor]))
+          donor = d;
+      if (donor < 0) return moved;
+      int sample = start.size() - 1;
+      while (component[start.triangles[sample]] != donor) --sample;
+      // The farthest triangle centroid of c from c's samples (distances to the nearest one).
+      double best = -1;
+      int best_triangle = -1;
+      for (int t : triangles_of[c]) {
+        const Triangle& tri = mesh.triangle(t);
+        const Vec3 centroid = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int s = 0; s < start.size(); ++s)
+          if (component[start.triangles[s]] == c)
+            nearest = std::min(nearest, squared_distance(centroid, start.positions[s]));
+        if (nearest > best) best = nearest, best_triangle = t;
+      }
+      const Triangle& tri = mesh.triangle(best_triangle);
+      start.positions[sample] = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+      start.triangles[sample] = best_triangle;
+      start.barycentric[sample] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
+      --count[donor];
+      ++count[c];
+      ++moved;
+    }
+  return moved;
+}
+
 }  // namespace
 
 std::string DualDefects::describe() const {
@@ -557,8 +620,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   std::optional<Start> sheets_start;
   // Runs tried, and those that stopped at a round that would have raised the density everywhere.
   int runs = 0, saturated_runs = 0;
-  auto optimise_and_repair = [&](bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
-                                 bool& saw_tip_caps) {
+  auto optimise_and_repair = [&](const Samples& start_samples, bool keep_to_sheets, bool lower_tip_caps,
+                                 DualDefects& best_defects, bool& saw_tip_caps) {
     ++runs;
     CvtOptions first = options.cvt;
     first.keep_to_sheets = keep_to_sheets;
@@ -569,7 +632,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       defects = sheets_start->defects;
       result.total_iterations = result.diagram_evaluations = 0;  // the counters count work done
     } else {
-      result.cvt = optimize_cvt(mesh, initial, first, nullptr, &index);
+      result.cvt = optimize_cvt(mesh, start_samples, first, nullptr, &index);
       result.total_iterations = result.cvt.iterations;
       result.diagram_evaluations = result.cvt.diagram_evaluations;
       result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
@@ -697,44 +760,79 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     best.diagram_evaluations = result.diagram_evaluations;
     return best;
   };
-  DualDefects defects;
-  bool first_saw_tip_caps = false;  // unused: the third run repeats the second, not the first
-  RemeshResult result = optimise_and_repair(false, false, defects, first_saw_tip_caps);
-  bool saw_tip_caps = false;  // in the second run: the third differs from it only from such a round on
-  // Runs the whole loop again and keeps it if it ends with fewer defects; the counters cover every run.
-  auto retry = [&](bool keep_to_sheets, bool lower_tip_caps, bool& saw) {
-    DualDefects again_defects;
-    RemeshResult again = optimise_and_repair(keep_to_sheets, lower_tip_caps, again_defects, saw);
-    again.repair_rounds += result.repair_rounds;
-    again.total_iterations += result.total_iterations;
-    again.diagram_evaluations += result.diagram_evaluations;
-    again.kept_to_sheets = keep_to_sheets;
-    again.tip_caps_lowered = lower_tip_caps;
-    if (again_defects.fewer_than(defects)) {
-      result = std::move(again);
-      defects = std::move(again_defects);
-    } else {
-      result.repair_rounds = again.repair_rounds;
-      result.total_iterations = again.total_iterations;
-      result.diagram_evaluations = again.diagram_evaluations;
+  // The first run from `start`, then the second and third when defects are left.
+  auto run_from = [&](const Samples& start, DualDefects& defects) {
+    sheets_start.reset();
+    bool first_saw_tip_caps = false;  // unused: the third run repeats the second, not the first
+    RemeshResult result = optimise_and_repair(start, false, false, defects, first_saw_tip_caps);
+    bool saw_tip_caps = false;  // in the second run: the third differs from it only from such a round on
+    // Runs the whole loop again and keeps it if it ends with fewer defects; the counters cover every run.
+    auto retry = [&](bool keep_to_sheets, bool lower_tip_caps, bool& saw) {
+      DualDefects again_defects;
+      RemeshResult again = optimise_and_repair(start, keep_to_sheets, lower_tip_caps, again_defects, saw);
+      again.repair_rounds += result.repair_rounds;
+      again.total_iterations += result.total_iterations;
+      again.diagram_evaluations += result.diagram_evaluations;
+      again.kept_to_sheets = keep_to_sheets;
+      again.tip_caps_lowered = lower_tip_caps;
+      if (again_defects.fewer_than(defects)) {
+        result = std::move(again);
+        defects = std::move(again_defects);
+      } else {
+        result.repair_rounds = again.repair_rounds;
+        result.total_iterations = again.total_iterations;
+        result.diagram_evaluations = again.diagram_evaluations;
+      }
+    };
+    // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
+    // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
+    // surface to it is often on the other side: samples drain from one side to the other there).
+    if (!defects.empty() && options.keep_to_sheets_retry) {
+      progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
+                           result.repair_rounds));
+      retry(true, false, saw_tip_caps);
     }
+    // Defects left, and caps on sharp tips among them at some round: a third run that lowers the
+    // density on those caps.
+    if (!defects.empty() && saw_tip_caps && options.keep_to_sheets_retry && options.tip_caps_retry) {
+      progress(fmt::format("defects left after {} rounds, caps on sharp tips among them: the second run again with "
+                           "a lower density on those caps",
+                           result.repair_rounds));
+      bool ignored = false;
+      retry(true, true, ignored);
+    }
+    return result;
   };
-  // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
-  // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
-  // surface to it is often on the other side: samples drain from one side to the other there).
-  if (!defects.empty() && options.keep_to_sheets_retry) {
-    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
-                         result.repair_rounds));
-    retry(true, false, saw_tip_caps);
-  }
-  // Defects left, and caps on sharp tips among them at some round: a third run that lowers the
-  // density on those caps.
-  if (!defects.empty() && saw_tip_caps && options.keep_to_sheets_retry && options.tip_caps_retry) {
-    progress(fmt::format("defects left after {} rounds, caps on sharp tips among them: the second run again with "
-                         "a lower density on those caps",
-                         result.repair_rounds));
-    bool ignored = false;
-    retry(true, true, ignored);
+  DualDefects defects;
+  RemeshResult result = run_from(initial, defects);
+  // Defects left on a component that holds no more samples than its topology needs, or one more (a
+  // CVT of four samples on an elongated part is a chain of ring cells, not a tetrahedron): the runs
+  // again with two more samples on every such component, taken from the components with the most
+  // to spare (CGAL's bones at 200: 32 samples onto 16 of its 26 bones). Samples do not change
+  // components otherwise, but for the second run's moves. One defect there is enough: the other
+  // components' CVTs change too, so one spared now may fail in the new runs.
+  if (!defects.empty() && options.reallocation_retry) {
+    Samples moved = initial;
+    const int added = add_samples_to_starved_components(mesh, result.cvt.samples, defects.where_to_act(), moved);
+    if (added > 0) {
+      progress(fmt::format("defects left after {} rounds on a component holding the fewest samples its topology "
+                           "needs or one more: the runs again from the start, {} samples moved onto such components",
+                           result.repair_rounds, added));
+      DualDefects again_defects;
+      RemeshResult again = run_from(moved, again_defects);
+      again.repair_rounds += result.repair_rounds;
+      again.total_iterations += result.total_iterations;
+      again.diagram_evaluations += result.diagram_evaluations;
+      if (again_defects.fewer_than(defects)) {
+        again.samples_reallocated = added;
+        result = std::move(again);
+        defects = std::move(again_defects);
+      } else {
+        result.repair_rounds = again.repair_rounds;
+        result.total_iterations = again.total_iterations;
+        result.diagram_evaluations = again.diagram_evaluations;
+      }
+    }
   }
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).

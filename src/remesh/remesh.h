@@ -38,6 +38,11 @@ struct RemeshOptions {
   //! raised, and keep it if it has fewer defects (a larger cap cuts more of the tip off, so this is
   //! the last resort, not the rule)
   bool tip_caps_retry = true;
+  //! when defects are left on a component holding at most one sample more than the fewest its
+  //! topology needs (several components, samples drawn per component), run everything again with
+  //! two more samples on each such component, moved from the components with the most to spare,
+  //! and keep that if it leaves fewer defects
+  bool reallocation_retry = true;
   //! Lloyd steps on the state a run keeps when its dual has no defect (L-BFGS only): L-BFGS moves
   //! the sites in space and puts them on the surface at the end, which can leave two samples a
   //! tenth of the cell size apart with slivers between them (Igea at 20000: Qmin 0.29); a Lloyd
@@ -119,6 +124,7 @@ struct RemeshResult {
   bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
+  int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
   //! Defects are left, and every run tried stopped at a round with every cell at a defect or next
   //! to one (the raise would have been uniform, which changes no CVT): the surface is thinner than
   //! the cells everywhere, and only more vertices mend it.
