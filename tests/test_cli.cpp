@@ -145,6 +145,15 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
     }
   }
   REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
+  REQUIRE(run("--threads 1 compute " + kData + "/elk.off -n 10 --threads 2").err ==
+          "lrvd: error: --threads is given 2 times; give it once (see --help)\n");
+  // Text or an overflowing count for -n: one line of lrvd's, not CLI11's "Could not convert".
+  REQUIRE(run("compute " + kData + "/elk.off -n abc").err.find("a sample count (-n) is a whole number, not 'abc'") !=
+          std::string::npos);
+  REQUIRE(run("compute " + kData + "/elk.off -n 99999999999").err.find("99999999999 samples are more than lrvd takes") !=
+          std::string::npos);
+  REQUIRE(run("quality " + kData + "/elk.off").err.find("give the mesh to measure after the reference") !=
+          std::string::npos);
   REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
   // A report no one can write (not even root, under /proc): refused before the remesh, whose mesh
   // is then not written either.

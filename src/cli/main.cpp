@@ -70,7 +70,12 @@ int main(int argc, char** argv) {
                        printable(extra).c_str());
           return kBadInput;
         }
-    std::fprintf(stderr, "lrvd: error: %s (see --help)\n", printable(e.what()).c_str());
+    // CLI11 says "--samples: At Most 1 required but received 2" for an option given twice.
+    std::string message = e.what();
+    const std::string repeated = ": At Most 1 required but received ";
+    if (const auto at = message.find(repeated); at != std::string::npos)
+      message = message.substr(0, at) + " is given " + message.substr(at + repeated.size()) + " times; give it once";
+    std::fprintf(stderr, "lrvd: error: %s (see --help)\n", printable(message).c_str());
     return kBadInput;
   }
   std::unique_ptr<tbb::global_control> thread_limit;
