@@ -550,6 +550,22 @@ int add_samples_to_starved_components(const SurfaceMesh& mesh, const Samples& ke
   return moved;
 }
 
+// Another run's result replaces `result` when it leaves fewer defects; the counters of work done
+// (rounds, iterations, diagrams) cover both either way.
+void keep_if_fewer(RemeshResult again, DualDefects again_defects, RemeshResult& result, DualDefects& defects) {
+  again.repair_rounds += result.repair_rounds;
+  again.total_iterations += result.total_iterations;
+  again.diagram_evaluations += result.diagram_evaluations;
+  if (again_defects.fewer_than(defects)) {
+    result = std::move(again);
+    defects = std::move(again_defects);
+  } else {
+    result.repair_rounds = again.repair_rounds;
+    result.total_iterations = again.total_iterations;
+    result.diagram_evaluations = again.diagram_evaluations;
+  }
+}
+
 }  // namespace
 
 std::string DualDefects::describe() const {
@@ -770,19 +786,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     auto retry = [&](bool keep_to_sheets, bool lower_tip_caps, bool& saw) {
       DualDefects again_defects;
       RemeshResult again = optimise_and_repair(start, keep_to_sheets, lower_tip_caps, again_defects, saw);
-      again.repair_rounds += result.repair_rounds;
-      again.total_iterations += result.total_iterations;
-      again.diagram_evaluations += result.diagram_evaluations;
       again.kept_to_sheets = keep_to_sheets;
       again.tip_caps_lowered = lower_tip_caps;
-      if (again_defects.fewer_than(defects)) {
-        result = std::move(again);
-        defects = std::move(again_defects);
-      } else {
-        result.repair_rounds = again.repair_rounds;
-        result.total_iterations = again.total_iterations;
-        result.diagram_evaluations = again.diagram_evaluations;
-      }
+      keep_if_fewer(std::move(again), std::move(again_defects), result, defects);
     };
     // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
     // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
@@ -820,18 +826,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                            result.repair_rounds, added));
       DualDefects again_defects;
       RemeshResult again = run_from(moved, again_defects);
-      again.repair_rounds += result.repair_rounds;
-      again.total_iterations += result.total_iterations;
-      again.diagram_evaluations += result.diagram_evaluations;
-      if (again_defects.fewer_than(defects)) {
-        again.samples_reallocated = added;
-        result = std::move(again);
-        defects = std::move(again_defects);
-      } else {
-        result.repair_rounds = again.repair_rounds;
-        result.total_iterations = again.total_iterations;
-        result.diagram_evaluations = again.diagram_evaluations;
-      }
+      again.samples_reallocated = added;
+      keep_if_fewer(std::move(again), std::move(again_defects), result, defects);
     }
   }
   if (!result.fitted) {
