@@ -159,7 +159,6 @@ CLI::Validator path_validator() {
 
 namespace {
 
-
 std::vector<double> read_weights(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
