@@ -38,7 +38,8 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed);
 //! n points uniformly distributed by area within each connected component, the components given
 //! counts in proportion to their areas but at least minimum[c] each (then each further sample to
 //! the component furthest below its share). For a CVT, whose samples keep to their components.
-//! \throw InputError when n is smaller than the sum of the minima.
+//! \throw InputError when the mesh is empty, n < 1 or n is smaller than the sum of the minima;
+//!        std::invalid_argument when `minimum` does not hold one count of at least 1 per component.
 Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum);
 
 //! Locates points on the mesh by closest point and moves each onto it. `lines`, when given (one
