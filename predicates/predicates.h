@@ -27,7 +27,7 @@ struct Site {
 //! How often one kind of predicate ran and how it was decided.
 struct PredicateCounters {
   std::uint64_t calls = 0;            //!< predicate evaluations
-  std::uint64_t filter_failures = 0;  //!< interval filter could not decide (or input out of its range)
+  std::uint64_t filter_failures = 0;  //!< interval filter could not decide (inputs out of its range count in `exact` only)
   std::uint64_t exact = 0;            //!< evaluations that reached exact (Mpzf) arithmetic
   std::uint64_t perturbations = 0;    //!< exact zeros resolved by the symbolic perturbation
 
