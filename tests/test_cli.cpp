@@ -2,6 +2,7 @@
 // errors, and the report keys the issue texts promise.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -513,4 +514,26 @@ TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality 
     REQUIRE(lines(refused.err) == 1);
   }
   std::remove(out.c_str());
+}
+
+TEST_CASE("lrvd verify says when it moved the given points onto the surface, and by how much", "[cli]") {
+  // The octahedron |x| + |y| + |z| = 1: two points on it, one 0.02 above a face (along its normal).
+  const std::string mesh = kOut + "points_octahedron.off", on = kOut + "points_on.xyz", off = kOut + "points_off.xyz";
+  std::ofstream(mesh) << "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
+                         "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
+  std::ofstream(on) << "0.25 0.25 0.5\n-0.5 -0.25 -0.25\n";
+  const double lift = 0.02 / std::sqrt(3.0);
+  std::ofstream(off) << "0.25 0.25 0.5\n" << fmt::format("{:.17g} {:.17g} {:.17g}\n", -0.5 - lift, -0.25 - lift, -0.25 - lift);
+  const std::string on_report = kOut + "points_on.json", off_report = kOut + "points_off.json";
+  const Run quiet = run("verify " + mesh + " --points " + on + " --report " + on_report);
+  REQUIRE(quiet.status == 0);
+  REQUIRE(quiet.out.find("points:") == std::string::npos);
+  REQUIRE(read_json(on_report)["input"]["points"]["count"] == 2);
+  REQUIRE(read_json(on_report)["input"]["points"]["max_move"].get<double>() < 1e-12);
+  const Run moved = run("verify " + mesh + " --points " + off + " --report " + off_report);
+  REQUIRE(moved.status == 0);
+  REQUIRE(moved.out.find("points: 1 of 2 points moved onto the surface, the farthest by 0.02") != std::string::npos);
+  const json points = read_json(off_report)["input"]["points"];
+  REQUIRE(points["moved"] == 1);
+  REQUIRE(points["max_move"].get<double>() == Approx(0.02));
 }

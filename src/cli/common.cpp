@@ -246,6 +246,20 @@ Input load_input(const InputOptions& opt) {
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", opt.points_path, e.what()));
     }
+    input.points_given = true;
+    for (std::size_t i = 0; i < points.points.size(); ++i)
+      if (points.points[i] != input.samples.positions[i]) {
+        ++input.points_moved;
+        input.points_max_move = std::max(input.points_max_move, distance(points.points[i], input.samples.positions[i]));
+      }
+    // The diagram is of the moved points: say so when a move is more than rounding (a point
+    // written on a triangle comes back from its closest point a few ulps away).
+    const double diagonal = input.mesh.bounding_box().diagonal();
+    if (input.points_max_move > 1e-9 * diagonal)
+      std::printf("points: %d of %s moved onto the surface, the farthest by %.3g (%.2g of the bounding-box "
+                  "diagonal); the diagram is of the moved points\n",
+                  input.points_moved, counted(static_cast<long long>(points.points.size()), "point", "points").c_str(),
+                  input.points_max_move, input.points_max_move / diagonal);
   }
   return input;
 }
@@ -263,6 +277,8 @@ nlohmann::json input_json(const Input& input) {
   if (input.refined_from >= 0)
     j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
   if (!input.loaded.repair.notes.empty()) j["repair"] = input.loaded.repair.notes;
+  if (input.points_given)
+    j["points"] = {{"count", input.samples.size()}, {"moved", input.points_moved}, {"max_move", input.points_max_move}};
   return j;
 }
 

@@ -26,11 +26,11 @@ struct InputOptions {
   std::string refine = "auto";  //!< auto | off | a maximum edge length
 };
 
-//! The mesh, its repair options, the samples (--points, and with `allow_count` -n and --seed),
-//! --weights when the command takes weighted samples (`allow_weights`), --refine.
 //! "1 vertex", "3 vertices": a count with its noun in the right number.
 std::string counted(long long count, const char* one, const char* many);
 
+//! The mesh, its repair options, the samples (--points, and with `allow_count` -n and --seed),
+//! --weights when the command takes weighted samples (`allow_weights`), --refine.
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
 //! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");
@@ -46,6 +46,10 @@ struct Input {
   SurfaceMesh mesh;           //!< after refinement
   int refined_from = -1;      //!< triangle count before refinement, -1 if not refined
   Samples samples;
+  //! --points: how many points moved onto the surface (were not on it), and the farthest move
+  bool points_given = false;
+  int points_moved = 0;
+  double points_max_move = 0;
 };
 
 //! Reads the mesh, refines it when the samples would crowd its triangles, and makes or reads the
