@@ -385,7 +385,7 @@ struct RepairedSoup {
 // copies of one corner, and a value above an edge's length collapses that edge as well. Returns
 // that second note, or "" when no edge collapsed.
 std::string weld_near_points(std::vector<Point>& points, std::vector<Polygon>& polygons, double fraction,
-                      RepairReport& report) {
+                             RepairReport& report) {
   std::vector<Vec3> positions;
   positions.reserve(points.size());
   for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
