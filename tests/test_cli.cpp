@@ -155,6 +155,17 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
           std::string::npos);
   REQUIRE(run("quality " + kData + "/elk.off").err.find("give the mesh to measure after the reference") !=
           std::string::npos);
+  // CLI11's wording where it read oddly: the words it did not expect in their order, a value
+  // missing, a thread count that is no number.
+  REQUIRE(run("verify " + kData + "/elk.off --points " + points + " --seed 3").err ==
+          "lrvd: error: unexpected arguments: --seed 3 (this command does not take them) (see --help)\n");
+  REQUIRE(run("compute " + kData + "/elk.off -n").err == "lrvd: error: --samples needs a value (see --help)\n");
+  REQUIRE(run("--threads abc compute " + kData + "/elk.off -n 3").err.find("a thread count is a whole number") !=
+          std::string::npos);
+  // The report on the console's own file: the two would overwrite each other.
+  const Run console = run("compute " + kData + "/elk.off -n 10 --no-verify --report /dev/stdout");
+  REQUIRE(console.status == 2);
+  REQUIRE(console.err.find("is where lrvd's console lines go too") != std::string::npos);
   REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
   // A report no one can write (not even root, under /proc): refused before the remesh, whose mesh
   // is then not written either.
@@ -370,7 +381,14 @@ TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the 
   REQUIRE(j["verification"]["passed"] == false);
   REQUIRE(j["quality"].is_null());
   REQUIRE(j["output"]["triangles"] == 0);
-  // lrvd quality checks that output as it checks any other: exit 3, the same verdict, no metrics.
+  // lrvd quality checks that output as it checks any other: exit 3, the same verdict, no metrics;
+  // written as OBJ too, whose reader in CGAL refuses a file without faces.
+  const std::string obj = kOut + "elk_7.obj";
+  REQUIRE(run("remesh " + kData + "/elk.off -n 7 -o " + obj).status == 3);
+  const Run q_obj = run("quality " + kData + "/elk.off " + obj);
+  INFO(q_obj.err);
+  REQUIRE(q_obj.status == 3);
+  REQUIRE(q_obj.out.find("quality: not measured (the mesh has no triangles)") != std::string::npos);
   const std::string quality_report = kOut + "elk_7_quality.json";
   const Run q = run("quality " + kData + "/elk.off " + out + " --report " + quality_report);
   INFO(q.err);

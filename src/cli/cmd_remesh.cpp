@@ -251,7 +251,8 @@ int run_quality(const QualityOptions& opt) {
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
   if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
   // Two meshes in different units or frames give distances that measure that, not the remesh.
-  const std::string frame = frame_mismatch(reference.bounding_box(), bounding_box(soup.positions));
+  const std::string frame =
+      measurable ? frame_mismatch(reference.bounding_box(), bounding_box(soup.positions)) : std::string();
   if (!frame.empty()) report["frame_warning"] = frame;
   report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
   report["verification"] = check.to_json();

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "common/error.h"
@@ -20,6 +21,10 @@
 namespace lrvd::cli {
 
 namespace {
+
+// A point given with --points that its closest point moves by no more than this fraction of the
+// bounding-box diagonal was on the surface but for rounding.
+constexpr double kRoundingMove = 1e-9;
 
 // The most samples a command takes; the refinement they call for is bounded by
 // kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
@@ -247,15 +252,15 @@ Input load_input(const InputOptions& opt) {
       throw InputError(fmt::format("{}: {}", opt.points_path, e.what()));
     }
     input.points_given = true;
-    for (std::size_t i = 0; i < points.points.size(); ++i)
-      if (points.points[i] != input.samples.positions[i]) {
-        ++input.points_moved;
-        input.points_max_move = std::max(input.points_max_move, distance(points.points[i], input.samples.positions[i]));
-      }
     // The diagram is of the moved points: say so when a move is more than rounding (a point
     // written on a triangle comes back from its closest point a few ulps away).
     const double diagonal = input.mesh.bounding_box().diagonal();
-    if (input.points_max_move > 1e-9 * diagonal)
+    for (std::size_t i = 0; i < points.points.size(); ++i) {
+      const double move = distance(points.points[i], input.samples.positions[i]);
+      input.points_max_move = std::max(input.points_max_move, move);
+      if (move > kRoundingMove * diagonal) ++input.points_moved;
+    }
+    if (input.points_moved > 0)
       std::printf("points: %d of %s moved onto the surface, the farthest by %.3g (%.2g of the bounding-box "
                   "diagonal); the diagram is of the moved points\n",
                   input.points_moved, counted(static_cast<long long>(points.points.size()), "point", "points").c_str(),
@@ -355,6 +360,17 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     seen.push_back(path);
     // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
     // so that a long run does not end on a file it cannot write.
+    // The console's own file (--report /dev/stdout with stdout sent to a file): the report and
+    // the console lines would overwrite each other.
+    struct stat target {}, console {};
+    if (::stat(out.path.c_str(), &target) == 0)
+      for (int fd : {STDOUT_FILENO, STDERR_FILENO})
+        if (::fstat(fd, &console) == 0 && console.st_dev == target.st_dev && console.st_ino == target.st_ino)
+          throw InputError(fmt::format("{} {} is where lrvd's console lines go too; write it to a file of its own",
+                                       out.option, out.path));
+    // A device or a named pipe is written as it is, unprobed: opening a pipe to probe it would
+    // block without a reader, or end the reader's input.
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) continue;
     // Through a link to a file not made yet, the probe makes the link's target: that goes again,
     // the link stays.
     const bool existed = fs::exists(path, error);

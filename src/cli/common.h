@@ -46,7 +46,8 @@ struct Input {
   SurfaceMesh mesh;           //!< after refinement
   int refined_from = -1;      //!< triangle count before refinement, -1 if not refined
   Samples samples;
-  //! --points: how many points moved onto the surface (were not on it), and the farthest move
+  //! --points: how many points moved onto the surface by more than rounding (1e-9 of the
+  //! bounding-box diagonal), and the farthest move
   bool points_given = false;
   int points_moved = 0;
   double points_max_move = 0;

@@ -1,9 +1,12 @@
 // lrvd: localized restricted Voronoi diagrams on triangle meshes, remeshing and sampling.
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 #include <tbb/global_control.h>
@@ -39,7 +42,16 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads,
                  "Worker threads (default: every core); results do not depend on it")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            // CLI11's range check calls "abc" a value out of range.
+            const bool digits = !text.empty() && text.size() <= 4 &&
+                                text.find_first_not_of("0123456789") == std::string::npos;
+            if (!digits || std::stoi(text) < 1 || std::stoi(text) > 4096)
+              return "a thread count is a whole number from 1 to 4096, not '" + text + "'";
+            return std::string();
+          },
+          "INT in [1 - 4096]"));
   app.fallthrough();  // --threads may also follow the subcommand
   std::map<CLI::App*, Action> actions;
   auto add = [&](Action (*adder)(CLI::App&)) {
@@ -70,11 +82,28 @@ int main(int argc, char** argv) {
                        printable(extra).c_str());
           return kBadInput;
         }
-    // CLI11 says "--samples: At Most 1 required but received 2" for an option given twice.
+    // CLI11's wording, where it reads oddly: "--samples: At Most 1 required but received 2" for
+    // an option given twice, "--samples: 1 required INT:INT missing" for one without its value,
+    // and the words it did not expect listed last first.
     std::string message = e.what();
     const std::string repeated = ": At Most 1 required but received ";
-    if (const auto at = message.find(repeated); at != std::string::npos)
+    const std::string unexpected = "The following arguments were not expected: ",
+                      unexpected_one = "The following argument was not expected: ";
+    if (const auto at = message.find(repeated); at != std::string::npos) {
       message = message.substr(0, at) + " is given " + message.substr(at + repeated.size()) + " times; give it once";
+    } else if (message.find(": 1 required ") != std::string::npos && message.size() > 8 &&
+               message.compare(message.size() - 8, 8, " missing") == 0) {
+      message = message.substr(0, message.find(": 1 required ")) + " needs a value";
+    } else if (message.rfind(unexpected, 0) == 0 || message.rfind(unexpected_one, 0) == 0) {
+      std::vector<std::string> words;
+      std::istringstream rest(message.substr(message.find(": ") + 2));
+      for (std::string word; rest >> word;) words.push_back(word);
+      std::reverse(words.begin(), words.end());
+      std::string listed;
+      for (const std::string& word : words) listed += (listed.empty() ? "" : " ") + word;
+      message = fmt::format("unexpected argument{}: {} (this command does not take {})", words.size() == 1 ? "" : "s",
+                            listed, words.size() == 1 ? "it" : "them");
+    }
     std::fprintf(stderr, "lrvd: error: %s (see --help)\n", printable(message).c_str());
     return kBadInput;
   }

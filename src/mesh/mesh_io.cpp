@@ -27,6 +27,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -679,6 +680,26 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
 
 namespace {
 
+// An OBJ of `v` lines and no face (what lrvd writes for a remesh without triangles), which CGAL's
+// reader refuses: its vertices, or false when the file has a face or a line it cannot read so.
+bool read_obj_vertices_only(const std::string& path, std::vector<Point>& points) {
+  std::ifstream in(path);
+  std::vector<Point> read;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    std::string tag;
+    if (!(fields >> tag) || tag[0] == '#') continue;
+    if (tag == "f") return false;
+    if (tag != "v") continue;
+    double x = 0, y = 0, z = 0;
+    if (!(fields >> x >> y >> z)) return false;
+    read.emplace_back(x, y, z);
+  }
+  if (read.empty()) return false;
+  points = std::move(read);
+  return true;
+}
+
 // The file's points and polygons, parsed and checked (finite, indices in range, faces present).
 void read_checked_soup(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons,
                        bool allow_no_faces = false) {
@@ -688,10 +709,14 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
     if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
   if (format == Format::Ply)  // CGAL reads a PLY without coordinates as points at the origin
     if (std::string problem = find_missing_ply_coordinates(path); !problem.empty()) fail(path, problem);
-  if (!read_soup(path, format, points, polygons)) fail(path, diagnose_unreadable_mesh_file(path, format));
+  if (!read_soup(path, format, points, polygons) &&
+      !(allow_no_faces && format == Format::Obj && read_obj_vertices_only(path, points)))
+    fail(path, diagnose_unreadable_mesh_file(path, format));
   check_soup(path, format, points, polygons, allow_no_faces);
   // CGAL reads '3.7' as the index 3 and skips words after a face's indices: a scan of the lines
-  // catches what it took for something else.
+  // catches what it took for something else (a file of vertices alone, when allowed, has no face
+  // to misread, and the scan would call it a point cloud).
+  if (allow_no_faces && polygons.empty()) return;
   if (std::string problem = find_misread_line(path, format); !problem.empty()) fail(path, problem);
 }
 

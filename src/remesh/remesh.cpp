@@ -539,6 +539,7 @@ int add_samples_to_starved_components(const SurfaceMesh& mesh, const Samples& ke
             nearest = std::min(nearest, squared_distance(centroid, start.positions[s]));
         if (nearest > best) best = nearest, best_triangle = t;
       }
+      if (!(best > 0)) break;  // every centroid holds a sample already: no place left for another
       const Triangle& tri = mesh.triangle(best_triangle);
       start.positions[sample] = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
       start.triangles[sample] = best_triangle;
@@ -867,12 +868,14 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
 void require_remesh_vertex_count(const SurfaceMesh& input, int n) {
   const int fewest = input.minimum_vertex_count();
   if (n < fewest)
-    throw InputError(fmt::format("{} vertices are too few for this surface: no triangle mesh with its topology ({} "
-                                 "component(s), Euler characteristic {}{}) has fewer than {}",
-                                 n, input.component_count(), input.euler_characteristic(),
+    throw InputError(fmt::format("{} {} too few for this surface: no triangle mesh with its topology ({} "
+                                 "component{}, Euler characteristic {}{}) has fewer than {}",
+                                 n, n == 1 ? "vertex is" : "vertices are", input.component_count(),
+                                 input.component_count() == 1 ? "" : "s", input.euler_characteristic(),
                                  input.boundary_loops().empty()
                                      ? std::string()
-                                     : fmt::format(", {} boundary loop(s)", input.boundary_loops().size()),
+                                     : fmt::format(", {} boundary loop{}", input.boundary_loops().size(),
+                                                   input.boundary_loops().size() == 1 ? "" : "s"),
                                  fewest));
 }
 
