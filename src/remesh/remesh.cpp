@@ -515,7 +515,12 @@ int add_samples_to_starved_components(const SurfaceMesh& mesh, const Samples& ke
   std::vector<char> is_starved(components, 0);
   for (int c : starved) is_starved[c] = 1;
   std::vector<std::vector<int>> triangles_of(components);
-  for (int t = 0; t < mesh.triangle_count(); ++t) triangles_of[component[t]].push_back(t);
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    if (is_starved[component[t]]) triangles_of[component[t]].push_back(t);
+  const auto centroid = [&](int t) {
+    const Triangle& tri = mesh.triangle(t);
+    return (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+  };
   int moved = 0;
   for (int c : starved)
     for (int k = 0; k < kMargin; ++k) {
@@ -527,21 +532,21 @@ int add_samples_to_starved_components(const SurfaceMesh& mesh, const Samples& ke
       if (donor < 0) return moved;
       int sample = start.size() - 1;
       while (component[start.triangles[sample]] != donor) --sample;
-      // The farthest triangle centroid of c from c's samples (distances to the nearest one).
+      // The farthest triangle centroid of c from c's samples (distances to the nearest one); c holds
+      // a few samples, so they are gathered first.
+      std::vector<Vec3> own;
+      for (int s = 0; s < start.size(); ++s)
+        if (component[start.triangles[s]] == c) own.push_back(start.positions[s]);
       double best = -1;
       int best_triangle = -1;
       for (int t : triangles_of[c]) {
-        const Triangle& tri = mesh.triangle(t);
-        const Vec3 centroid = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+        const Vec3 p = centroid(t);
         double nearest = std::numeric_limits<double>::infinity();
-        for (int s = 0; s < start.size(); ++s)
-          if (component[start.triangles[s]] == c)
-            nearest = std::min(nearest, squared_distance(centroid, start.positions[s]));
+        for (const Vec3& q : own) nearest = std::min(nearest, squared_distance(p, q));
         if (nearest > best) best = nearest, best_triangle = t;
       }
       if (!(best > 0)) break;  // every centroid holds a sample already: no place left for another
-      const Triangle& tri = mesh.triangle(best_triangle);
-      start.positions[sample] = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
+      start.positions[sample] = centroid(best_triangle);
       start.triangles[sample] = best_triangle;
       start.barycentric[sample] = {1.0 / 3, 1.0 / 3, 1.0 / 3};
       --count[donor];
