@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -599,6 +600,17 @@ TEST_CASE("write_mesh refuses unknown extensions and unwritable paths") {
   REQUIRE_THROWS_WITH(write_mesh(scratch("mesh.stl"), p, {{0, 1, 2}}), Contains("extension '.stl'"));
   REQUIRE_THROWS_WITH(write_mesh(scratch("no_such_dir/mesh.off"), p, {{0, 1, 2}}),
                       Contains("cannot be opened for writing"));
+}
+
+TEST_CASE("write_mesh refuses a vertex that is not a point, and writes nothing") {
+  const std::vector<Vec3> p = {{0, 0, 0}, {1, std::nan(""), 0}, {0, 1, 0}};
+  const std::string path = scratch("nan_vertex.off");
+  std::filesystem::remove(path);
+  REQUIRE_THROWS_AS(write_mesh(path, p, {{0, 1, 2}}), std::invalid_argument);
+  REQUIRE_THROWS_WITH(write_mesh(path, p, {{0, 1, 2}}), Contains("vertex 1"));
+  REQUIRE_FALSE(std::filesystem::exists(path));
+  const std::vector<Vec3> far = {{0, 0, 0}, {1, 0, 0}, {0, std::numeric_limits<double>::infinity(), 0}};
+  REQUIRE_THROWS_WITH(write_mesh(path, far, {{0, 1, 2}}), Contains("vertex 2"));
 }
 
 TEST_CASE("CGAL's elk and knot load as closed manifolds of the right genus") {

@@ -84,7 +84,8 @@ PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces = fal
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
 //! \throw InputError on an unknown extension or a path that cannot be written;
-//!        std::invalid_argument when a triangle index is out of range.
+//!        std::invalid_argument when a triangle index is out of range or a coordinate is not finite
+//!        (nothing is written then).
 //! The extensions read_mesh reads and write_mesh writes (lower case, with the dot).
 extern const std::vector<std::string> kMeshReadExtensions, kMeshWriteExtensions;
 

@@ -1,6 +1,7 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
 #include <algorithm>
+#include <cmath>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -91,6 +92,10 @@ void write_mesh(const std::string& path, const std::vector<Vec3>& positions,
   if (std::find(kMeshWriteExtensions.begin(), kMeshWriteExtensions.end(), ext) == kMeshWriteExtensions.end())
     fail(path, fmt::format("cannot write meshes with extension '{}'; use .off, .obj or .ply", ext));
   for (std::size_t t = 0; t < triangles.size(); ++t) check_indices(triangles[t], positions.size(), t);
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) || !std::isfinite(positions[v].z))
+      throw std::invalid_argument(fmt::format("vertex {} of the mesh for {} is at ({}, {}, {}): not a point", v, path,
+                                              positions[v].x, positions[v].y, positions[v].z));
   OutputFile file(path);
   fmt::memory_buffer out;
   if (ext == ".off") {
