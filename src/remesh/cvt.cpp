@@ -139,7 +139,8 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
     smooth[t] = sum / count;
     mass += smooth[t] * mesh.triangle_area(t);
   }
-  for (double& r : smooth) r *= mesh.area() / mass;
+  const double scale = mesh.area() / mass;  // SurfaceMesh::area sums every triangle: once, not per triangle
+  for (double& r : smooth) r *= scale;
   return smooth;
 }
 
