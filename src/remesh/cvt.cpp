@@ -22,6 +22,11 @@ namespace lrvd {
 
 namespace {
 
+// The curvature density's smoothing passes at most: a mesh of T triangles costs T reads of three
+// neighbours a pass, and one with more triangles a sample than this is smoothed over less than a
+// cell's width.
+constexpr int kMaxDensitySmoothingPasses = 500;
+
 // LBFGS++'s backtracking line search, counting the line searches that end with a step taken: the
 // L-BFGS iterations done, which the solver's return value gives only when it does not throw (a
 // line search that fails ends the run with an exception).
@@ -129,19 +134,30 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
     const double c = kappa / 3.0 * h;
     rho[t] = std::min(std::pow(1.0 + c * c, 2.0), 100.0);
   }
-  // One smoothing pass over edge neighbours, then mean 1 by area.
+  // Smoothed by passes of averaging with the edge neighbours, as many as the mesh has triangles per
+  // sample: that spreads a peak over about a cell's width (the mean triangle-to-neighbour step
+  // times the square root of the passes). A cell integrates the density over its area, and a
+  // density that changes within a cell's width only makes the cells irregular: with a single pass,
+  // the curvature of the armadillo's skin folds took 29-36 repair rounds at 300-1000 vertices
+  // (docs/results.md, "Session 29").
+  const int passes = std::clamp(static_cast<int>(std::lround(static_cast<double>(nt) / std::max(sample_count, 1))), 1,
+                                kMaxDensitySmoothingPasses);
   std::vector<double> smooth(nt);
-  double mass = 0;
-  for (int t = 0; t < nt; ++t) {
-    double sum = rho[t], count = 1;
-    for (int e = 0; e < 3; ++e)
-      if (mesh.neighbor(t, e) >= 0) sum += rho[mesh.neighbor(t, e)], count += 1;
-    smooth[t] = sum / count;
-    mass += smooth[t] * mesh.triangle_area(t);
+  for (int pass = 0; pass < passes; ++pass) {
+    for (int t = 0; t < nt; ++t) {
+      double sum = rho[t], count = 1;
+      for (int e = 0; e < 3; ++e)
+        if (mesh.neighbor(t, e) >= 0) sum += rho[mesh.neighbor(t, e)], count += 1;
+      smooth[t] = sum / count;
+    }
+    rho.swap(smooth);
   }
+  // Then mean 1 by area.
+  double mass = 0;
+  for (int t = 0; t < nt; ++t) mass += rho[t] * mesh.triangle_area(t);
   const double scale = mesh.area() / mass;  // SurfaceMesh::area sums every triangle: once, not per triangle
-  for (double& r : smooth) r *= scale;
-  return smooth;
+  for (double& r : rho) r *= scale;
+  return rho;
 }
 
 CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
