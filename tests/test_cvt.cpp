@@ -748,9 +748,13 @@ TEST_CASE("Components left at the fewest samples their topology needs get two mo
   const RemeshResult failed = remesh_cvt(bones, bones, start, without);
   REQUIRE_FALSE(failed.defects.empty());
   REQUIRE(failed.samples_reallocated == 0);
+  REQUIRE(failed.reallocation_tried == 0);
+  REQUIRE(failed.runs >= 2);  // the first run and the one with samples kept to their sheets, at least
   const RemeshResult r = remesh_cvt(bones, bones, start);
   INFO(r.defects.describe());
   REQUIRE(r.samples_reallocated == 32);
+  REQUIRE(r.reallocation_tried == 32);
+  REQUIRE(r.runs > failed.runs);  // the runs again from the moved samples
   REQUIRE(r.defects.empty());
   const RemeshVerification check = verify_remesh(bones, r.dual.positions, r.dual.triangles, 200);
   INFO(check.summary());

@@ -144,6 +144,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["kept_to_sheets"] = remeshed.kept_to_sheets;
   report["tip_caps_lowered"] = remeshed.tip_caps_lowered;
   report["samples_reallocated"] = remeshed.samples_reallocated;
+  report["reallocation_tried"] = remeshed.reallocation_tried;
+  report["runs"] = remeshed.runs;
   // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
   report["polished"] = remeshed.polished;
   // A run stopped because every cell was at a defect or next to one (docs/results.md, "Session 27").

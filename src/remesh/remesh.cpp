@@ -834,6 +834,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       RemeshResult again = run_from(moved, again_defects);
       again.samples_reallocated = added;
       keep_if_fewer(std::move(again), std::move(again_defects), result, defects);
+      result.reallocation_tried = added;
     }
   }
   if (!result.fitted) {
@@ -865,6 +866,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   // Only when no run got past such a round: a run that went on (the third, lowering the density on
   // caps at sharp tips) and ran out of rounds may mend with more rounds, not only more vertices.
   result.repair_saturated = saturated_runs == runs && !defects.empty();
+  result.runs = runs;
   result.defects = std::move(defects);
   result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

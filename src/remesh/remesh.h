@@ -125,6 +125,11 @@ struct RemeshResult {
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
   int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
+  //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
+  int reallocation_tried = 0;
+  //! Runs of the first CVT and its repair rounds tried: 1, or more when defects were left (the runs
+  //! with samples kept to their sheets, with tip caps lowered, from reallocated samples).
+  int runs = 0;
   //! Defects are left, and every run tried stopped at a round with every cell at a defect or next
   //! to one (the raise would have been uniform, which changes no CVT): the surface is thinner than
   //! the cells everywhere, and only more vertices mend it.
