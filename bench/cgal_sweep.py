@@ -17,6 +17,7 @@ import concurrent.futures
 import glob
 import json
 import os
+import shlex
 import subprocess
 import tarfile
 import tempfile
@@ -34,13 +35,13 @@ def extract(data_dir):
     return sorted(p for p in glob.glob(os.path.join(data_dir, "**", "*"), recursive=True) if p.endswith(SUFFIXES))
 
 
-def run(lrvd, mesh, n, work, timeout):
+def run(lrvd, mesh, n, work, timeout, extra):
     base = os.path.join(work, f"{os.path.basename(mesh)}_{n}")
     report = base + ".json"
     start = time.monotonic()
     try:
         proc = subprocess.run([lrvd, "remesh", mesh, "-n", str(n), "-o", base + ".off", "--report", report,
-                               "--threads", "1"], capture_output=True, text=True, timeout=timeout)
+                               "--threads", "1"] + extra, capture_output=True, text=True, timeout=timeout)
         status = proc.returncode
         stderr = proc.stderr.strip().splitlines()
     except subprocess.TimeoutExpired:
@@ -67,6 +68,7 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--timeout", type=float, default=900)
     parser.add_argument("--out", default="", help="markdown table; JSON rows go beside it")
+    parser.add_argument("--remesh-args", default="", help="more lrvd remesh options, e.g. '--density curvature'")
     args = parser.parse_args()
 
     data = args.data or tempfile.mkdtemp(prefix="cgal_data_")
@@ -78,7 +80,7 @@ def main():
     work = tempfile.mkdtemp(prefix="cgal_sweep_")
     jobs = [(m, n) for m in meshes for n in counts]
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
-        rows = list(pool.map(lambda job: run(args.lrvd, job[0], job[1], work, args.timeout), jobs))
+        rows = list(pool.map(lambda job: run(args.lrvd, job[0], job[1], work, args.timeout, shlex.split(args.remesh_args)), jobs))
 
     tally = {}
     for row in rows:
