@@ -139,7 +139,7 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
   // times the square root of the passes). A cell integrates the density over its area, and a
   // density that changes within a cell's width only makes the cells irregular: with a single pass,
   // the curvature of the armadillo's skin folds took 29-36 repair rounds at 300-1000 vertices
-  // (docs/results.md, "Session 29").
+  // (docs/results.md, "`--density curvature` on the same 20 rows").
   const int passes = std::clamp(static_cast<int>(std::lround(static_cast<double>(nt) / std::max(sample_count, 1))), 1,
                                 kMaxDensitySmoothingPasses);
   std::vector<double> smooth(nt);
