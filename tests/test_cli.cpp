@@ -371,6 +371,7 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   }
   REQUIRE(r.out.find("repair: ") != std::string::npos);
   REQUIRE(r.out.find(left["summary"].get<std::string>()) != std::string::npos);
+  REQUIRE(r.out.find("more vertices") != std::string::npos);  // what to try next
 }
 
 TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the checks, not a crash", "[cli][remesh]") {
