@@ -274,6 +274,16 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
   CHECK(esc.status == 2);
   CHECK(esc.err.find('\x1b') == std::string::npos);
   CHECK(esc.err.find("\\x1b[31mRED") != std::string::npos);
+  // So is a byte that is no UTF-8 (a flipped bit in a number); a UTF-8 name is shown as it is.
+  const std::string binary = kOut + "binary.xyz", named = kOut + "mod\xc3\xa8le.xyz";
+  std::ofstream(binary) << "0.1\xff\xc3 0 0\n";
+  const Run bin = run("verify " + coloured + " --points " + binary);
+  CHECK(bin.status == 2);
+  CHECK(bin.err.find('\xff') == std::string::npos);
+  CHECK(bin.err.find("0.1\\xff\\xc3") != std::string::npos);
+  const Run missing = run("verify " + coloured + " --points " + named);
+  CHECK(missing.status == 2);
+  CHECK(missing.err.find("mod\xc3\xa8le.xyz") != std::string::npos);
   const Run longer = run("verify " + coloured + " --points " + long_token);
   CHECK(longer.status == 2);
   CHECK(lines(longer.err) == 1);

@@ -16,19 +16,47 @@
 
 namespace {
 
-// An error line as the terminal should show it: control characters (an escape sequence read from a
-// file) written as \xNN, and a line longer than a screen or two (a 200 kB token echoed from a
-// file) shortened in the middle.
+// Length of the well-formed UTF-8 sequence that starts at s[i] (1 to 4 bytes), or 0 when none does
+// (a byte of a binary file, a Latin-1 letter): a terminal would show that as a replacement mark,
+// or a pipe reading UTF-8 would fail on it.
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+  const unsigned char c = s[i];
+  const std::size_t n = c < 0x80 ? 1 : c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+  if (n == 0 || i + n > s.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return 0;
+  const unsigned char second = s[i + (n > 1 ? 1 : 0)];
+  if ((c == 0xe0 && second < 0xa0) || (c == 0xed && second >= 0xa0) || (c == 0xf0 && second < 0x90) ||
+      (c == 0xf4 && second >= 0x90))
+    return 0;  // an overlong form, a surrogate, or beyond U+10FFFF
+  return n;
+}
+
+// An error line as the terminal should show it, in well-formed UTF-8: control characters (an escape
+// sequence read from a file) and bytes that are no UTF-8 written as \xNN, and a line longer than a
+// screen or two (a 200 kB token echoed from a file) shortened in the middle, never inside a
+// character.
 std::string printable(const std::string& message) {
   constexpr std::size_t kLongest = 400, kHead = 300, kTail = 80;
   std::string out;
-  for (unsigned char c : message) {
-    if (c < 0x20 || c == 0x7f) out += fmt::format("\\x{:02x}", c);
-    else out += static_cast<char>(c);
+  for (std::size_t i = 0; i < message.size();) {
+    const unsigned char c = message[i];
+    const std::size_t n = utf8_length(message, i);
+    if (n == 0 || c < 0x20 || c == 0x7f) {
+      out += fmt::format("\\x{:02x}", c);
+      ++i;
+    } else {
+      out.append(message, i, n);
+      i += n;
+    }
   }
-  if (out.size() > kLongest)
-    out = out.substr(0, kHead) + fmt::format(" [... {} characters ...] ", out.size() - kHead - kTail) +
-          out.substr(out.size() - kTail);
+  if (out.size() > kLongest) {
+    auto continuation = [&](std::size_t at) { return (static_cast<unsigned char>(out[at]) & 0xc0) == 0x80; };
+    std::size_t head = kHead, tail = out.size() - kTail;
+    while (head > 0 && continuation(head)) --head;
+    while (tail < out.size() && continuation(tail)) ++tail;
+    out = out.substr(0, head) + fmt::format(" [... {} characters ...] ", tail - head) + out.substr(tail);
+  }
   return out;
 }
 
