@@ -385,4 +385,13 @@ TEST_CASE("A Morton order visits each octant of the bounding cube in one run wit
   REQUIRE(*(first + 1) == static_cast<int>(points.size()) - 1);
   REQUIRE(morton_order({}).empty());
   REQUIRE(morton_order({{1, 2, 3}}) == std::vector<int>{0});
+  // Enough points for the radix sort's own passes (small inputs go to a comparison sort): each of
+  // 10000 points twice, the copy 10000 places later, and every copy right after its original.
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Vec3> many(20000);
+  for (int i = 0; i < 10000; ++i) many[i] = many[i + 10000] = {unit(random), unit(random), unit(random)};
+  const std::vector<int> big = morton_order(many);
+  REQUIRE(big.size() == many.size());
+  for (size_t k = 0; k + 1 < big.size(); ++k)
+    if (big[k] < 10000) REQUIRE(big[k + 1] == big[k] + 10000);
 }
