@@ -296,11 +296,14 @@ Action add_remesh_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
   cmd->add_option("--iterations", opt->iterations,
-                  "Iteration cap of the first CVT (each repair round of a dual with defects runs up to 30 more; "
-                  "with L-BFGS, a state without defects then takes one Lloyd step)")
+                  "Iteration cap of the first CVT, which usually stops there: more iterations give better "
+                  "triangles, for more time (each repair round of a dual with defects runs up to 30 more; with "
+                  "L-BFGS, a state without defects then takes one Lloyd step)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  cmd->add_option("--density", opt->density, "uniform or curvature")
+  cmd->add_option("--density", opt->density,
+                  "uniform, or curvature: smaller cells where the surface bends (at a few hundred vertices "
+                  "uniform does better)")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,
