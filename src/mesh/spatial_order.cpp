@@ -43,11 +43,12 @@ std::vector<int> morton_order(const std::vector<Vec3>& points) {
     }
     keyed[i] = {code, i};
   }
-  // A radix sort on the code, ties by index: the order std::sort gives the pairs, in a fifth of its
-  // time on the quality metrics' 400k points.
+  // A radix sort on the code, ties by index: the order std::sort gives the pairs, in less time (the
+  // quality metrics sort 400k points: docs/performance.md, "Twenty-ninth session").
+  using Keyed = std::pair<std::uint64_t, int>;
   boost::sort::spreadsort::integer_sort(
-      keyed.begin(), keyed.end(), [](const std::pair<std::uint64_t, int>& p, unsigned shift) { return p.first >> shift; },
-      [](const std::pair<std::uint64_t, int>& a, const std::pair<std::uint64_t, int>& b) { return a < b; });
+      keyed.begin(), keyed.end(), [](const Keyed& p, unsigned shift) { return p.first >> shift; },
+      [](const Keyed& a, const Keyed& b) { return a < b; });
   std::vector<int> order(n);
   for (int k = 0; k < n; ++k) order[k] = keyed[k].second;
   return order;
