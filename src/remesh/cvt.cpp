@@ -138,7 +138,7 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
   // sample: that spreads a peak over about a cell's width (the mean triangle-to-neighbour step
   // times the square root of the passes). A cell integrates the density over its area, and a
   // density that changes within a cell's width only makes the cells irregular: with a single pass,
-  // the curvature of the armadillo's skin folds took 29-36 repair rounds at 300-1000 vertices
+  // the armadillo took 29-36 repair rounds at 300-1000 vertices, and 9-16 with these passes
   // (docs/results.md, "`--density curvature` on the same 20 rows").
   const int passes = std::clamp(static_cast<int>(std::lround(static_cast<double>(nt) / std::max(sample_count, 1))), 1,
                                 kMaxDensitySmoothingPasses);
