@@ -3,7 +3,8 @@
 // remesh checks and quality metrics against the input. The peer takes an edge length, not a vertex
 // count, so its length is searched until its output has about N vertices; the table gives the count
 // it reached. Writes markdown and JSON.
-// Usage: bench_isotropic [--models elk,knot,...] [--stress thin_plate,...] [--counts 300,516,...]
+// Usage: bench_isotropic [--models elk,knot,...] [--stress thin_plate,...] [--files a.off,b.ply]
+//                        [--counts 300,516,...]
 //                        [--peer-iterations K] [--peer-only] [--threads N] [--out F.md] [--json F]
 #include <algorithm>
 #include <cmath>
@@ -120,7 +121,7 @@ std::string yes_no(bool ok) { return ok ? "yes" : "**no**"; }
 
 int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "knot", "ellipsoid", "armadillo"};
-  std::vector<std::string> stress;
+  std::vector<std::string> stress, files;
   std::vector<int> counts = {300, 516, 1000, 2000, 4000};
   std::string out_path, json_path;
   int threads = 1, peer_iterations = 5;
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
       models = split(argv[++a]);
     } else if (!std::strcmp(argv[a], "--stress") && a + 1 < argc) {
       stress = split(argv[++a]);
+    } else if (!std::strcmp(argv[a], "--files") && a + 1 < argc) {
+      files = split(argv[++a]);
     } else if (!std::strcmp(argv[a], "--counts") && a + 1 < argc) {
       counts.clear();
       for (const std::string& c : split(argv[++a])) counts.push_back(std::stoi(c));
@@ -145,7 +148,7 @@ int main(int argc, char** argv) {
       json_path = argv[++a];
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--models a,b] [--stress a,b] [--counts n1,n2] [--peer-iterations K] [--peer-only] "
+                   "usage: %s [--models a,b] [--stress a,b] [--files a.off,b.ply] [--counts n1,n2] [--peer-iterations K] [--peer-only] "
                    "[--threads N] [--out F.md] [--json F]\n",
                    argv[0]);
       return 2;
@@ -159,6 +162,10 @@ int main(int argc, char** argv) {
   for (const std::string& model : models)
     if (!model.empty()) inputs.emplace_back(model, read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + model + ".off").mesh);
   for (const std::string& name : stress) inputs.emplace_back(name, make_stress_mesh(name));
+  for (const std::string& path : files) {
+    const std::string file = path.substr(path.find_last_of('/') + 1);
+    inputs.emplace_back(file.substr(0, file.find_last_of('.')), read_mesh(path).mesh);
+  }
 
   std::string md =
       "| mesh | N | method | V out | valid (all but the count) | manifold | genus kept | self-int. pairs | Qmin | θmin | % tri <30° | "
