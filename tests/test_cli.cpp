@@ -310,6 +310,7 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
   REQUIRE(j["kept_to_sheets"] == false);  // valid at the first run: no second run with samples kept to sheets
   REQUIRE(j["runs"] == 1);
   REQUIRE(j["reallocation_tried"] == 0);
+  REQUIRE(j["density_eased"] == false);  // no repair rounds, so no density to ease back
   // The quality command measures the written file on its own.
   const std::string quality = kOut + "quality.json";
   REQUIRE(run("quality " + kData + "/ellipsoid.off " + out + " --report " + quality).status == 0);

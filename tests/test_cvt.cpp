@@ -169,8 +169,8 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
   REQUIRE(base.repair_rounds > 0);  // the case goes through the repair rounds and the fitting
   REQUIRE(base.polished);  // and the Lloyd step on the state kept
   // The progress lines tell each step: the first CVT's defects, each round before and after, the
-  // Lloyd step, the fitting.
-  REQUIRE(lines.size() == 3 + 2 * static_cast<size_t>(base.repair_rounds));
+  // eased density, the Lloyd step, the fitting.
+  REQUIRE(lines.size() == 4 + 2 * static_cast<size_t>(base.repair_rounds));
   CHECK_THAT(lines.front(), Catch::StartsWith("CVT: ") && Catch::Contains("topological defects"));
   for (int k = 1; k <= base.repair_rounds; ++k) {
     CHECK_THAT(lines[2 * k - 1], Catch::StartsWith(fmt::format("repair round {} of {}: density x{} around", k,
@@ -178,7 +178,8 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
     CHECK_THAT(lines[2 * k], Catch::StartsWith(fmt::format("repair round {}: ", k)) && Catch::Contains("the dual has"));
   }
   CHECK_THAT(lines[2 * base.repair_rounds], Catch::EndsWith("the dual has no defect"));
-  CHECK(lines[2 * base.repair_rounds + 1] == "1 Lloyd step on the samples: the dual has no defect");
+  CHECK_THAT(lines[2 * base.repair_rounds + 1], Catch::Contains("iterations with the density eased 25% of the way back: the dual has"));
+  CHECK(lines[2 * base.repair_rounds + 2] == "1 Lloyd step on the samples: the dual has no defect");
   CHECK(lines.back() == "fitting the vertices to the surface");
   for (int k : {-30, 30}) {
     const double s = std::ldexp(1.0, k);
@@ -225,6 +226,49 @@ TEST_CASE("A remesh's kept state takes a Lloyd step when its dual has no defect,
   CHECK_FALSE(defective.polished);
   no_rounds.polish_steps = 0;
   CHECK(remesh_to(elk, 516, 1, no_rounds).diagram_evaluations == defective.diagram_evaluations);
+}
+
+TEST_CASE("The density raised by repair rounds is eased back when the triangles gain by it", "[cvt][remesh]") {
+  // Elk 300 needs repair rounds; the state they leave has no defect, and 10 iterations with the
+  // density eased a quarter of the way back give it a better worst triangle.
+  const SurfaceMesh elk = cgal_mesh("elk.off");
+  RemeshOptions without;
+  without.ease_iterations = 0;
+  std::vector<std::string> lines;
+  RemeshOptions with;
+  with.on_progress = [&](const std::string& line) { lines.push_back(line); };
+  const RemeshResult plain = remesh_to(elk, 300, 1, without);
+  const RemeshResult eased = remesh_to(elk, 300, 1, with);
+  REQUIRE(plain.repair_rounds > 0);
+  REQUIRE(eased.repair_rounds == plain.repair_rounds);  // the rounds are the same; what follows them differs
+  REQUIRE_FALSE(plain.eased);
+  REQUIRE(eased.eased);
+  CHECK(eased.diagram_evaluations > plain.diagram_evaluations);
+  CHECK(eased.diagram_evaluations <= plain.diagram_evaluations + 2 * with.ease_iterations + 2);
+  const auto line = std::find_if(lines.begin(), lines.end(),
+                                 [](const std::string& l) { return l.find("density eased 25% of the way back") != std::string::npos; });
+  REQUIRE(line != lines.end());
+  double before = 0, after = 0;
+  REQUIRE(std::sscanf(line->c_str() + line->find("worst triangle"), "worst triangle %lf -> %lf", &before, &after) == 2);
+  CHECK(after > before);
+  CHECK(verify_remesh(elk, eased.dual.positions, eased.dual.triangles, 300).passed);
+  CHECK(verify_remesh(elk, plain.dual.positions, plain.dual.triangles, 300).passed);
+
+  // A run without repair rounds is not eased: the ellipsoid at 300 is the same either way.
+  const SurfaceMesh ellipsoid = cgal_mesh("ellipsoid.off");
+  const RemeshResult clean = remesh_to(ellipsoid, 300, 1);
+  const RemeshResult clean_without = remesh_to(ellipsoid, 300, 1, without);
+  REQUIRE(clean.repair_rounds == 0);
+  CHECK_FALSE(clean.eased);
+  CHECK(clean.diagram_evaluations == clean_without.diagram_evaluations);
+  CHECK(clean.dual.positions == clean_without.dual.positions);
+
+  RemeshOptions bad;
+  bad.ease_fraction = 1.5;
+  CHECK_THROWS_AS(remesh_to(ellipsoid, 300, 1, bad), InputError);
+  bad.ease_fraction = 0.25;
+  bad.ease_iterations = -1;
+  CHECK_THROWS_AS(remesh_to(ellipsoid, 300, 1, bad), InputError);
 }
 
 TEST_CASE("Remeshing and sampling refuse a model too large or too small for doubles, naming its size", "[cvt][remesh]") {
@@ -344,7 +388,7 @@ TEST_CASE("A run whose line search backtracks counts L-BFGS iterations, within t
   const RemeshResult r = remesh_cvt(elk, elk, sample_uniform(elk, 300, 1), options);
   REQUIRE(r.repair_rounds > 0);
   REQUIRE(r.total_iterations <= options.cvt.iterations + r.repair_rounds * options.repair_iterations +
-                                    (r.polished ? options.polish_steps : 0));
+                                    options.ease_iterations + (r.polished ? options.polish_steps : 0));
   REQUIRE(2 * r.total_iterations < r.diagram_evaluations);
   int rounds_seen = 0;
   for (const std::string& line : lines) {

@@ -148,6 +148,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["runs"] = remeshed.runs;
   // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
   report["polished"] = remeshed.polished;
+  // The kept state took RemeshOptions::ease_iterations with the repair's raised density eased back.
+  report["density_eased"] = remeshed.eased;
   // A run stopped because every cell was at a defect or next to one (docs/results.md, "Session 27").
   report["repair_saturated"] = remeshed.repair_saturated;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iterator>
 #include <numeric>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "common/error.h"
 #include "mesh/closest_point.h"
 #include "mesh/curvature.h"
+#include "metrics/quality.h"
 #include "metrics/self_intersections.h"
 #include "voronoi/clip.h"
 
@@ -602,6 +604,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
                                  mesh.component_count(), mesh.euler_characteristic(), mesh.boundary_loops().size(),
                                  reference.component_count(), reference.euler_characteristic(),
                                  reference.boundary_loops().size()));
+  if (!(options.ease_fraction >= 0 && options.ease_fraction <= 1) || options.ease_iterations < 0)
+    throw InputError(fmt::format("remesh options: ease_fraction ({}) must be in [0, 1] and ease_iterations ({}) not negative",
+                                 options.ease_fraction, options.ease_iterations));
   if (options.repair_rounds < 0 || options.repair_iterations < 1 || options.polish_steps < 0)
     throw InputError(fmt::format("remesh options: repair_rounds ({}) and polish_steps ({}) may not be negative, and "
                                  "repair_iterations ({}) must be at least 1",
@@ -669,6 +674,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       again.triangle_density = options.cvt.density == CvtDensity::Curvature
                                    ? curvature_density(mesh, initial.size())
                                    : std::vector<double>(mesh.triangle_count(), 1.0);
+    const std::vector<double> base_density = again.triangle_density;  // before any round changes it
     progress(fmt::format("{}CVT: {} iterations, {} diagrams, energy {:.6g}; the dual has {}",
                          lower_tip_caps ? "third run, from the second's first " : keep_to_sheets ? "second run, " : "",
                          result.cvt.iterations, result.cvt.diagram_evaluations, result.cvt.energy, defects.describe()));
@@ -745,6 +751,41 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
         rounds_without_progress = 0;
       } else {
         ++rounds_without_progress;
+      }
+    }
+    // A state the repair rounds left without defects is optimised again with the raised density
+    // eased part of the way back (RemeshOptions::ease_iterations); it stands if its dual has no
+    // defect and a better worst triangle than the state before.
+    if (options.ease_iterations > 0 && result.repair_rounds > 0 && best_defects.empty() && !best.fitted) {
+      CvtOptions eased = again;
+      eased.iterations = options.ease_iterations;
+      const std::vector<double>& base = base_density;
+      for (std::size_t t = 0; t < base.size(); ++t)
+        eased.triangle_density[t] = base[t] * std::pow(best_density[t] / base[t], 1 - options.ease_fraction);
+      CvtResult relaxed = optimize_cvt(mesh, best.cvt.samples, eased, &best.cvt.diagram, &index);
+      result.total_iterations += relaxed.iterations;
+      result.diagram_evaluations += relaxed.diagram_evaluations;
+      DualMesh dual = compute_dual(relaxed.diagram, mesh, relaxed.samples);
+      DualDefects after = find_dual_defects(dual, relaxed.diagram, mesh, reference.is_closed(), components_cross);
+      const double q_before = shape_metrics(best.dual.positions, best.dual.triangles).q_min;
+      const double q_after = after.empty() ? shape_metrics(dual.positions, dual.triangles).q_min : 0;
+      const bool kept = after.empty() && q_after > q_before;
+      progress(fmt::format("{} iterations with the density eased {}% of the way back: the dual has {}{}",
+                           relaxed.iterations, std::lround(100 * options.ease_fraction), after.describe(),
+                           !after.empty() ? ", the state before them stands"
+                           : kept        ? fmt::format(", worst triangle {:.3f} -> {:.3f}", q_before, q_after)
+                                         : fmt::format(", worst triangle {:.3f} not above {:.3f}: the state before them stands",
+                                                       q_after, q_before)));
+      if (kept) {
+        relaxed.energy_history.insert(relaxed.energy_history.begin(), best.cvt.energy_history.begin(),
+                                      best.cvt.energy_history.end() - 1);
+        relaxed.iterations += best.cvt.iterations;
+        relaxed.diagram_evaluations += best.cvt.diagram_evaluations;
+        relaxed.time_s += best.cvt.time_s;
+        best.cvt = std::move(relaxed);
+        best.dual = std::move(dual);
+        best.eased = true;
+        best_density = std::move(eased.triangle_density);
       }
     }
     // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density

@@ -49,6 +49,13 @@ struct RemeshOptions {
   //! step moves every sample to its cell's centroid. The polished state is kept when its dual has
   //! no defect either.
   int polish_steps = 1;
+  //! CVT iterations on the state a run keeps when its repair rounds ended without defects, with the
+  //! density eased back `ease_fraction` of the way (in log scale) from the raised one towards the
+  //! density the run began with. The rounds double the density round each defect, and a density that
+  //! steep gives poor triangles where it changes; the eased state is kept when its dual has no defect
+  //! and a better worst triangle. 0: no easing.
+  int ease_iterations = 10;
+  double ease_fraction = 0.25;
   //! Called with one line on each step of the run: the first CVT's outcome, each repair round
   //! (before: where the density goes up; after: the defects left), the second run, the fitting;
   //! for progress output.
@@ -124,6 +131,7 @@ struct RemeshResult {
   bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
+  bool eased = false;             //!< the result is the eased state (RemeshOptions::ease_iterations)
   int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
   //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
   int reallocation_tried = 0;
