@@ -169,8 +169,8 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
   REQUIRE(base.repair_rounds > 0);  // the case goes through the repair rounds and the fitting
   REQUIRE(base.polished);  // and the Lloyd step on the state kept
   // The progress lines tell each step: the first CVT's defects, each round before and after, the
-  // eased density, the Lloyd step, the fitting.
-  REQUIRE(lines.size() == 4 + 2 * static_cast<size_t>(base.repair_rounds));
+  // Lloyd step, the eased density, its Lloyd step and the choice, the fitting.
+  REQUIRE(lines.size() == 6 + 2 * static_cast<size_t>(base.repair_rounds));
   CHECK_THAT(lines.front(), Catch::StartsWith("CVT: ") && Catch::Contains("topological defects"));
   for (int k = 1; k <= base.repair_rounds; ++k) {
     CHECK_THAT(lines[2 * k - 1], Catch::StartsWith(fmt::format("repair round {} of {}: density x{} around", k,
@@ -178,8 +178,10 @@ TEST_CASE("A remesh is the same in any unit: the elk at 516 scaled by 2^-30 and 
     CHECK_THAT(lines[2 * k], Catch::StartsWith(fmt::format("repair round {}: ", k)) && Catch::Contains("the dual has"));
   }
   CHECK_THAT(lines[2 * base.repair_rounds], Catch::EndsWith("the dual has no defect"));
-  CHECK_THAT(lines[2 * base.repair_rounds + 1], Catch::Contains("iterations with the density eased 25% of the way back: the dual has"));
-  CHECK(lines[2 * base.repair_rounds + 2] == "1 Lloyd step on the samples: the dual has no defect");
+  CHECK(lines[2 * base.repair_rounds + 1] == "1 Lloyd step on the samples: the dual has no defect");
+  CHECK(lines[2 * base.repair_rounds + 2] == "10 iterations with the density eased 25% of the way back: the dual has no defect");
+  CHECK(lines[2 * base.repair_rounds + 3] == "1 Lloyd step on the samples: the dual has no defect");
+  CHECK_THAT(lines[2 * base.repair_rounds + 4], Catch::StartsWith("the eased state: worst triangle "));
   CHECK(lines.back() == "fitting the vertices to the surface");
   for (int k : {-30, 30}) {
     const double s = std::ldexp(1.0, k);
@@ -230,7 +232,7 @@ TEST_CASE("A remesh's kept state takes a Lloyd step when its dual has no defect,
 
 TEST_CASE("The density raised by repair rounds is eased back when the triangles gain by it", "[cvt][remesh]") {
   // Elk 300 needs repair rounds; the state they leave has no defect, and 10 iterations with the
-  // density eased a quarter of the way back give it a better worst triangle.
+  // density eased a quarter of the way back, then its Lloyd step, give it a better worst triangle.
   const SurfaceMesh elk = cgal_mesh("elk.off");
   RemeshOptions without;
   without.ease_iterations = 0;
@@ -244,12 +246,13 @@ TEST_CASE("The density raised by repair rounds is eased back when the triangles 
   REQUIRE_FALSE(plain.eased);
   REQUIRE(eased.eased);
   CHECK(eased.diagram_evaluations > plain.diagram_evaluations);
-  CHECK(eased.diagram_evaluations <= plain.diagram_evaluations + 2 * with.ease_iterations + 2);
+  CHECK(eased.diagram_evaluations <= plain.diagram_evaluations + 2 * with.ease_iterations + 3);
+  // The choice is told, with the worst triangle of each state (before the fitting).
   const auto line = std::find_if(lines.begin(), lines.end(),
-                                 [](const std::string& l) { return l.find("density eased 25% of the way back") != std::string::npos; });
+                                 [](const std::string& l) { return l.rfind("the eased state: ", 0) == 0; });
   REQUIRE(line != lines.end());
   double before = 0, after = 0;
-  REQUIRE(std::sscanf(line->c_str() + line->find("worst triangle"), "worst triangle %lf -> %lf", &before, &after) == 2);
+  REQUIRE(std::sscanf(line->c_str(), "the eased state: worst triangle %lf -> %lf, kept", &before, &after) == 2);
   CHECK(after > before);
   CHECK(verify_remesh(elk, eased.dual.positions, eased.dual.triangles, 300).passed);
   CHECK(verify_remesh(elk, plain.dual.positions, plain.dual.triangles, 300).passed);

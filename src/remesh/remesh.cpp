@@ -753,50 +753,17 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
         ++rounds_without_progress;
       }
     }
-    // A state the repair rounds left without defects is optimised again with the raised density
-    // eased part of the way back (RemeshOptions::ease_iterations); it stands if its dual has no
-    // defect and a better worst triangle than the state before.
-    if (options.ease_iterations > 0 && result.repair_rounds > 0 && best_defects.empty() && !best.fitted) {
-      CvtOptions eased = again;
-      eased.iterations = options.ease_iterations;
-      const std::vector<double>& base = base_density;
-      for (std::size_t t = 0; t < base.size(); ++t)
-        eased.triangle_density[t] = base[t] * std::pow(best_density[t] / base[t], 1 - options.ease_fraction);
-      CvtResult relaxed = optimize_cvt(mesh, best.cvt.samples, eased, &best.cvt.diagram, &index);
-      result.total_iterations += relaxed.iterations;
-      result.diagram_evaluations += relaxed.diagram_evaluations;
-      DualMesh dual = compute_dual(relaxed.diagram, mesh, relaxed.samples);
-      DualDefects after = find_dual_defects(dual, relaxed.diagram, mesh, reference.is_closed(), components_cross);
-      const double q_before = shape_metrics(best.dual.positions, best.dual.triangles).q_min;
-      const double q_after = after.empty() ? shape_metrics(dual.positions, dual.triangles).q_min : 0;
-      const bool kept = after.empty() && q_after > q_before;
-      progress(fmt::format("{} iterations with the density eased {}% of the way back: the dual has {}{}",
-                           relaxed.iterations, std::lround(100 * options.ease_fraction), after.describe(),
-                           !after.empty() ? ", the state before them stands"
-                           : kept        ? fmt::format(", worst triangle {:.3f} -> {:.3f}", q_before, q_after)
-                                         : fmt::format(", worst triangle {:.3f} not above {:.3f}: the state before them stands",
-                                                       q_after, q_before)));
-      if (kept) {
-        relaxed.energy_history.insert(relaxed.energy_history.begin(), best.cvt.energy_history.begin(),
-                                      best.cvt.energy_history.end() - 1);
-        relaxed.iterations += best.cvt.iterations;
-        relaxed.diagram_evaluations += best.cvt.diagram_evaluations;
-        relaxed.time_s += best.cvt.time_s;
-        best.cvt = std::move(relaxed);
-        best.dual = std::move(dual);
-        best.eased = true;
-        best_density = std::move(eased.triangle_density);
-      }
-    }
     // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density
     // it was optimised for; they stand if its dual still has no defect. A state whose crossings
     // were untangled (settle) is kept as it is.
-    if (options.polish_steps > 0 && first.optimizer == CvtOptimizer::Lbfgs && best_defects.empty() && !best.fitted) {
+    const bool clean = best_defects.empty() && !best.fitted;
+    auto polish = [&](RemeshResult& state, const std::vector<double>& density) {
+      if (options.polish_steps == 0 || first.optimizer != CvtOptimizer::Lbfgs) return;
       CvtOptions lloyd = first;
       lloyd.optimizer = CvtOptimizer::Lloyd;
       lloyd.iterations = options.polish_steps;
-      lloyd.triangle_density = best_density;
-      CvtResult polished = optimize_cvt(mesh, best.cvt.samples, lloyd, &best.cvt.diagram, &index);
+      lloyd.triangle_density = density;
+      CvtResult polished = optimize_cvt(mesh, state.cvt.samples, lloyd, &state.cvt.diagram, &index);
       result.total_iterations += polished.iterations;
       result.diagram_evaluations += polished.diagram_evaluations;
       DualMesh dual = compute_dual(polished.diagram, mesh, polished.samples);
@@ -804,18 +771,56 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       progress(fmt::format("{} Lloyd step{} on the samples: the dual has {}{}", polished.iterations,
                            polished.iterations == 1 ? "" : "s", after.describe(),
                            after.empty() ? "" : ", the state before them stands"));
+      if (!after.empty()) return;
+      // The kept CVT is the run and its polish: its history, iterations and evaluations cover both.
+      polished.energy_history.insert(polished.energy_history.begin(), state.cvt.energy_history.begin(),
+                                     state.cvt.energy_history.end() - 1);
+      polished.iterations += state.cvt.iterations;
+      polished.diagram_evaluations += state.cvt.diagram_evaluations;
+      polished.line_search_stopped = state.cvt.line_search_stopped;
+      polished.time_s += state.cvt.time_s;
+      state.cvt = std::move(polished);
+      state.dual = std::move(dual);
+      state.polished = true;
+    };
+    if (clean) polish(best, best_density);
+    // A state the repair rounds left without defects is optimised again with the raised density
+    // eased part of the way back (RemeshOptions::ease_iterations), and takes its Lloyd steps too;
+    // it stands if its dual has no defect and a better worst triangle than the state before.
+    if (clean && options.ease_iterations > 0 && result.repair_rounds > 0 && best_density.size() == base_density.size()) {
+      CvtOptions eased = again;
+      eased.iterations = options.ease_iterations;
+      for (std::size_t t = 0; t < base_density.size(); ++t)
+        eased.triangle_density[t] = base_density[t] * std::pow(best_density[t] / base_density[t], 1 - options.ease_fraction);
+      RemeshResult candidate = best;
+      candidate.polished = false;
+      candidate.cvt = optimize_cvt(mesh, best.cvt.samples, eased, &best.cvt.diagram, &index);
+      result.total_iterations += candidate.cvt.iterations;
+      result.diagram_evaluations += candidate.cvt.diagram_evaluations;
+      candidate.dual = compute_dual(candidate.cvt.diagram, mesh, candidate.cvt.samples);
+      const DualDefects after =
+          find_dual_defects(candidate.dual, candidate.cvt.diagram, mesh, reference.is_closed(), components_cross);
+      progress(fmt::format("{} iterations with the density eased {}% of the way back: the dual has {}{}",
+                           candidate.cvt.iterations, std::lround(100 * options.ease_fraction), after.describe(),
+                           after.empty() ? "" : ", the state before them stands"));
       if (after.empty()) {
-        // The kept CVT is the run and its polish: its history, iterations and evaluations cover both.
-        polished.energy_history.insert(polished.energy_history.begin(), best.cvt.energy_history.begin(),
-                                       best.cvt.energy_history.end() - 1);
-        polished.iterations += best.cvt.iterations;
-        polished.diagram_evaluations += best.cvt.diagram_evaluations;
-        polished.line_search_stopped = best.cvt.line_search_stopped;
-        polished.time_s += best.cvt.time_s;
-        best.cvt = std::move(polished);
-        best.dual = std::move(dual);
-        best.polished = true;
-        best_defects = std::move(after);
+        polish(candidate, eased.triangle_density);
+        const double q_before = shape_metrics(best.dual.positions, best.dual.triangles).q_min;
+        const double q_after = shape_metrics(candidate.dual.positions, candidate.dual.triangles).q_min;
+        const bool better = q_after > q_before;
+        progress(better ? fmt::format("the eased state: worst triangle {:.3f} -> {:.3f}, kept", q_before, q_after)
+                        : fmt::format("the eased state: worst triangle {:.3f}, not above {:.3f}: the state before stands",
+                                      q_after, q_before));
+        if (better) {
+          // The history, iterations and evaluations of the kept CVT cover the state it started from.
+          std::vector<double>& history = candidate.cvt.energy_history;
+          history.insert(history.begin(), best.cvt.energy_history.begin(), best.cvt.energy_history.end() - 1);
+          candidate.cvt.iterations += best.cvt.iterations;
+          candidate.cvt.diagram_evaluations += best.cvt.diagram_evaluations;
+          candidate.cvt.time_s += best.cvt.time_s;
+          candidate.eased = true;
+          best = std::move(candidate);
+        }
       }
     }
     best.repair_rounds = result.repair_rounds;

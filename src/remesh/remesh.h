@@ -51,9 +51,10 @@ struct RemeshOptions {
   int polish_steps = 1;
   //! CVT iterations on the state a run keeps when its repair rounds ended without defects, with the
   //! density eased back `ease_fraction` of the way (in log scale) from the raised one towards the
-  //! density the run began with. The rounds double the density round each defect, and a density that
-  //! steep gives poor triangles where it changes; the eased state is kept when its dual has no defect
-  //! and a better worst triangle. 0: no easing.
+  //! density the run began with; the eased state then takes its polish_steps too. The rounds double
+  //! the density round each defect, and a density that steep gives poor triangles where it
+  //! changes; the eased state replaces the polished one when its dual has no defect and a better
+  //! worst triangle (before the fitting). 0: no easing.
   int ease_iterations = 10;
   double ease_fraction = 0.25;
   //! Called with one line on each step of the run: the first CVT's outcome, each repair round
