@@ -299,8 +299,9 @@ Action add_remesh_command(CLI::App& app) {
   cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
   cmd->add_option("--iterations", opt->iterations,
                   "Iteration cap of the first CVT, which usually stops there: more iterations give better "
-                  "triangles, for more time (each repair round of a dual with defects runs up to 30 more; with "
-                  "L-BFGS, a state without defects then takes one Lloyd step)")
+                  "triangles, for more time (each repair round of a dual with defects runs up to 30 more, and 10 "
+                  "more try the rounds' density eased back; with L-BFGS, a state without defects then takes one "
+                  "Lloyd step)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--density", opt->density,
