@@ -175,17 +175,30 @@ int main(int argc, char** argv) {
   for (const auto& [name, input] : inputs) {
     for (int n : counts) {
       std::vector<Row> results;
-      {
+      // A method that throws (a vertex count below what the topology needs, say) gets a row that says so.
+      auto refused = [&](const std::string& method, const std::exception& e) {
+        md += fmt::format("| {} | {} | {} | – | refused: {} | | | | | | | | | |\n", name, n, method, e.what());
+        rows.push_back({{"mesh", name}, {"n", n}, {"method", method}, {"error", e.what()}});
+        std::fprintf(stderr, "%s %d %s: %s\n", name.c_str(), n, method.c_str(), e.what());
+      };
+      const std::string peer_name = fmt::format("CGAL isotropic ({} it.)", peer_iterations);
+      try {
         const PeerRun peer = run_peer(input, n, peer_iterations);
-        results.push_back({name, fmt::format("CGAL isotropic ({} it.)", peer_iterations), n, peer.mesh, peer.cpu_s,
+        results.push_back({name, peer_name, n, peer.mesh, peer.cpu_s,
                            {{"edge_length", peer.edge_length}, {"length_search_runs", peer.runs}}});
+      } catch (const std::exception& e) {
+        refused(peer_name, e);
       }
       if (!peer_only) {
-        const double start = cpu_seconds();
-        const RemeshResult r = remesh_to(input, n, 1);
-        const double cpu_s = cpu_seconds() - start;
-        results.push_back({name, "lrvd", n, {r.dual.positions, r.dual.triangles}, cpu_s,
-                           {{"repair_rounds", r.repair_rounds}, {"diagram_evaluations", r.diagram_evaluations}}});
+        try {
+          const double start = cpu_seconds();
+          const RemeshResult r = remesh_to(input, n, 1);
+          const double cpu_s = cpu_seconds() - start;
+          results.push_back({name, "lrvd", n, {r.dual.positions, r.dual.triangles}, cpu_s,
+                             {{"repair_rounds", r.repair_rounds}, {"diagram_evaluations", r.diagram_evaluations}}});
+        } catch (const std::exception& e) {
+          refused("lrvd", e);
+        }
       }
       for (Row& row : results) {
         // Every check but the vertex count, which the peer cannot promise; the table gives the count.
