@@ -58,8 +58,8 @@ struct RemeshOptions {
   int ease_iterations = 10;
   double ease_fraction = 0.25;
   //! Called with one line on each step of the run: the first CVT's outcome, each repair round
-  //! (before: where the density goes up; after: the defects left), the second run, the fitting;
-  //! for progress output.
+  //! (before: where the density goes up; after: the defects left), the Lloyd step, the eased
+  //! density and the choice it leads to, the second run, the fitting; for progress output.
   std::function<void(const std::string&)> on_progress;
 };
 
@@ -172,7 +172,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! time with the density lowered on such caps as on cornered cells, and that run is kept if it has
 //! fewer defects. Rounds stop early when no cell is known to act on. Open meshes are
 //! repaired where a boundary loop is closed over (met by fewer than three cells, or a cell meets
-//! two loops) or the dual is pinched at a vertex. The result is fitted to the surface under the
+//! two loops) or the dual is pinched at a vertex. A state the rounds leave without defects is also
+//! tried with their density eased back (RemeshOptions::ease_iterations). The result is fitted to the surface under the
 //! CVT's quality floor (fit_to_surface) unless switched off; if crossings are left in it, it is
 //! untangled again from its fitted vertices with the longer reaches of `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
