@@ -173,9 +173,10 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! fewer defects. Rounds stop early when no cell is known to act on. Open meshes are
 //! repaired where a boundary loop is closed over (met by fewer than three cells, or a cell meets
 //! two loops) or the dual is pinched at a vertex. A state the rounds leave without defects is also
-//! tried with their density eased back (RemeshOptions::ease_iterations). The result is fitted to the surface under the
-//! CVT's quality floor (fit_to_surface) unless switched off; if crossings are left in it, it is
-//! untangled again from its fitted vertices with the longer reaches of `final_max_moves`.
+//! tried with their density eased back (RemeshOptions::ease_iterations). The result is fitted to
+//! the surface under the CVT's quality floor (fit_to_surface) unless switched off; if crossings
+//! are left in it, it is untangled again from its fitted vertices with the longer reaches of
+//! `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
 
