@@ -113,6 +113,7 @@ struct Row {
   Triangles out;
   double cpu_s = 0;
   nlohmann::json extra;
+  std::string error;  //!< the method threw this instead of giving an output
 };
 
 std::string yes_no(bool ok) { return ok ? "yes" : "**no**"; }
@@ -177,15 +178,13 @@ int main(int argc, char** argv) {
       std::vector<Row> results;
       // A method that throws (a vertex count below what the topology needs, say) gets a row that says so.
       auto refused = [&](const std::string& method, const std::exception& e) {
-        md += fmt::format("| {} | {} | {} | – | refused: {} | | | | | | | | | |\n", name, n, method, e.what());
-        rows.push_back({{"mesh", name}, {"n", n}, {"method", method}, {"error", e.what()}});
-        std::fprintf(stderr, "%s %d %s: %s\n", name.c_str(), n, method.c_str(), e.what());
+        results.push_back({name, method, n, {}, 0, {}, e.what()});
       };
       const std::string peer_name = fmt::format("CGAL isotropic ({} it.)", peer_iterations);
       try {
         const PeerRun peer = run_peer(input, n, peer_iterations);
         results.push_back({name, peer_name, n, peer.mesh, peer.cpu_s,
-                           {{"edge_length", peer.edge_length}, {"length_search_runs", peer.runs}}});
+                           {{"edge_length", peer.edge_length}, {"length_search_runs", peer.runs}}, {}});
       } catch (const std::exception& e) {
         refused(peer_name, e);
       }
@@ -195,12 +194,18 @@ int main(int argc, char** argv) {
           const RemeshResult r = remesh_to(input, n, 1);
           const double cpu_s = cpu_seconds() - start;
           results.push_back({name, "lrvd", n, {r.dual.positions, r.dual.triangles}, cpu_s,
-                             {{"repair_rounds", r.repair_rounds}, {"diagram_evaluations", r.diagram_evaluations}}});
+                             {{"repair_rounds", r.repair_rounds}, {"diagram_evaluations", r.diagram_evaluations}}, {}});
         } catch (const std::exception& e) {
           refused("lrvd", e);
         }
       }
       for (Row& row : results) {
+        if (!row.error.empty()) {
+          md += fmt::format("| {} | {} | {} | – | refused: {} | | | | | | | | | |\n", name, n, row.method, row.error);
+          rows.push_back({{"mesh", name}, {"n", n}, {"method", row.method}, {"error", row.error}});
+          std::fprintf(stderr, "%s %d %s: %s\n", name.c_str(), n, row.method.c_str(), row.error.c_str());
+          continue;
+        }
         // Every check but the vertex count, which the peer cannot promise; the table gives the count.
         const RemeshVerification check = verify_remesh(input, row.out.positions, row.out.triangles, -1);
         QualityMetrics q;
