@@ -245,8 +245,10 @@ TEST_CASE("The density raised by repair rounds is eased back when the triangles 
   REQUIRE(eased.repair_rounds == plain.repair_rounds);  // the rounds are the same; what follows them differs
   REQUIRE_FALSE(plain.eased);
   REQUIRE(eased.eased);
-  CHECK(eased.diagram_evaluations > plain.diagram_evaluations);
-  CHECK(eased.diagram_evaluations <= plain.diagram_evaluations + 2 * with.ease_iterations + 3);
+  // The easing's iterations and its Lloyd step cost diagrams (a line search may take several an
+  // iteration, but not ten on average).
+  CHECK(eased.diagram_evaluations > plain.diagram_evaluations + with.ease_iterations);
+  CHECK(eased.diagram_evaluations < plain.diagram_evaluations + 10 * with.ease_iterations);
   // The choice is told, with the worst triangle of each state (before the fitting).
   const auto line = std::find_if(lines.begin(), lines.end(),
                                  [](const std::string& l) { return l.rfind("the eased state: ", 0) == 0; });
@@ -391,7 +393,7 @@ TEST_CASE("A run whose line search backtracks counts L-BFGS iterations, within t
   const RemeshResult r = remesh_cvt(elk, elk, sample_uniform(elk, 300, 1), options);
   REQUIRE(r.repair_rounds > 0);
   REQUIRE(r.total_iterations <= options.cvt.iterations + r.repair_rounds * options.repair_iterations +
-                                    options.ease_iterations + (r.polished ? options.polish_steps : 0));
+                                    options.ease_iterations + 2 * options.polish_steps);
   REQUIRE(2 * r.total_iterations < r.diagram_evaluations);
   int rounds_seen = 0;
   for (const std::string& line : lines) {
