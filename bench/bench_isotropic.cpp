@@ -14,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -86,6 +87,7 @@ PeerRun run_peer(const SurfaceMesh& input, int n, int iterations) {
   const CgalMesh base = to_cgal(input);
   double length = std::sqrt(2 * input.area() / (std::sqrt(3.0) * n));
   PeerRun best;
+  CgalMesh nearest;  // converted once, after the search
   int best_gap = -1;
   for (int attempt = 0; attempt < 12; ++attempt) {
     CgalMesh mesh = base;
@@ -96,7 +98,7 @@ PeerRun run_peer(const SurfaceMesh& input, int n, int iterations) {
     const int gap = std::abs(v - n);
     if (best_gap < 0 || gap < best_gap) {
       best_gap = gap;
-      best.mesh = from_cgal(mesh);
+      nearest = mesh;
       best.edge_length = length;
       best.cpu_s = cpu_s;
     }
@@ -104,6 +106,7 @@ PeerRun run_peer(const SurfaceMesh& input, int n, int iterations) {
     if (gap * 200 <= n || v == 0) break;
     length *= std::sqrt(static_cast<double>(v) / n);
   }
+  best.mesh = from_cgal(std::move(nearest));
   return best;
 }
 

@@ -792,9 +792,13 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       eased.iterations = options.ease_iterations;
       for (std::size_t t = 0; t < base_density.size(); ++t)
         eased.triangle_density[t] = base_density[t] * std::pow(best_density[t] / base_density[t], 1 - options.ease_fraction);
+      CvtResult eased_cvt = optimize_cvt(mesh, best.cvt.samples, eased, &best.cvt.diagram, &index);
+      // The candidate is `best` with the eased CVT: copied with its CVT moved out, and back.
+      CvtResult best_cvt = std::move(best.cvt);
       RemeshResult candidate = best;
+      best.cvt = std::move(best_cvt);
+      candidate.cvt = std::move(eased_cvt);
       candidate.polished = false;
-      candidate.cvt = optimize_cvt(mesh, best.cvt.samples, eased, &best.cvt.diagram, &index);
       result.total_iterations += candidate.cvt.iterations;
       result.diagram_evaluations += candidate.cvt.diagram_evaluations;
       candidate.dual = compute_dual(candidate.cvt.diagram, mesh, candidate.cvt.samples);
