@@ -23,7 +23,7 @@ namespace {
 
 struct RemeshCommandOptions {
   InputOptions input;
-  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform";
+  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance";
   int iterations = 60;
   bool no_fit = false;
   std::string output, report;
@@ -112,6 +112,9 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
   cvt.iterations = opt.iterations;
   remesh.fit = !opt.no_fit;
+  // The passes of relax_worst_triangles that `--priority shape` runs (docs/results.md, "Session 31").
+  constexpr int kShapeRounds = 5;
+  if (opt.priority == "shape") remesh.relax.rounds = kShapeRounds;
   remesh.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
@@ -137,6 +140,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["diagram"] = opt.kind;
   report["optimizer"] = opt.optimizer;
   report["density"] = opt.density;
+  report["priority"] = opt.priority;
+  // With `--priority shape`: the vertices of the worst triangles moved before the fitting.
+  report["relaxed"] = {{"rounds", remesh.relax.rounds},
+                       {"moved", remeshed.relax.moved},
+                       {"reverted", remeshed.relax.reverted}};
   report["iterations"] = remeshed.total_iterations;
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = remeshed.diagram_evaluations;
@@ -308,6 +316,12 @@ Action add_remesh_command(CLI::App& app) {
                   "uniform, or curvature: smaller cells where the surface bends (at a few hundred vertices "
                   "uniform does better)")
       ->check(CLI::IsMember({"uniform", "curvature"}))
+      ->capture_default_str();
+  cmd->add_option("--priority", opt->priority,
+                  "distance (default): the fitting spends what the CVT's worst triangle allows on the distance to "
+                  "the input; shape: the worst triangles' vertices first move towards their neighbours, which "
+                  "raises the worst triangle and leaves the fitting less room on the bends")
+      ->check(CLI::IsMember({"distance", "shape"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,
                 "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "

@@ -8,7 +8,9 @@
 #include <set>
 
 #include <Eigen/Dense>
+#include <fmt/format.h>
 
+#include "common/error.h"
 #include "metrics/quality.h"
 #include "metrics/self_intersections.h"
 #include "voronoi/clip.h"
@@ -111,6 +113,13 @@ std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
   return {pairs.begin(), pairs.end()};
 }
 
+DualMesh dual_at(const DualMesh& dual, const std::vector<Vec3>& positions) {
+  DualMesh at;
+  at.positions = positions;
+  at.triangles = dual.triangles;
+  return at;
+}
+
 // The quality floor of a state: no triangle below the state's worst Q, or below its own Q where it
 // was worse than that already; none below the state's smallest angle (at most `max_angle`), or —
 // `per_triangle_angle` — none below `max_angle` that was above it and none below its own smallest
@@ -206,6 +215,114 @@ int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor
 }
 
 }  // namespace
+
+RelaxResult relax_worst_triangles(const SurfaceMesh& mesh, const ClosestPointIndex& index, const Samples& samples,
+                                  DualMesh& dual, const RelaxOptions& options,
+                                  const std::vector<std::pair<int, int>>* crossings) {
+  if (options.rounds < 0 || options.worst_triangles < 0)
+    throw InputError(fmt::format("relaxing the worst triangles: rounds ({}) and worst_triangles ({}) may not be negative",
+                                 options.rounds, options.worst_triangles));
+  if (samples.size() != static_cast<int>(dual.positions.size()))
+    throw std::logic_error("relax_worst_triangles: one sample per dual vertex is needed");
+  RelaxResult result;
+  const int n = static_cast<int>(dual.positions.size());
+  const int nt = static_cast<int>(dual.triangles.size());
+  const std::vector<Vec3> original = dual.positions;
+  std::vector<std::vector<int>> incident(n), ring(n);
+  std::vector<std::pair<int, int>> edges;
+  for (int t = 0; t < nt; ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = dual.triangles[t][e], b = dual.triangles[t][(e + 1) % 3];
+      incident[a].push_back(t);
+      ring[a].push_back(b);
+      ring[b].push_back(a);
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  // Vertices on an edge of one triangle (the dual's boundary) stay where they are.
+  std::vector<char> fixed(n, 0);
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0, j; i < edges.size(); i = j) {
+    for (j = i + 1; j < edges.size() && edges[j] == edges[i];) ++j;
+    if (j - i == 1) fixed[edges[i].first] = fixed[edges[i].second] = 1;
+  }
+  for (std::vector<int>& r : ring) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+  auto quality = [&](int t) {
+    const Triangle& f = dual.triangles[t];
+    return triangle_quality(dual.positions[f[0]], dual.positions[f[1]], dual.positions[f[2]]);
+  };
+  auto normal = [&](int t) {
+    const Triangle& f = dual.triangles[t];
+    return cross(dual.positions[f[1]] - dual.positions[f[0]], dual.positions[f[2]] - dual.positions[f[0]]);
+  };
+  const std::vector<int>& component = mesh.triangle_components();
+  std::vector<int> on_triangle = samples.triangles;  // the triangle of `mesh` under each vertex
+  std::vector<std::pair<double, int>> by_quality(nt);
+  std::vector<int> vertices;
+  std::vector<Vec3> normals;
+  for (int round = 0; round < options.rounds; ++round) {
+    for (int t = 0; t < nt; ++t) by_quality[t] = {quality(t), t};
+    const size_t worst = std::min<size_t>(options.worst_triangles, by_quality.size());
+    std::partial_sort(by_quality.begin(), by_quality.begin() + worst, by_quality.end());
+    vertices.clear();
+    for (size_t k = 0; k < worst; ++k)
+      for (int v : dual.triangles[by_quality[k].second])
+        if (std::find(vertices.begin(), vertices.end(), v) == vertices.end()) vertices.push_back(v);
+    for (int v : vertices) {
+      if (fixed[v] || ring[v].empty() || on_triangle[v] < 0) continue;
+      double lowest = 1;
+      normals.clear();
+      for (int t : incident[v]) lowest = std::min(lowest, quality(t)), normals.push_back(normal(t));
+      Vec3 mean{0, 0, 0};
+      for (int u : ring[v]) mean = mean + dual.positions[u];
+      mean = mean / static_cast<double>(ring[v].size());
+      const Vec3 from = dual.positions[v];
+      const int own = component[on_triangle[v]];
+      for (double step : {1.0, 0.5, 0.25, 0.125}) {
+        const Vec3 p = from + step * (mean - from);
+        ClosestPoint c = index.query(p, on_triangle[v]);
+        if (c.triangle >= 0 && component[c.triangle] != own) c = index.query_within(p, component.data(), own, on_triangle[v]);
+        if (c.triangle < 0 || dot(mesh.triangle_normal(c.triangle), mesh.triangle_normal(on_triangle[v])) <= 0) continue;
+        dual.positions[v] = c.point;
+        double now = 1;
+        bool turned = false;
+        for (size_t k = 0; k < incident[v].size(); ++k) {
+          now = std::min(now, quality(incident[v][k]));
+          turned = turned || !(dot(normal(incident[v][k]), normals[k]) > 0);
+        }
+        if (!turned && now > lowest) {
+          on_triangle[v] = c.triangle;
+          break;
+        }
+        dual.positions[v] = from;
+      }
+    }
+  }
+  // Triangles that cross and did not: their corners go back until none is left.
+  const std::set<std::pair<int, int>> before =
+      crossings ? std::set<std::pair<int, int>>(crossings->begin(), crossings->end()) : crossing_pairs(dual_at(dual, original));
+  for (;;) {
+    const auto now = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
+    std::vector<int> back;
+    for (const auto& pair : now)
+      if (!before.count(pair))
+        for (int t : {pair.first, pair.second})
+          for (int v : dual.triangles[t])
+            if (dual.positions[v] != original[v]) back.push_back(v);
+    if (back.empty()) {
+      result.crossings = now;
+      break;
+    }
+    std::sort(back.begin(), back.end());
+    back.erase(std::unique(back.begin(), back.end()), back.end());
+    for (int v : back) dual.positions[v] = original[v];
+    result.reverted += static_cast<int>(back.size());
+  }
+  for (int v = 0; v < n; ++v) result.moved += dual.positions[v] != original[v];
+  return result;
+}
 
 FitResult fit_to_surface(const Diagram& diagram, const SurfaceMesh& mesh, DualMesh& dual, const FitOptions& options,
                          const ClosestPointIndex* mesh_index, const std::vector<std::pair<int, int>>* crossings) {

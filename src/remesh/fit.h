@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/fit_offsets.h"
 #include "voronoi/diagram.h"
@@ -44,6 +45,33 @@ struct FitResult {
   //! find_self_intersections of the fitted dual's proper triangles (for untangle_crossings)
   std::vector<std::pair<int, int>> crossings;
 };
+
+struct RelaxOptions {
+  int rounds = 0;             //!< passes over the worst triangles (0: none)
+  int worst_triangles = 40;   //!< the triangles of lowest Q whose vertices each pass tries to move
+};
+
+struct RelaxResult {
+  int moved = 0;     //!< vertices that ended away from their sample
+  int reverted = 0;  //!< vertices put back because their triangles crossed others
+  //! find_self_intersections of the relaxed dual's proper triangles (for fit_to_surface)
+  std::vector<std::pair<int, int>> crossings;
+};
+
+//! Before the fitting, for triangle shape: each pass moves every vertex of the `worst_triangles`
+//! triangles of lowest Q (the worst first) towards the mean of its neighbours, then onto the surface
+//! (the closest point of `mesh` on the vertex's own component), by the whole step or by a half, a
+//! quarter or an eighth of it: the first of these that raises the lowest Q of the vertex's
+//! triangles, turns none of them over and leaves the vertex on a part of the surface that faces the
+//! way its previous place did (not across a thin wall). Vertices on the dual's boundary stay. Then
+//! the vertices of triangles that cross others and did not before are put back until none does.
+//! The fitting that follows keeps the raised worst triangle as its floor, so it has less room on
+//! the bends: the distance to the input grows there (docs/results.md, "Session 31"). `samples`
+//! are the dual's vertices' samples (their triangles of `mesh`); `crossings`, if given, are
+//! find_self_intersections of `dual`'s proper triangles as it is passed.
+RelaxResult relax_worst_triangles(const SurfaceMesh& mesh, const ClosestPointIndex& index, const Samples& samples,
+                                  DualMesh& dual, const RelaxOptions& options,
+                                  const std::vector<std::pair<int, int>>* crossings = nullptr);
 
 //! Moves the vertices of `dual` (the dual of `diagram` on `mesh`) towards their cells' quadric
 //! minimisers under the quality floor, then (options.balance) balances the two-sided distance under

@@ -611,6 +611,9 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     throw InputError(fmt::format("remesh options: repair_rounds ({}) and polish_steps ({}) may not be negative, and "
                                  "repair_iterations ({}) must be at least 1",
                                  options.repair_rounds, options.polish_steps, options.repair_iterations));
+  if (options.relax.rounds < 0 || options.relax.worst_triangles < 0)
+    throw InputError(fmt::format("remesh options: the relaxation's rounds ({}) and worst_triangles ({}) may not be negative",
+                                 options.relax.rounds, options.relax.worst_triangles));
   if (!(options.repair_factor > 1) || !std::isfinite(options.repair_factor))
     throw InputError(fmt::format("remesh options: the repair factor must be a number above 1 (got {})",
                                  options.repair_factor));
@@ -889,14 +892,24 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   }
   if (!result.fitted) {
     // `defects` are those of result.dual (found before the fitting, which is not done yet).
+    // `defects.crossing_pairs` are those of result.dual as long as no vertex moved.
+    const std::vector<std::pair<int, int>>* crossings = &defects.crossing_pairs;
+    if (options.relax.rounds > 0) {
+      const double before = shape_metrics(result.dual.positions, result.dual.triangles).q_min;
+      result.relax = relax_worst_triangles(mesh, index, result.cvt.samples, result.dual, options.relax, crossings);
+      crossings = &result.relax.crossings;
+      progress(fmt::format("{} vertices of the worst triangles moved towards their neighbours: worst triangle {:.3f} -> "
+                           "{:.3f}",
+                           result.relax.moved, before, shape_metrics(result.dual.positions, result.dual.triangles).q_min));
+    }
     if (options.fit) {
       progress("fitting the vertices to the surface");
-      result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, &defects.crossing_pairs);
+      result.fit = fit_to_surface(result.cvt.diagram, mesh, result.dual, options.fit_options, &index, crossings);
     }
     if (options.untangle) {
       result.untangled_from = result.dual;
       result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options,
-                                           options.fit ? &result.fit.crossings : &defects.crossing_pairs);
+                                           options.fit ? &result.fit.crossings : crossings);
     }
   }
   // Crossings left in the state kept: the vertices may go further.

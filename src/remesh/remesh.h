@@ -21,6 +21,10 @@ struct RemeshOptions {
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
   bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
   FitOptions fit_options;
+  //! Before the fitting, move the vertices of the worst triangles towards their neighbours, on the
+  //! surface (relax_worst_triangles, remesh/fit.h): a higher worst triangle for a larger distance on
+  //! the bends (0 rounds, the default: none; `lrvd remesh --priority shape`: 5)
+  RelaxOptions relax;
   //! when the dual's only defect is crossings, fit and untangle it (remesh/untangle.h) before
   //! deciding whether to raise the density; the crossings left are where it is raised
   bool untangle = true;
@@ -133,6 +137,7 @@ struct RemeshResult {
   bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
   bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
   bool eased = false;             //!< the result is the eased state (RemeshOptions::ease_iterations)
+  RelaxResult relax;              //!< the worst triangles' relaxation (RemeshOptions::relax)
   int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
   //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
   int reallocation_tried = 0;
