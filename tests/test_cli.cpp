@@ -311,10 +311,32 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
   REQUIRE(j["runs"] == 1);
   REQUIRE(j["reallocation_tried"] == 0);
   REQUIRE(j["density_eased"] == false);  // no repair rounds, so no density to ease back
+  REQUIRE(j["priority"] == "distance");
+  REQUIRE(j["relaxed"]["rounds"] == 0);
+  REQUIRE(j["relaxed"]["moved"] == 0);
   // The quality command measures the written file on its own.
   const std::string quality = kOut + "quality.json";
   REQUIRE(run("quality " + kData + "/ellipsoid.off " + out + " --report " + quality).status == 0);
   REQUIRE(read_json(quality)["quality"]["Qmin"] == j["quality"]["Qmin"]);
+}
+
+TEST_CASE("lrvd remesh --priority shape raises the worst triangle and says how many vertices it moved", "[cli][remesh]") {
+  const std::string report = kOut + "shape.json", out = kOut + "shape.off";
+  const std::string distance_report = kOut + "distance.json";
+  REQUIRE(run("remesh " + kData + "/ellipsoid.off -n 200 -o " + out + " --report " + distance_report).status == 0);
+  const Run r = run("remesh " + kData + "/ellipsoid.off -n 200 --priority shape -o " + out + " --report " + report);
+  REQUIRE(r.status == 0);
+  const json j = read_json(report), d = read_json(distance_report);
+  REQUIRE(j["verification"]["passed"] == true);
+  REQUIRE(j["priority"] == "shape");
+  REQUIRE(j["relaxed"]["rounds"] == 5);
+  CHECK(j["relaxed"]["moved"].get<int>() > 0);
+  // The same CVT; only the vertices of the worst triangles moved before the fitting.
+  CHECK(j["diagram_evaluations"] == d["diagram_evaluations"]);
+  CHECK(j["quality"]["Qmin"].get<double>() > d["quality"]["Qmin"].get<double>());
+  const Run bad = run("remesh " + kData + "/ellipsoid.off -n 200 --priority speed -o " + out);
+  CHECK(bad.status == 2);
+  CHECK(lines(bad.err) == 1);
 }
 
 TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cli]") {

@@ -383,6 +383,9 @@ TEST_CASE("Options out of range are refused naming the option, not clamped or pa
   remesh.repair_rounds = -1;  // once taken as 0
   REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, start, remesh), Contains("repair_rounds (-1)"));
   remesh = {};
+  remesh.relax.rounds = -2;  // once taken as no relaxation
+  REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, start, remesh), Contains("rounds (-2)"));
+  remesh = {};
   remesh.repair_factor = NAN;
   REQUIRE_THROWS_WITH(remesh_cvt(mesh, mesh, start, remesh), Contains("repair factor must be a number above 1"));
   // Samples too few for the surface, and a mesh that is no refinement of the reference.
