@@ -1,6 +1,6 @@
 // Remeshing table (paper Tables 1-2, issue targets): CVT on the LRVD and on the RVD for CGAL's
 // models at low vertex counts; validity, quality, distance and time. Writes markdown and JSON.
-// Usage: bench_remesh [--quick] [--lrvd-only] [--curvature] [--threads N] [--models elk,knot,...]
+// Usage: bench_remesh [--quick] [--lrvd-only] [--curvature] [--shape] [--threads N] [--models elk,knot,...]
 //                     [--counts 300,516,...] [--out F.md] [--json F]
 #include <cstdio>
 #include <cstring>
@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   std::string out_path, json_path;
   int threads = 0;  // 0: every core
   CvtDensity density = CvtDensity::Uniform;
+  int relax_rounds = 0;  // --shape: what `lrvd remesh --priority shape` runs
   std::vector<DiagramKind> kinds = {DiagramKind::Lrvd, DiagramKind::Rvd};
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--quick")) {
@@ -48,12 +49,14 @@ int main(int argc, char** argv) {
       kinds = {DiagramKind::Lrvd};
     } else if (!std::strcmp(argv[a], "--curvature")) {
       density = CvtDensity::Curvature;
+    } else if (!std::strcmp(argv[a], "--shape")) {
+      relax_rounds = kShapePriorityRounds;
     } else if (!std::strcmp(argv[a], "--out") && a + 1 < argc) {
       out_path = argv[++a];
     } else if (!std::strcmp(argv[a], "--json") && a + 1 < argc) {
       json_path = argv[++a];
     } else {
-      std::fprintf(stderr, "usage: %s [--quick] [--lrvd-only] [--curvature] [--threads N] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n",
+      std::fprintf(stderr, "usage: %s [--quick] [--lrvd-only] [--curvature] [--shape] [--threads N] [--models a,b] [--counts n1,n2] [--out F.md] [--json F]\n",
                    argv[0]);
       return 2;
     }
@@ -75,6 +78,7 @@ int main(int argc, char** argv) {
         RemeshOptions options;
         options.cvt.diagram = kind;
         options.cvt.density = density;
+        options.relax.rounds = relax_rounds;
         const double cpu_start = cpu_seconds();
         const RemeshResult r = remesh_cvt(input, mesh, sample_uniform(mesh, n, 1), options);
         const double cpu_s = cpu_seconds() - cpu_start;
@@ -87,7 +91,8 @@ int main(int argc, char** argv) {
                           check.self_intersecting_pairs, q.q_min, q.q_avg, q.theta_min, q.theta_max,
                           q.pct_triangles_below_30, q.hausdorff_pct, q.rms_pct, r.repair_rounds, r.time_s);
         rows.push_back({{"model", model}, {"n", n}, {"diagram", to_string(kind)},
-                        {"density", density == CvtDensity::Curvature ? "curvature" : "uniform"}, {"triangles_in", mesh.triangle_count()},
+                        {"density", density == CvtDensity::Curvature ? "curvature" : "uniform"},
+                        {"priority", relax_rounds > 0 ? "shape" : "distance"}, {"triangles_in", mesh.triangle_count()},
                         {"quality", q.to_json()}, {"verification", check.to_json()}, {"repair_rounds", r.repair_rounds},
                         {"iterations", r.total_iterations}, {"diagram_evaluations", r.diagram_evaluations},
                         {"time_s", r.time_s}, {"cpu_s", cpu_s}});

@@ -112,9 +112,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
   cvt.iterations = opt.iterations;
   remesh.fit = !opt.no_fit;
-  // The passes of relax_worst_triangles that `--priority shape` runs (docs/results.md, "Session 31").
-  constexpr int kShapeRounds = 5;
-  if (opt.priority == "shape") remesh.relax.rounds = kShapeRounds;
+  if (opt.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
   remesh.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));

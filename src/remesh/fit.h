@@ -46,6 +46,9 @@ struct FitResult {
   std::vector<std::pair<int, int>> crossings;
 };
 
+//! The passes `lrvd remesh --priority shape` runs (docs/results.md, "Session 31").
+inline constexpr int kShapePriorityRounds = 5;
+
 struct RelaxOptions {
   int rounds = 0;             //!< passes over the worst triangles (0: none)
   int worst_triangles = 40;   //!< the triangles of lowest Q whose vertices each pass tries to move
