@@ -23,7 +23,8 @@ struct RemeshOptions {
   FitOptions fit_options;
   //! Before the fitting, move the vertices of the worst triangles towards their neighbours, on the
   //! surface (relax_worst_triangles, remesh/fit.h): a higher worst triangle for a larger distance on
-  //! the bends (0 rounds, the default: none; `lrvd remesh --priority shape`: 5)
+  //! the bends (0 rounds, the default: none; `lrvd remesh --priority shape`: 5). A kept state that
+  //! was fitted and untangled during the repair rounds (its dual had crossings) is not relaxed.
   RelaxOptions relax;
   //! when the dual's only defect is crossings, fit and untangle it (remesh/untangle.h) before
   //! deciding whether to raise the density; the crossings left are where it is raised
