@@ -105,6 +105,9 @@ int run_remesh(const RemeshCommandOptions& opt) {
     input.samples = sample_by_component(input.mesh, input.samples.size(), opt.input.seed,
                                         input.mesh.minimum_vertex_counts());
 
+  // The CVT's diagrams pass over the mesh in memory order; the samples stay where they are.
+  order_for_remeshing(input.mesh, input.samples);
+
   RemeshOptions remesh;
   CvtOptions& cvt = remesh.cvt;
   cvt.diagram = kind;

@@ -76,8 +76,10 @@ std::vector<int> morton_rank(const SurfaceMesh& mesh) {
 
 // Splits every edge longer than max_length, or, when `values_are_lengths`, than the smaller of
 // its ends' values (max_length is then not used); the result is numbered in `order`.
+// `input_rank`, when given and the order is spatial, receives each input triangle's place on the
+// Morton curve.
 Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
-                            bool values_are_lengths, RefineOrder order) {
+                            bool values_are_lengths, RefineOrder order, std::vector<int>* input_rank = nullptr) {
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
   // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
@@ -203,6 +205,7 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
   std::vector<int> rank;
   if (spatial) {
     rank = morton_rank(mesh);
+    if (input_rank) *input_rank = rank;
   } else {
     rank.resize(mesh.triangle_count());
     std::iota(rank.begin(), rank.end(), 0);
@@ -319,6 +322,17 @@ double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
   // Splitting to edges no longer than L leaves triangles of about L^2 / kSplitAreaDivisor in area
   // (edges between L/2 and L, not equilateral triangles of side L): 4n of them cover the area.
   return std::sqrt(kSplitAreaDivisor * mesh.area() / (4.0 * n));
+}
+
+SurfaceMesh spatially_ordered(const SurfaceMesh& mesh, std::vector<int>* new_triangle) {
+  std::vector<int> rank;
+  Refinement r = split_long_edges(mesh, std::numeric_limits<double>::infinity(), nullptr, false, RefineOrder::Spatial, &rank);
+  if (r.triangles.size() != static_cast<size_t>(mesh.triangle_count()))
+    throw std::logic_error("spatially_ordered: a triangle was split");
+  // No edge is split: each triangle is its own only piece, at its place on the curve.
+  if (new_triangle) *new_triangle = std::move(rank);
+  return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
+                     std::move(r.components), mesh.component_count());
 }
 
 }  // namespace lrvd

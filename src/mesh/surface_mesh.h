@@ -96,6 +96,7 @@ class SurfaceMesh {
  private:
   friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*, RefineOrder);
   friend SurfaceMesh refine_to_length_field(const SurfaceMesh&, std::vector<double>&, RefineOrder);
+  friend SurfaceMesh spatially_ordered(const SurfaceMesh&, std::vector<int>*);
   //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
   //! check is repeated (midpoints are rounded); the rest holds by construction. `components`:
   //! each triangle's component, numbered as finish_topology() would (by first triangle).
@@ -139,6 +140,13 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
 //! \throw InputError when a length is not positive.
 SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths,
                                    RefineOrder order = RefineOrder::Input);
+
+//! The same surface renumbered: its triangles along a Morton curve through their centroids, its
+//! vertices in the order those triangles first use them, each triangle's corners in their order (so
+//! a point's barycentric coordinates carry over). `new_triangle[t]`, when asked for, is the new
+//! index of triangle t. Passes over the mesh then stay local in memory: an LRVD of 1000 samples on
+//! dragon_100k, stored in no spatial order, takes 0.04–0.07 s instead of 0.10 s.
+SurfaceMesh spatially_ordered(const SurfaceMesh& mesh, std::vector<int>* new_triangle = nullptr);
 
 //! Sizes (bounding-box diagonals) the remesher, the sampler and the quality metrics work with:
 //! their areas, energies and squared distances are doubles, and stay far from overflow and

@@ -949,6 +949,14 @@ void require_remesh_vertex_count(const SurfaceMesh& input, int n) {
                                  fewest));
 }
 
+void order_for_remeshing(SurfaceMesh& mesh, Samples& samples) {
+  check_samples(mesh, samples);
+  if (mesh.triangle_count() < kSpatialOrderMinTriangles) return;
+  std::vector<int> new_triangle;
+  mesh = spatially_ordered(mesh, &new_triangle);
+  for (int& t : samples.triangles) t = new_triangle[t];
+}
+
 RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const RemeshOptions& options) {
   require_workable_size(input, "remeshing");
   require_remesh_vertex_count(input, n);
@@ -959,10 +967,10 @@ RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const Rem
     throw InputError(fmt::format("{} vertices would need the mesh refined to about {:.3g} triangles (limit {:.3g}): "
                                  "use fewer vertices",
                                  n, at_most, kMaxRefinedTriangles));
-  const SurfaceMesh mesh = refine ? refine_long_edges(input, length) : input;
-  const Samples samples = mesh.component_count() > 1
-                              ? sample_by_component(mesh, n, seed, mesh.minimum_vertex_counts())
-                              : sample_uniform(mesh, n, seed);
+  SurfaceMesh mesh = refine ? refine_long_edges(input, length) : input;
+  Samples samples = mesh.component_count() > 1 ? sample_by_component(mesh, n, seed, mesh.minimum_vertex_counts())
+                                               : sample_uniform(mesh, n, seed);
+  order_for_remeshing(mesh, samples);
   return remesh_cvt(input, mesh, samples, options);
 }
 

@@ -190,10 +190,22 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
 //! input's topology has fewer vertices.
 void require_remesh_vertex_count(const SurfaceMesh& input, int n);
 
+//! Meshes with fewer triangles are remeshed in their own order: a diagram of them stays in the
+//! caches whatever the order (elk 516, 3290 triangles: 2 % faster reordered, within the spread).
+constexpr int kSpatialOrderMinTriangles = 20000;
+
+//! Renumbers `mesh` along a Morton curve (spatially_ordered, mesh/surface_mesh.h) and the samples'
+//! triangles with it, when it has at least kSpatialOrderMinTriangles triangles; the samples stay
+//! where they are. A CVT computes hundreds of diagrams of the mesh, whose passes over it then stay
+//! local in memory (armadillo 4000, 52k triangles: 10 % less time; dragon_100k 1000: 14 %).
+//! remesh_to and `lrvd remesh` do this before remesh_cvt, so their results (the diagram, the
+//! samples' triangles) refer to the renumbered mesh.
+void order_for_remeshing(SurfaceMesh& mesh, Samples& samples);
+
 //! The whole remesh of `input` to exactly n vertices, as `lrvd remesh MESH -n N --seed S` does it:
 //! the input refined where n is comparable to its triangle count (suggested_refinement_length), n
 //! uniform samples (with several connected components, each its share by area and at least the
-//! fewest vertices its topology needs), then remesh_cvt. The output is result.dual; check it with
+//! fewest vertices its topology needs), both renumbered by order_for_remeshing, then remesh_cvt. The output is result.dual; check it with
 //! verify_remesh (verification/remesh_check.h).
 //! \throw InputError when n is below input.minimum_vertex_count(), or when n needs a refinement
 //! beyond kMaxRefinedTriangles.
