@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -691,6 +692,44 @@ TEST_CASE("Relaxing the worst triangles leaves the vertices on an open sheet's b
   for (const Vec3& p : relaxed.positions) REQUIRE(std::abs(p.z) < 1e-12);
   require_none_turned_over(cvt.dual, relaxed);
   CHECK(shape_metrics(relaxed.positions, relaxed.triangles).q_min > shape_metrics(cvt.dual.positions, cvt.dual.triangles).q_min);
+}
+
+TEST_CASE("Remeshing renumbers a large mesh along a Morton curve and leaves a small one and the samples as they are", "[cvt][remesh]") {
+  // A sphere of 20480 triangles (above kSpatialOrderMinTriangles), its triangles shuffled.
+  const SurfaceMesh sphere = test::icosphere(5);
+  REQUIRE(sphere.triangle_count() >= kSpatialOrderMinTriangles);
+  std::vector<Triangle> shuffled = sphere.triangles();
+  std::mt19937 random(5);
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
+  SurfaceMesh mesh(sphere.positions(), shuffled);
+  const SurfaceMesh before = mesh;
+  Samples samples = sample_uniform(mesh, 100, 1);
+  const Samples drawn = samples;
+  order_for_remeshing(mesh, samples);
+  REQUIRE(samples.positions == drawn.positions);
+  REQUIRE(samples.barycentric == drawn.barycentric);
+  int moved = 0;
+  for (int i = 0; i < samples.size(); ++i) {
+    moved += samples.triangles[i] != drawn.triangles[i];
+    // The sample's point, from its new triangle and its barycentric coordinates, is where it was.
+    const Triangle& tri = mesh.triangle(samples.triangles[i]);
+    const Vec3& b = samples.barycentric[i];
+    const Vec3 p = b.x * mesh.position(tri[0]) + b.y * mesh.position(tri[1]) + b.z * mesh.position(tri[2]);
+    REQUIRE(distance(p, samples.positions[i]) < 1e-12);
+  }
+  CHECK(moved > 90);
+  CHECK(mesh.triangles() != before.triangles());
+  // A remesh of it is valid (the reference is the mesh as read).
+  const RemeshResult r = remesh_cvt(before, mesh, samples);
+  REQUIRE(verify_remesh(before, r.dual.positions, r.dual.triangles, 100).passed);
+
+  SurfaceMesh small = test::icosphere(3);
+  Samples few = sample_uniform(small, 50, 1);
+  const std::vector<Triangle> small_before = small.triangles();
+  const Samples few_before = few;
+  order_for_remeshing(small, few);
+  CHECK(small.triangles() == small_before);
+  CHECK(few.triangles == few_before.triangles);
 }
 
 TEST_CASE("Fitting keeps the vertices of a flat surface on it", "[cvt][remesh][fit]") {

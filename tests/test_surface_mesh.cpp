@@ -320,6 +320,41 @@ TEST_CASE("A spatially ordered refinement is the same surface with neighbours cl
   REQUIRE(corners(same) == corners(mesh));
 }
 
+TEST_CASE("A spatially ordered copy is the same surface, each triangle where the map says, corners in order") {
+  const SurfaceMesh spheres = test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0});
+  std::vector<Triangle> shuffled = spheres.triangles();
+  std::mt19937 random(11);
+  std::shuffle(shuffled.begin(), shuffled.end(), random);
+  const SurfaceMesh mesh(spheres.positions(), shuffled);
+  std::vector<int> new_triangle;
+  const SurfaceMesh ordered = spatially_ordered(mesh, &new_triangle);
+  REQUIRE(ordered.triangle_count() == mesh.triangle_count());
+  REQUIRE(ordered.vertex_count() == mesh.vertex_count());
+  REQUIRE(new_triangle.size() == static_cast<size_t>(mesh.triangle_count()));
+  // A permutation, and triangle t's corners, in their order, are those of new_triangle[t].
+  std::vector<int> seen(mesh.triangle_count(), 0);
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    REQUIRE(++seen[new_triangle[t]] == 1);
+    for (int k = 0; k < 3; ++k)
+      REQUIRE(ordered.position(ordered.triangle(new_triangle[t])[k]) == mesh.position(mesh.triangle(t)[k]));
+  }
+  // Adjacency as the checking constructor finds it, and the same topology.
+  const SurfaceMesh checked(ordered.positions(), ordered.triangles());
+  for (int t = 0; t < ordered.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) REQUIRE(ordered.neighbor(t, e) == checked.neighbor(t, e));
+  REQUIRE(ordered.triangle_components() == checked.triangle_components());
+  REQUIRE(ordered.component_count() == 2);
+  REQUIRE(ordered.euler_characteristic() == mesh.euler_characteristic());
+  auto mean_gap = [](const SurfaceMesh& m) {
+    double sum = 0;
+    for (int t = 0; t < m.triangle_count(); ++t)
+      for (int e = 0; e < 3; ++e) sum += std::abs(m.neighbor(t, e) - t);
+    return sum / (3.0 * m.triangle_count());
+  };
+  INFO("mean neighbour gap: ordered " << mean_gap(ordered) << ", shuffled " << mean_gap(mesh));
+  CHECK(mean_gap(ordered) * 10 < mean_gap(mesh));
+}
+
 TEST_CASE("A fan of 200k triangles round one vertex is built without quadratic work at its hub") {
   // Edge and duplicate look-ups go through the corner with the fewest triangles, and the
   // one-ring check searches the hub's sorted list: a hub costs O(d log d), not O(d²) (which would
