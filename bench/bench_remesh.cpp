@@ -80,7 +80,9 @@ int main(int argc, char** argv) {
         options.cvt.density = density;
         options.relax.rounds = relax_rounds;
         const double cpu_start = cpu_seconds();
-        const RemeshResult r = remesh_cvt(input, mesh, sample_uniform(mesh, n, 1), options);
+        // What `lrvd remesh -n N` does: the same refinement (`mesh`, for its triangle count), samples
+        // and order.
+        const RemeshResult r = remesh_to(input, n, 1, options);
         const double cpu_s = cpu_seconds() - cpu_start;
         const RemeshVerification check = verify_remesh(input, r.dual.positions, r.dual.triangles, n);
         const QualityMetrics q = quality_metrics(input, r.dual.positions, r.dual.triangles);
