@@ -677,7 +677,6 @@ TEST_CASE("Relaxing the worst triangles leaves the vertices on an open sheet's b
   relax.worst_triangles = 1000;  // every triangle
   const RelaxResult r = relax_worst_triangles(plane, ClosestPointIndex(plane), cvt.cvt.samples, relaxed, relax);
   CHECK(r.moved > 0);
-  std::vector<int> uses(relaxed.positions.size(), 0);
   std::map<std::pair<int, int>, int> edges;
   for (const Triangle& f : relaxed.triangles)
     for (int e = 0; e < 3; ++e) ++edges[{std::min(f[e], f[(e + 1) % 3]), std::max(f[e], f[(e + 1) % 3])}];

@@ -14,6 +14,18 @@
 
 using namespace lrvd;
 
+namespace {
+
+// Neighbours' distance in the triangle array, on average over all edges.
+double mean_gap(const SurfaceMesh& m) {
+  double sum = 0;
+  for (int t = 0; t < m.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) sum += std::abs(m.neighbor(t, e) - t);
+  return sum / (3.0 * m.triangle_count());
+}
+
+}  // namespace
+
 TEST_CASE("Octahedron adjacency is symmetric and closed") {
   const SurfaceMesh mesh = test::octahedron();
   REQUIRE(mesh.vertex_count() == 6);
@@ -306,12 +318,6 @@ TEST_CASE("A spatially ordered refinement is the same surface with neighbours cl
     }
   // Neighbours' distance in the triangle array, on average over all edges: the pieces of one input
   // triangle are consecutive in either order, but across input triangles the shuffled order jumps.
-  auto mean_gap = [](const SurfaceMesh& m) {
-    double sum = 0;
-    for (int t = 0; t < m.triangle_count(); ++t)
-      for (int e = 0; e < 3; ++e) sum += std::abs(m.neighbor(t, e) - t);
-    return sum / (3.0 * m.triangle_count());
-  };
   INFO("mean neighbour gap: spatial " << mean_gap(spatial) << ", input " << mean_gap(input));
   CHECK(mean_gap(spatial) * 10 < mean_gap(input));
   // A mesh with no long edge is copied in either order, unsplit.
@@ -345,12 +351,6 @@ TEST_CASE("A spatially ordered copy is the same surface, each triangle where the
   REQUIRE(ordered.triangle_components() == checked.triangle_components());
   REQUIRE(ordered.component_count() == 2);
   REQUIRE(ordered.euler_characteristic() == mesh.euler_characteristic());
-  auto mean_gap = [](const SurfaceMesh& m) {
-    double sum = 0;
-    for (int t = 0; t < m.triangle_count(); ++t)
-      for (int e = 0; e < 3; ++e) sum += std::abs(m.neighbor(t, e) - t);
-    return sum / (3.0 * m.triangle_count());
-  };
   INFO("mean neighbour gap: ordered " << mean_gap(ordered) << ", shuffled " << mean_gap(mesh));
   CHECK(mean_gap(ordered) * 10 < mean_gap(mesh));
 }
