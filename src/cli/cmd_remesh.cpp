@@ -1,8 +1,10 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include <fmt/format.h>
@@ -76,13 +78,21 @@ ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh&
   } catch (const InputError&) {
     return holes;  // the fill would not give a valid mesh: nothing to suggest
   }
-  // `mesh` is `input` or `input` refined in input order (RefineOrder::Input): the input's vertices
-  // keep their indices, and each loop runs through the input loop's own vertices.
+  // `mesh` is `input`, maybe refined and renumbered (order_for_remeshing): each of its loops runs
+  // through the input loop's own vertices, at the same positions, with midpoints between them.
   std::vector<char> still_open(input.vertex_count(), 0);
   for (const std::vector<int>& loop : filled.boundary_loops())
     for (int v : loop) still_open[v] = 1;
+  std::map<std::array<double, 3>, int> input_vertex_at;
+  for (const std::vector<int>& loop : input.boundary_loops())
+    for (int v : loop) input_vertex_at[{input.position(v).x, input.position(v).y, input.position(v).z}] = v;
   for (int l : defects.closed_over_loops)
-    holes.fillable += !still_open[*std::min_element(mesh.boundary_loops()[l].begin(), mesh.boundary_loops()[l].end())];
+    for (int v : mesh.boundary_loops()[l]) {
+      const auto at = input_vertex_at.find({mesh.position(v).x, mesh.position(v).y, mesh.position(v).z});
+      if (at == input_vertex_at.end()) continue;  // a midpoint of the refinement
+      holes.fillable += !still_open[at->second];
+      break;
+    }
   holes.others = std::max(0, trial.filled_holes - holes.fillable);
   return holes;
 }

@@ -205,8 +205,8 @@ void order_for_remeshing(SurfaceMesh& mesh, Samples& samples);
 //! The whole remesh of `input` to exactly n vertices, as `lrvd remesh MESH -n N --seed S` does it:
 //! the input refined where n is comparable to its triangle count (suggested_refinement_length), n
 //! uniform samples (with several connected components, each its share by area and at least the
-//! fewest vertices its topology needs), both renumbered by order_for_remeshing, then remesh_cvt. The output is result.dual; check it with
-//! verify_remesh (verification/remesh_check.h).
+//! fewest vertices its topology needs), both renumbered by order_for_remeshing, then remesh_cvt.
+//! The output is result.dual; check it with verify_remesh (verification/remesh_check.h).
 //! \throw InputError when n is below input.minimum_vertex_count(), or when n needs a refinement
 //! beyond kMaxRefinedTriangles.
 RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed = 1, const RemeshOptions& options = {});
