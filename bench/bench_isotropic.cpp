@@ -5,7 +5,8 @@
 // it reached. Writes markdown and JSON.
 // Usage: bench_isotropic [--models elk,knot,...] [--stress thin_plate,...] [--files a.off,b.ply]
 //                        [--counts 300,516,...]
-//                        [--peer-iterations K] [--peer-only] [--threads N] [--out F.md] [--json F]
+//                        [--peer-iterations K] [--peer-only] [--shape] [--threads N] [--out F.md] [--json F]
+// With --shape, lrvd also runs with `--priority shape` (a third row per input and N).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -129,7 +130,7 @@ int main(int argc, char** argv) {
   std::vector<int> counts = {300, 516, 1000, 2000, 4000};
   std::string out_path, json_path;
   int threads = 1, peer_iterations = 5;
-  bool peer_only = false;
+  bool peer_only = false, shape = false;
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--models") && a + 1 < argc) {
       models = split(argv[++a]);
@@ -144,6 +145,8 @@ int main(int argc, char** argv) {
       peer_iterations = std::stoi(argv[++a]);
     } else if (!std::strcmp(argv[a], "--peer-only")) {
       peer_only = true;
+    } else if (!std::strcmp(argv[a], "--shape")) {
+      shape = true;
     } else if (!std::strcmp(argv[a], "--threads") && a + 1 < argc) {
       threads = std::stoi(argv[++a]);
     } else if (!std::strcmp(argv[a], "--out") && a + 1 < argc) {
@@ -153,7 +156,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: %s [--models a,b] [--stress a,b] [--files a.off,b.ply] [--counts n1,n2] [--peer-iterations K] [--peer-only] "
-                   "[--threads N] [--out F.md] [--json F]\n",
+                   "[--shape] [--threads N] [--out F.md] [--json F]\n",
                    argv[0]);
       return 2;
     }
@@ -191,15 +194,20 @@ int main(int argc, char** argv) {
       } catch (const std::exception& e) {
         refused(peer_name, e);
       }
-      if (!peer_only) {
+      // lrvd, and with --shape also lrvd with `--priority shape`.
+      for (int relax_rounds : {0, kShapePriorityRounds}) {
+        if (peer_only || (relax_rounds > 0 && !shape)) continue;
+        const std::string method = relax_rounds > 0 ? "lrvd (shape)" : "lrvd";
         try {
+          RemeshOptions options;
+          options.relax.rounds = relax_rounds;
           const double start = cpu_seconds();
-          const RemeshResult r = remesh_to(input, n, 1);
+          const RemeshResult r = remesh_to(input, n, 1, options);
           const double cpu_s = cpu_seconds() - start;
-          results.push_back({name, "lrvd", n, {r.dual.positions, r.dual.triangles}, cpu_s,
+          results.push_back({name, method, n, {r.dual.positions, r.dual.triangles}, cpu_s,
                              {{"repair_rounds", r.repair_rounds}, {"diagram_evaluations", r.diagram_evaluations}}, {}});
         } catch (const std::exception& e) {
-          refused("lrvd", e);
+          refused(method, e);
         }
       }
       for (Row& row : results) {
