@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <random>
 #include <string>
 #include <vector>
 
@@ -61,6 +60,13 @@ FirstCvt first_cvt(const SurfaceMesh& mesh, int n, int seed) {
   return r;
 }
 
+// The remesh of n uniform samples (`seed`) on `mesh` with the vertices left at their samples: the
+// CVT's dual, as the fitting and the relaxation get it.
+RemeshResult unfitted(const SurfaceMesh& reference, const SurfaceMesh& mesh, int n, int seed) {
+  RemeshOptions options;
+  options.fit = false;
+  return remesh_cvt(reference, mesh, sample_uniform(mesh, n, seed), options);
+}
 // Every triangle of `moved` (the same triangles as `before`) keeps its orientation.
 void require_none_turned_over(const DualMesh& before, const DualMesh& moved) {
   REQUIRE(moved.triangles == before.triangles);
@@ -606,9 +612,7 @@ TEST_CASE("On an open sheet the fitting takes the boundary vertices out to the b
 
 TEST_CASE("Fitting the vertices to their cells' planes lowers the distance and keeps the CVT's shape", "[cvt][remesh][fit]") {
   const SurfaceMesh input = cgal_mesh("elk.off");
-  RemeshOptions options;
-  options.fit = false;
-  const RemeshResult cvt = remesh_cvt(input, input, sample_uniform(input, 516, 1), options);
+  const RemeshResult cvt = unfitted(input, input, 516, 1);
   DualMesh fitted = cvt.dual;
   const FitResult fit = fit_to_surface(cvt.cvt.diagram, input, fitted);
   const QualityMetrics before = quality_metrics(input, cvt.dual.positions, cvt.dual.triangles);
@@ -632,9 +636,7 @@ TEST_CASE("Relaxing the worst triangles raises the worst Q and keeps the vertice
   // move towards their neighbours, onto the surface; nothing turns over or crosses.
   const SurfaceMesh input = cgal_mesh("knot.off");
   const SurfaceMesh mesh = for_samples(input, 1000);
-  RemeshOptions options;
-  options.fit = false;
-  const RemeshResult cvt = remesh_cvt(input, mesh, sample_uniform(mesh, 1000, 1), options);
+  const RemeshResult cvt = unfitted(input, mesh, 1000, 1);
   DualMesh relaxed = cvt.dual;
   const ClosestPointIndex index(mesh);
   RelaxOptions relax;
@@ -668,9 +670,7 @@ TEST_CASE("Relaxing the worst triangles raises the worst Q and keeps the vertice
 
 TEST_CASE("Relaxing the worst triangles leaves the vertices on an open sheet's boundary where they are", "[cvt][remesh][fit]") {
   const SurfaceMesh plane = test::grid(12, 12);
-  RemeshOptions options;
-  options.fit = false;
-  const RemeshResult cvt = remesh_cvt(plane, plane, sample_uniform(plane, 40, 3), options);
+  const RemeshResult cvt = unfitted(plane, plane, 40, 3);
   DualMesh relaxed = cvt.dual;
   RelaxOptions relax;
   relax.rounds = 5;
@@ -695,12 +695,8 @@ TEST_CASE("Relaxing the worst triangles leaves the vertices on an open sheet's b
 
 TEST_CASE("Remeshing renumbers a large mesh along a Morton curve and leaves a small one and the samples as they are", "[cvt][remesh]") {
   // A sphere of 20480 triangles (above kSpatialOrderMinTriangles), its triangles shuffled.
-  const SurfaceMesh sphere = test::icosphere(5);
-  REQUIRE(sphere.triangle_count() >= kSpatialOrderMinTriangles);
-  std::vector<Triangle> shuffled = sphere.triangles();
-  std::mt19937 random(5);
-  std::shuffle(shuffled.begin(), shuffled.end(), random);
-  SurfaceMesh mesh(sphere.positions(), shuffled);
+  SurfaceMesh mesh = test::shuffled(test::icosphere(5), 5);
+  REQUIRE(mesh.triangle_count() >= kSpatialOrderMinTriangles);
   const SurfaceMesh before = mesh;
   Samples samples = sample_uniform(mesh, 100, 1);
   const Samples drawn = samples;
@@ -737,9 +733,7 @@ TEST_CASE("Fitting keeps the vertices of a flat surface on it", "[cvt][remesh][f
   // square's boundary adds the boundary's planes, which pull its vertex towards the side, in the
   // plane. Balancing may move vertices along the plane, never off it.
   const SurfaceMesh plane = test::grid(12, 12);
-  RemeshOptions options;
-  options.fit = false;
-  const RemeshResult cvt = remesh_cvt(plane, plane, sample_uniform(plane, 40, 3), options);
+  const RemeshResult cvt = unfitted(plane, plane, 40, 3);
   DualMesh quadric_only = cvt.dual;
   FitOptions no_balance;
   no_balance.balance = false;
@@ -768,9 +762,7 @@ TEST_CASE("Balancing the two-sided distance beats the quadric fit on a sphere an
   // With every vertex on the planes of its cell, the chords of a sphere stay inside it by about
   // 2/3 of their sagitta; the balanced offset leaves about half of it on each side.
   const SurfaceMesh sphere = test::icosphere(4);
-  RemeshOptions options;
-  options.fit = false;
-  const RemeshResult cvt = remesh_cvt(sphere, sphere, sample_uniform(sphere, 200, 1), options);
+  const RemeshResult cvt = unfitted(sphere, sphere, 200, 1);
   DualMesh quadric_only = cvt.dual, balanced = cvt.dual;
   FitOptions no_balance;
   no_balance.balance = false;

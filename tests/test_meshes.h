@@ -1,9 +1,11 @@
-// Small meshes built in code for the tests: octahedron, grid sheets, spheres, merging.
+// Small meshes built in code for the tests: octahedron, grid sheets, spheres, merging, shuffling.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
+#include <random>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -137,6 +139,15 @@ inline SurfaceMesh merge(const SurfaceMesh& a, const SurfaceMesh& b, const Vec3&
   for (const Vec3& q : b.positions()) p.push_back(q + offset);
   for (Triangle f : b.triangles()) t.push_back({f[0] + base, f[1] + base, f[2] + base});
   return SurfaceMesh(p, t);
+}
+
+//! The same surface with its triangles in a random order (`seed`): an order that says nothing of
+//! where a triangle is.
+inline SurfaceMesh shuffled(const SurfaceMesh& mesh, unsigned seed) {
+  std::vector<Triangle> t = mesh.triangles();
+  std::mt19937 random(seed);
+  std::shuffle(t.begin(), t.end(), random);
+  return SurfaceMesh(mesh.positions(), t);
 }
 
 }  // namespace lrvd::test

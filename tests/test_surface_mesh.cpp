@@ -275,11 +275,7 @@ TEST_CASE("A spatially ordered refinement is the same surface with neighbours cl
   // Two icospheres side by side, their triangles shuffled: the input order says nothing of where a
   // triangle is. Both orders give the same triangles and carry a field alike; the spatial one
   // numbers vertices and components by first use and keeps neighbours close in the arrays.
-  const SurfaceMesh spheres = test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0});
-  std::vector<Triangle> shuffled = spheres.triangles();
-  std::mt19937 random(7);
-  std::shuffle(shuffled.begin(), shuffled.end(), random);
-  const SurfaceMesh mesh(spheres.positions(), shuffled);
+  const SurfaceMesh mesh = test::shuffled(test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0}), 7);
   auto f = [](const Vec3& p) { return 0.06 + 0.01 * p.x - 0.02 * p.z; };
   std::vector<double> by_input, by_space;
   for (const Vec3& p : mesh.positions()) by_input.push_back(f(p));
@@ -327,11 +323,7 @@ TEST_CASE("A spatially ordered refinement is the same surface with neighbours cl
 }
 
 TEST_CASE("A spatially ordered copy is the same surface, each triangle where the map says, corners in order") {
-  const SurfaceMesh spheres = test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0});
-  std::vector<Triangle> shuffled = spheres.triangles();
-  std::mt19937 random(11);
-  std::shuffle(shuffled.begin(), shuffled.end(), random);
-  const SurfaceMesh mesh(spheres.positions(), shuffled);
+  const SurfaceMesh mesh = test::shuffled(test::merge(test::icosphere(3), test::icosphere(2), {3, 0, 0}), 11);
   std::vector<int> new_triangle;
   const SurfaceMesh ordered = spatially_ordered(mesh, &new_triangle);
   REQUIRE(ordered.triangle_count() == mesh.triangle_count());

@@ -113,13 +113,6 @@ std::set<std::pair<int, int>> crossing_pairs(const DualMesh& dual) {
   return {pairs.begin(), pairs.end()};
 }
 
-DualMesh dual_at(const DualMesh& dual, const std::vector<Vec3>& positions) {
-  DualMesh at;
-  at.positions = positions;
-  at.triangles = dual.triangles;
-  return at;
-}
-
 // The quality floor of a state: no triangle below the state's worst Q, or below its own Q where it
 // was worse than that already; none below the state's smallest angle (at most `max_angle`), or —
 // `per_triangle_angle` — none below `max_angle` that was above it and none below its own smallest
@@ -301,8 +294,10 @@ RelaxResult relax_worst_triangles(const SurfaceMesh& mesh, const ClosestPointInd
     }
   }
   // Triangles that cross and did not: their corners go back until none is left.
-  const std::set<std::pair<int, int>> before =
-      crossings ? std::set<std::pair<int, int>>(crossings->begin(), crossings->end()) : crossing_pairs(dual_at(dual, original));
+  std::vector<std::pair<int, int>> found;
+  if (!crossings) found = find_self_intersections(original, dual.triangles, proper_triangles(original, dual.triangles));
+  const std::vector<std::pair<int, int>>& known = crossings ? *crossings : found;
+  const std::set<std::pair<int, int>> before(known.begin(), known.end());
   for (;;) {
     const auto now = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
     std::vector<int> back;
