@@ -3,7 +3,9 @@
 // computed again and again on one thread. Prints the shape of the diagram (polygons per triangle,
 // clippings, predicate calls) and the CPU time per diagram and per integration, minimum and mean.
 // Usage: bench_diagram [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]   (default: elk 516 300 20)
-// Exit status 1 when the timed diagram fails verification.
+// MODEL is one of CGAL's models by name (elk, armadillo, ...) or a mesh file's path; a mesh of
+// kSpatialOrderMinTriangles or more is renumbered along a Morton curve first, as lrvd remesh does.
+// Exit status 1 when the timed diagram fails verification, 2 on bad arguments or an unreadable mesh.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -13,8 +15,10 @@
 #include <tbb/global_control.h>
 
 #include "bench_util.h"
+#include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "predicates/predicates.h"
+#include "remesh/remesh.h"
 #include "remesh/cvt.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
@@ -27,15 +31,25 @@ int main(int argc, char** argv) {
   const int n = argc > 2 ? std::atoi(argv[2]) : 516;
   const int repetitions = argc > 3 ? std::atoi(argv[3]) : 300;
   const int cvt_iterations = argc > 4 ? std::atoi(argv[4]) : 20;
-  if (n < 1 || repetitions < 1 || cvt_iterations < 0) {
+  if (model.empty() || model[0] == '-' || n < 1 || repetitions < 1 || cvt_iterations < 0) {
     std::fprintf(stderr, "usage: %s [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]\n", argv[0]);
     return 2;
   }
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  const SurfaceMesh mesh = read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + model + ".off").mesh;
+  const bool is_path = model.find('/') != std::string::npos || model.find('.') != std::string::npos;
+  SurfaceMesh mesh;
+  Samples start;
+  try {
+    mesh = read_mesh(is_path ? model : std::string(LRVD_CGAL_DATA_DIR) + "/" + model + ".off").mesh;
+    start = sample_uniform(mesh, n, 1);
+    order_for_remeshing(mesh, start);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "bench_diagram: %s\n", e.what());
+    return 2;
+  }
   CvtOptions options;
   options.iterations = cvt_iterations;
-  const Samples samples = optimize_cvt(mesh, sample_uniform(mesh, n, 1), options).samples;
+  const Samples samples = optimize_cvt(mesh, start, options).samples;
 
   Diagram diagram = compute_lrvd(mesh, samples);
   const DiagramVerification check = verify_diagram(mesh, samples, diagram);

@@ -523,7 +523,7 @@ TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
 
 TEST_CASE("lrvd fills holes smaller than the cells on request, and lrvd quality measures against the filled reference", "[cli][remesh]") {
   // CGAL's ChineseDragon-10kv has two holes of three edges, 0.15 around at most on a diagonal of
-  // 169: a remesh to 200 vertices must keep them and fails after 48 rounds, naming the holes and
+  // 169: a remesh to 200 vertices must keep them and fails after 72 rounds, naming the holes and
   // the --fill-holes fraction that closes them. Filled, the dragon is closed and its remesh valid.
   const std::string dragon = kData + "/ChineseDragon-10kv.off", out = kOut + "dragon_200.off",
                     report = kOut + "dragon_200.json";

@@ -47,9 +47,9 @@ struct VerifyOptions {
   bool exact_geometry = true;  //!< checks (3)-(5) with rational arithmetic (the default and the judge)
 };
 
-//! Checks every property; the promised set depends on the kind: LRVD/LRPD promise all six, the
-//! RVD/RPD all but connectedness (reported, not promised); power kinds do not promise (1) since a
-//! weight may push a sample out of its own cell.
+//! Checks every property; the promised set depends on the kind: the LRVD promises all six, the
+//! RVD all but connectedness (reported, not promised); the power kinds (LRPD, RPD) do not promise (1)
+//! since a weight may push a sample out of its own cell.
 DiagramVerification verify_diagram(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
                                    const VerifyOptions& options = {});
 

@@ -191,9 +191,10 @@ class LrvdBuilder {
       }
     std::sort(seeds_.begin(), seeds_.end(), [](const Entry& a, const Entry& b) { return b > a; });
     size_t next_seed = 0;
+    auto seed_first = [&] { return heap_.empty() || (next_seed < seeds_.size() && heap_.front() > seeds_[next_seed]); };
     while (next_seed < seeds_.size() || !heap_.empty()) {
       Entry top;
-      if (heap_.empty() || (next_seed < seeds_.size() && heap_.front() > seeds_[next_seed])) {
+      if (seed_first()) {
         top = seeds_[next_seed++];
       } else {
         std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
@@ -202,6 +203,19 @@ class LrvdBuilder {
       }
       if (claims_[top.vertex].label >= 0) continue;
       claims_[top.vertex].label = top.sample;
+      // On a large mesh the growth waits on memory: the entries come from all over the mesh. While
+      // this vertex is handled, load what the likely next ones will read: the claims and
+      // positions of the next entry's neighbours, and the neighbour lists of the entries after it
+      // (the heap's two children of its front, the next seed). Only loads: the order is the same.
+      if (next_seed < seeds_.size() || !heap_.empty()) {
+        const int next = seed_first() ? seeds_[next_seed].vertex : heap_.front().vertex;
+        for (const int* u = mesh_.vertex_neighbors_begin(next); u != mesh_.vertex_neighbors_end(next); ++u) {
+          __builtin_prefetch(&claims_[*u]);
+          __builtin_prefetch(&mesh_.position(*u));
+        }
+        for (size_t c = 1; c <= 2 && c < heap_.size(); ++c) __builtin_prefetch(mesh_.vertex_neighbors_begin(heap_[c].vertex));
+        if (next_seed + 1 < seeds_.size()) __builtin_prefetch(mesh_.vertex_neighbors_begin(seeds_[next_seed + 1].vertex));
+      }
       for (const int* u = mesh_.vertex_neighbors_begin(top.vertex); u != mesh_.vertex_neighbors_end(top.vertex); ++u)
         if (claims_[*u].label < 0) {
           const double d = power_distance(mesh_.position(*u), top.sample);
