@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <random>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -18,6 +21,7 @@
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"
+#include "voronoi/growth_entry.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
@@ -440,4 +444,34 @@ TEST_CASE("Bad diagram input is refused with a clear message", "[lrvd][input]") 
   const DiagramVerification v = verify_diagram(coarse, crowded, d);
   INFO(describe(v));
   REQUIRE(v.passed);
+}
+
+TEST_CASE("the region growing's entries order as (power distance, sample, vertex)", "[lrvd]") {
+  // The heap compares one 128-bit key; it must give the order of the three numbers, for negative
+  // power distances (weighted diagrams) and for -0 and +0, which the doubles' order calls equal.
+  using lrvd::detail::VertexEntry;
+  std::mt19937_64 rng(7);
+  const double specials[] = {0.0, -0.0, 1e-310, -1e-310, 1.0, -1.0, 1.5, -2.5, 1e300, -1e300,
+                             std::numeric_limits<double>::min(), std::numeric_limits<double>::infinity()};
+  std::uniform_real_distribution<double> value(-10.0, 10.0);
+  std::uniform_int_distribution<int> small(0, 3), large(0, std::numeric_limits<int>::max());
+  auto draw = [&] {
+    const double d = rng() % 3 == 0 ? specials[rng() % std::size(specials)] : value(rng);
+    const int sample = rng() % 2 ? small(rng) : large(rng), vertex = rng() % 2 ? small(rng) : large(rng);
+    return std::make_tuple(d, sample, vertex);
+  };
+  for (int k = 0; k < 20000; ++k) {
+    const auto [da, sa, va] = draw();
+    const auto [db, sb, vb] = draw();
+    const VertexEntry a(da, sa, va), b(db, sb, vb);
+    CHECK(a.sample() == sa);
+    CHECK(a.vertex() == va);
+    const bool greater = da > db || (da == db && (sa > sb || (sa == sb && va > vb)));
+    INFO(da << " " << sa << " " << va << " against " << db << " " << sb << " " << vb);
+    CHECK((a > b) == greater);
+  }
+  CHECK_FALSE(VertexEntry(-0.0, 1, 2) > VertexEntry(0.0, 1, 2));
+  CHECK_FALSE(VertexEntry(0.0, 1, 2) > VertexEntry(-0.0, 1, 2));
+  CHECK(VertexEntry(0.0, 2, 0) > VertexEntry(-0.0, 1, 5));
+  CHECK(VertexEntry(-1e-310, 0, 0) > VertexEntry(-1.0, 9, 9));
 }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -20,6 +22,7 @@
 #include "common/error.h"
 #include "mesh/surface_mesh.h"
 #include "voronoi/clip.h"
+#include "voronoi/growth_entry.h"
 
 namespace lrvd {
 
@@ -52,15 +55,6 @@ bool erase_sorted(Sorted& sorted, int x) {
   return true;
 }
 
-// A sample's region reaching a vertex during the region growing of §3.2, ordered by (power
-// distance, sample, vertex).
-struct VertexEntry {
-  double d;
-  int sample, vertex;
-  bool operator>(const VertexEntry& o) const {
-    return d > o.d || (d == o.d && (sample > o.sample || (sample == o.sample && vertex > o.vertex)));
-  }
-};
 
 // A vertex during the region growing of §3.2: the least entry queued for it and the sample it
 // went to (-1 while none). One record, not three arrays: the growth visits the vertices in the
@@ -121,7 +115,7 @@ struct LrvdWorkspace {
   std::deque<int> queue;
   std::vector<int> vertex_label, home, conflicts, stuck;
   std::vector<VertexClaim> claims;
-  std::vector<VertexEntry> heap, seeds;
+  std::vector<detail::VertexEntry> heap, seeds;
   std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
@@ -171,7 +165,7 @@ class LrvdBuilder {
     const int nv = mesh_.vertex_count();
     // A vertex goes to the least (power distance, sample) that reaches it; an entry that cannot
     // be that least one is never queued.
-    using Entry = VertexEntry;
+    using Entry = detail::VertexEntry;
     claims_.assign(nv, VertexClaim{});
     heap_.clear();
     seeds_.clear();
@@ -187,7 +181,7 @@ class LrvdBuilder {
     for (int i = 0; i < samples_.size(); ++i)
       for (int v : mesh_.triangle(samples_.triangles[i])) {
         const double d = power_distance(mesh_.position(v), i);
-        if (better(d, i, v)) seeds_.push_back({d, i, v});
+        if (better(d, i, v)) seeds_.emplace_back(d, i, v);
       }
     std::sort(seeds_.begin(), seeds_.end(), [](const Entry& a, const Entry& b) { return b > a; });
     size_t next_seed = 0;
@@ -201,26 +195,27 @@ class LrvdBuilder {
         top = heap_.back();
         heap_.pop_back();
       }
-      if (claims_[top.vertex].label >= 0) continue;
-      claims_[top.vertex].label = top.sample;
+      if (claims_[top.vertex()].label >= 0) continue;
+      claims_[top.vertex()].label = top.sample();
       // On a large mesh the growth waits on memory: the entries come from all over the mesh. While
       // this vertex is handled, load what the likely next ones will read: the claims and
       // positions of the next entry's neighbours, and the neighbour lists of the entries after it
       // (the heap's two children of its front, the next seed). Only loads: the order is the same.
       if (next_seed < seeds_.size() || !heap_.empty()) {
-        const int next = seed_first() ? seeds_[next_seed].vertex : heap_.front().vertex;
+        const int next = seed_first() ? seeds_[next_seed].vertex() : heap_.front().vertex();
         for (const int* u = mesh_.vertex_neighbors_begin(next); u != mesh_.vertex_neighbors_end(next); ++u) {
           __builtin_prefetch(&claims_[*u]);
           __builtin_prefetch(&mesh_.position(*u));
         }
-        for (size_t c = 1; c <= 2 && c < heap_.size(); ++c) __builtin_prefetch(mesh_.vertex_neighbors_begin(heap_[c].vertex));
-        if (next_seed + 1 < seeds_.size()) __builtin_prefetch(mesh_.vertex_neighbors_begin(seeds_[next_seed + 1].vertex));
+        for (size_t c = 1; c <= 2 && c < heap_.size(); ++c) __builtin_prefetch(mesh_.vertex_neighbors_begin(heap_[c].vertex()));
+        if (next_seed + 1 < seeds_.size()) __builtin_prefetch(mesh_.vertex_neighbors_begin(seeds_[next_seed + 1].vertex()));
       }
-      for (const int* u = mesh_.vertex_neighbors_begin(top.vertex); u != mesh_.vertex_neighbors_end(top.vertex); ++u)
+      const int grower = top.sample();
+      for (const int* u = mesh_.vertex_neighbors_begin(top.vertex()); u != mesh_.vertex_neighbors_end(top.vertex()); ++u)
         if (claims_[*u].label < 0) {
-          const double d = power_distance(mesh_.position(*u), top.sample);
-          if (!better(d, top.sample, *u)) continue;
-          heap_.push_back({d, top.sample, *u});
+          const double d = power_distance(mesh_.position(*u), grower);
+          if (!better(d, grower, *u)) continue;
+          heap_.emplace_back(d, grower, *u);
           std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
         }
     }
@@ -644,8 +639,8 @@ class LrvdBuilder {
   std::vector<int>&vertex_label_, &home_, &conflicts_;
   std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
   std::vector<VertexClaim>& claims_;  // region growing, per vertex
-  std::vector<VertexEntry>& heap_;
-  std::vector<VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
+  std::vector<detail::VertexEntry>& heap_;
+  std::vector<detail::VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
