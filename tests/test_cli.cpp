@@ -591,3 +591,20 @@ TEST_CASE("lrvd verify says when it moved the given points onto the surface, and
   REQUIRE(points["moved"] == 1);
   REQUIRE(points["max_move"].get<double>() == Approx(0.02));
 }
+
+TEST_CASE("lrvd refuses a refinement that would pass its triangle limit on a needle, and suggests --refine off", "[cli]") {
+  // Splitting the long sides of a needle to the samples' edge length gives pieces as thin as the
+  // needle: without a limit on the count itself the split ran until memory was gone.
+  const std::string needle = kOut + "needle.off";
+  {
+    std::ofstream out(needle);
+    out << "OFF\n4 4 0\n0 0 0\n1e-9 0 0\n0 1e-9 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n";
+  }
+  const Run refused = run("compute " + needle + " -n 4 --threads 2");
+  CHECK(refused.status == 2);
+  CHECK(lines(refused.err) == 1);
+  CHECK_THAT(refused.err, Catch::Contains("far longer than they are wide") && Catch::Contains("--refine off"));
+  const Run unrefined = run("compute " + needle + " -n 4 --refine off --threads 2");
+  CHECK(unrefined.status == 0);
+  std::remove(needle.c_str());
+}

@@ -142,6 +142,26 @@ TEST_CASE("The suggested refinement gives about four triangles a sample") {
   }
 }
 
+TEST_CASE("Refinement stops at its triangle limit on a needle instead of splitting without end") {
+  // A tetrahedron one long and 1e-6 wide: its long sides split into pieces as thin as the needle,
+  // so the count grows with the length over the width, which the area-based estimate cannot see.
+  const SurfaceMesh needle({{0, 0, 0}, {1e-6, 0, 0}, {0, 1e-6, 0}, {0, 0, 1}}, {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}});
+  const double length = suggested_refinement_length(needle, 4);
+  REQUIRE(length > 0);
+  CHECK(expected_refined_triangle_count(needle, length) < 100);
+  try {
+    (void)refine_long_edges(needle, length, nullptr, RefineOrder::Input, 20000);
+    FAIL("the refinement passed its limit");
+  } catch (const RefinementLimitError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("more than 20000 triangles") && Catch::Contains("far longer than they are wide"));
+  }
+  // Within its limit the same call refines: the limit is the count, not a guess.
+  const SurfaceMesh fine = refine_long_edges(needle, 0.01, nullptr, RefineOrder::Input, 20000);
+  CHECK(fine.max_edge_length() <= 0.01);
+  CHECK(fine.triangle_count() <= 20000);
+  CHECK_THROWS_AS(refine_long_edges(needle, 0.01, nullptr, RefineOrder::Input, 3), std::invalid_argument);
+}
+
 TEST_CASE("Refinement bounds every edge and keeps the surface") {
   const SurfaceMesh mesh = test::octahedron();
   for (double length : {1.0, 0.3, 0.11}) {

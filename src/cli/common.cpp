@@ -231,6 +231,10 @@ Input load_input(const InputOptions& opt) {
     input.refined_from = input.loaded.mesh.triangle_count();
     try {
       input.mesh = refine_long_edges(input.loaded.mesh, length);
+    } catch (const RefinementLimitError& e) {
+      throw InputError(fmt::format("{}: {}: use {}", opt.mesh_path, e.what(),
+                                   opt.refine == "auto" ? "--refine off (a triangle may then hold several samples)"
+                                                        : "a longer --refine length or 'off'"));
     } catch (const InputError& e) {
       throw InputError(fmt::format("{}: {}", opt.mesh_path, e.what()));
     }

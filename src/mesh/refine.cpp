@@ -79,7 +79,8 @@ std::vector<int> morton_rank(const SurfaceMesh& mesh) {
 // `input_rank`, when given and the order is spatial, receives each input triangle's place on the
 // Morton curve.
 Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
-                            bool values_are_lengths, RefineOrder order, std::vector<int>* input_rank = nullptr) {
+                            bool values_are_lengths, RefineOrder order, std::vector<int>* input_rank = nullptr,
+                            double max_triangles = std::numeric_limits<double>::infinity()) {
   // The size of the refined mesh, to reserve the arrays that grow (the edge records among them), so
   // that none is reallocated on the way (a reallocation copies everything into fresh memory,
   // which costs more than the refinement itself on a large mesh): the refined triangles average
@@ -96,8 +97,8 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
       per_length_squared += mesh.triangle_area(t) / (shortest * shortest);
     }
   }
-  const double expected_triangles =
-      std::min(1.1 * (static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared), 5e8);
+  const double expected_triangles = std::min(
+      {1.1 * (static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared), 5e8, max_triangles});
   const double expected_vertices = mesh.vertex_count() + 0.5 * (expected_triangles - mesh.triangle_count());
   std::vector<Vec3> positions;
   positions.reserve(static_cast<size_t>(expected_vertices));
@@ -192,6 +193,14 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
     }
     push_if_long(edge.a, m, half_a);
     push_if_long(m, edge.b, half_b);
+    // The area tells the count only where triangles are about as wide as long: a needle's long
+    // sides split into pieces each as thin as the needle, and the count grows with the length over
+    // the width, without a bound the area could give.
+    if (static_cast<double>(triangles.size()) > max_triangles)
+      throw RefinementLimitError(fmt::format(
+          "splitting to edges of {:.6g} makes more than {:.0f} triangles (the limit) although the area "
+          "alone asks for about {:.3g}: the mesh has triangles far longer than they are wide",
+          max_length, max_triangles, static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared));
   }
   // Freed before the copies below are made, which can then reuse the memory.
   queue = {};
@@ -280,14 +289,16 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
 }  // namespace
 
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values,
-                              RefineOrder order) {
+                              RefineOrder order, double max_triangles) {
   if (!(max_length > 0))
     throw InputError(fmt::format("refinement length must be positive (got {})", max_length));
   if (vertex_values && static_cast<int>(vertex_values->size()) != mesh.vertex_count())
     throw std::invalid_argument("refine_long_edges: one value per vertex expected");
   // The splitting's edge records, queue and unordered arrays are gone before the mesh builds its
   // vertex lists, which can then reuse some of that memory.
-  Refinement r = split_long_edges(mesh, max_length, vertex_values, false, order);
+  if (!(max_triangles >= mesh.triangle_count()))
+    throw std::invalid_argument("refine_long_edges: max_triangles below the mesh's triangle count");
+  Refinement r = split_long_edges(mesh, max_length, vertex_values, false, order, nullptr, max_triangles);
   try {
     return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
                        std::move(r.components), mesh.component_count());

@@ -7,11 +7,24 @@
 #include <string>
 #include <vector>
 
+#include "common/error.h"
 #include "predicates/vec3.h"
 
 namespace lrvd {
 
 using Triangle = std::array<int, 3>;
+
+//! The most triangles a refinement may be expected to give, margin included. A diagram costs about
+//! 0.6-0.75 KB a triangle to compute and 2.5 KB a triangle with its exact verification (the elk at
+//! 500,000 samples, refined to 1.9M triangles: 1.4 GB without the verification, 4.9 GB with it), so
+//! this keeps a verified diagram under about 15 GB; more is refused instead of exhausting memory.
+constexpr double kMaxRefinedTriangles = 6e6;
+
+//! A refinement refused because it would pass its triangle limit (refine_long_edges).
+class RefinementLimitError : public InputError {
+ public:
+  using InputError::InputError;
+};
 
 //! The order of a refined mesh's triangles and vertices (refine_long_edges, refine_to_length_field).
 //! Each input triangle's pieces are consecutive either way.
@@ -94,7 +107,7 @@ class SurfaceMesh {
   double boundary_loop_length(int loop) const;
 
  private:
-  friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*, RefineOrder);
+  friend SurfaceMesh refine_long_edges(const SurfaceMesh&, double, std::vector<double>*, RefineOrder, double);
   friend SurfaceMesh refine_to_length_field(const SurfaceMesh&, std::vector<double>&, RefineOrder);
   friend SurfaceMesh spatially_ordered(const SurfaceMesh&, std::vector<int>*);
   //! The refinement of a valid mesh, whose adjacency the refinement knows: only the zero-area
@@ -129,8 +142,11 @@ class SurfaceMesh {
 //! `vertex_values`, when given, holds one value per vertex of `mesh` and is extended to the new
 //! vertices, each taking the mean of its edge's end points: a field linear over each input
 //! triangle is carried over exactly (up to rounding), since every edge split lies in one of them.
+//! \throw RefinementLimitError when the result would have more than `max_triangles` triangles
+//! (checked as it splits: triangles far longer than wide split into many more pieces than the
+//! area tells, see expected_refined_triangle_count).
 SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::vector<double>* vertex_values = nullptr,
-                              RefineOrder order = RefineOrder::Input);
+                              RefineOrder order = RefineOrder::Input, double max_triangles = kMaxRefinedTriangles);
 
 //! The same splitting with a length per vertex: every edge longer than the smaller of its ends'
 //! lengths is split. `vertex_lengths` (one per vertex of `mesh`, all positive) is carried to the
@@ -172,10 +188,5 @@ double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_lengt
 //! every triangle splits into quarters of about equilateral shape and side max_length / 2, of area
 //! max_length^2 / 9.24 against the estimate's max_length^2 / 6.5.
 constexpr double kRefinedTriangleMargin = 9.24 / 6.5;
-//! The most triangles a refinement may be expected to give, margin included. A diagram costs about
-//! 0.6-0.75 KB a triangle to compute and 2.5 KB a triangle with its exact verification (the elk at
-//! 500,000 samples, refined to 1.9M triangles: 1.4 GB without the verification, 4.9 GB with it), so
-//! this keeps a verified diagram under about 15 GB; more is refused instead of exhausting memory.
-constexpr double kMaxRefinedTriangles = 6e6;
 
 }  // namespace lrvd
