@@ -127,8 +127,10 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
     REQUIRE(lines(r.err) >= 1);
     if (args.rfind("nosuch", 0) != 0) REQUIRE(lines(r.err) == 1);
   }
-  // A refinement the coordinates cannot hold: the line names the file and the splitting, not only
-  // a triangle of a mesh the user never saw.
+  // A model whose coordinates step too coarsely for its size (1/16 at 3e14, on a sphere 40
+  // across): refused before any point is constructed on it, by the command line's check; the
+  // refinement's own message for such a case (a zero-area triangle from rounded midpoints, naming
+  // the splitting) is tested on the library in test_surface_mesh.cpp.
   {
     const lrvd::SurfaceMesh sphere = lrvd::test::icosphere(3);
     std::vector<lrvd::Vec3> far = sphere.positions();
@@ -141,8 +143,8 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
       INFO(args << "\n" << r.err);
       REQUIRE(r.status == 2);
       REQUIRE(lines(r.err) == 1);
-      REQUIRE(r.err.find("lrvd: error: " + far_sphere + ": splitting edges longer than") != std::string::npos);
-      REQUIRE(r.err.find("made a zero-area triangle") != std::string::npos);
+      REQUIRE(r.err.find("doubles step by 0.0625") != std::string::npos);
+      REQUIRE(r.err.find("move the model nearer the origin") != std::string::npos);
     }
   }
   REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
@@ -607,4 +609,30 @@ TEST_CASE("lrvd refuses a refinement that would pass its triangle limit on a nee
   const Run unrefined = run("compute " + needle + " -n 4 --refine off --threads 2");
   CHECK(unrefined.status == 0);
   std::remove(needle.c_str());
+}
+
+TEST_CASE("lrvd works on a tiny model far from the origin and refuses one whose coordinates are too coarse", "[cli]") {
+  // A tetrahedron 1e-6 across at 1000 (ten million steps of the doubles across it) remeshes as it
+  // does at the origin; a unit one at 1e15, where doubles step by 0.125, gave a "valid" remesh 25 %
+  // of its size away from it, and is refused, as by every command that constructs points.
+  const std::string tiny = kOut + "tet_tiny_far.off", coarse = kOut + "tet_coarse_far.off", out = kOut + "tet_far_remesh.off";
+  {
+    std::ofstream a(tiny), b(coarse);
+    a << "OFF\n4 4 0\n1000 1000 1000\n1000.000001 1000 1000\n1000 1000.000001 1000\n1000 1000 1000.000001\n"
+         "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    b << "OFF\n4 4 0\n1e15 1e15 1e15\n1000000000000001 1e15 1e15\n1e15 1000000000000001 1e15\n1e15 1e15 1000000000000001\n"
+         "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  }
+  const Run ok = run("remesh " + tiny + " -n 20 --threads 2 -o " + out);
+  CHECK(ok.status == 0);
+  for (const std::string command : {"remesh " + coarse + " -n 20 -o " + out, "compute " + coarse + " -n 20",
+                                    "mps " + coarse + " --radius 0.1 -o " + kOut + "tet_far.xyz",
+                                    "quality " + coarse + " " + tiny}) {
+    INFO(command);
+    const Run refused = run(command);
+    CHECK(refused.status == 2);
+    CHECK(lines(refused.err) == 1);
+    CHECK_THAT(refused.err, Catch::Contains("doubles step by 0.125") && Catch::Contains("nearer the origin"));
+  }
+  for (const std::string& f : {tiny, coarse, out}) std::remove(f.c_str());
 }

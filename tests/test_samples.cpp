@@ -239,13 +239,48 @@ TEST_CASE("Closest-point queries on a model far from the origin find the nearest
     const Triangle& tri = mesh.triangle(t);
     const Vec3 on = (mesh.position(tri[0]) + mesh.position(tri[1]) + mesh.position(tri[2])) / 3.0;
     const Vec3 p = on + 0.2 * Vec3{unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5};
+    // The brute force measures in a frame moved by the shift itself: the model's points and the
+    // query are within a factor two of it, so the move is exact (Sterbenz), and the distances are
+    // those of the input's doubles with the precision of the sphere's size, not of 3e8's.
+    const Vec3 shift{1e8, -1e8, 3e8};
     double best = std::numeric_limits<double>::infinity();
     for (int u = 0; u < mesh.triangle_count(); ++u) {
       const Triangle& v = mesh.triangle(u);
-      best = std::min(best, closest_point_on_triangle(p, mesh.position(v[0]), mesh.position(v[1]), mesh.position(v[2])).distance);
+      best = std::min(best, closest_point_on_triangle(p - shift, mesh.position(v[0]) - shift, mesh.position(v[1]) - shift,
+                                                      mesh.position(v[2]) - shift).distance);
     }
     INFO("query " << k);
-    REQUIRE(index.query(p).distance == best);
+    const ClosestPoint answer = index.query(p);
+    REQUIRE(answer.distance == Approx(best).margin(1e-12));
+    REQUIRE(distance(answer.point, p) == Approx(best).margin(1e-7));  // the point is moved back: 3e8's rounding
+  }
+}
+
+TEST_CASE("Closest-point queries on a tiny model far from the origin measure at the model's precision") {
+  // A sphere 1e-6 across at 1000, where doubles step by 1.1e-13: a closest point computed at those
+  // coordinates was a tenth of a percent of the model off, a query point on the surface could
+  // miss every box, and a remesh stopped with "sample ... is not located on a triangle". The
+  // index moves the model by an exact shift, so the answers are those of the sphere at the origin.
+  const SurfaceMesh sphere = test::icosphere(2);
+  std::vector<Vec3> small = sphere.positions(), far = sphere.positions();
+  for (Vec3& p : small) p = 1e-6 * p;
+  const Vec3 shift{1000, 1000, -1000};
+  for (size_t i = 0; i < far.size(); ++i) far[i] = small[i] + shift;
+  const SurfaceMesh near_mesh(small, sphere.triangles()), far_mesh(far, sphere.triangles());
+  const ClosestPointIndex near_index(near_mesh), far_index(far_mesh);
+  const Samples on_surface = sample_uniform(far_mesh, 200, 3);
+  for (int i = 0; i < on_surface.size(); ++i) {
+    const ClosestPoint answer = far_index.query(on_surface.positions[i], on_surface.triangles[i]);
+    REQUIRE(answer.triangle >= 0);
+    REQUIRE(answer.distance < 1e-12);  // on the surface up to the sample's own rounding at 1000
+  }
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> offset(-1e-6, 1e-6);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 q{offset(rng), offset(rng), offset(rng)};
+    // The far mesh's vertices are the small ones plus the shift, rounded to 1.1e-13: the same
+    // sphere up to that, so the distances agree to a few of those units.
+    REQUIRE(far_index.query(q + shift).distance == Approx(near_index.query(q).distance).margin(1e-12));
   }
 }
 

@@ -89,9 +89,14 @@ struct ClosestPointIndex::Impl {
   // model's unit. Scaling by a power of two is exact, so the traversal is the same at any scale.
   double scale = 1;
   // A model far from the origin for its size (a part at 1e8 in a plant's coordinates) would have
-  // all its boxes within a few floats of each other, and every query would visit every triangle:
-  // Embree then sees it relative to the centre of its bounding box (`origin`), a translation that
-  // only the boxes and the query point take. Distances are measured on the input's doubles.
+  // all its boxes within a few floats of each other, and every query would visit every triangle;
+  // and a closest point computed at coordinates of 1000 is a few 1e-13 off, which is the size of
+  // a model 1e-6 across. Such a model is kept relative to `origin`, a point near the centre of
+  // its bounding box that is a multiple of the largest coordinate's unit in the last place: the
+  // translation is exact (every coordinate is a multiple of its own unit, which divides that
+  // one), so `positions` are the input's doubles moved, and distances are measured on them
+  // with the precision of the model's size. The query point is moved the same way and the answer
+  // moved back. Elsewhere `origin` is 0 and nothing moves.
   Vec3 origin;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -117,11 +122,11 @@ void triangle_bounds(const RTCBoundsFunctionArguments* args) {
       lo[c] = std::min(lo[c], impl->positions[tri[k]][c]);
       hi[c] = std::max(hi[c], impl->positions[tri[k]][c]);
     }
-  lo = impl->scale * (lo - impl->origin), hi = impl->scale * (hi - impl->origin);
+  lo = impl->scale * lo, hi = impl->scale * hi;
   RTCBounds* box = args->bounds_o;
   box->lower_x = round_down(lo.x), box->lower_y = round_down(lo.y), box->lower_z = round_down(lo.z);
   box->upper_x = round_up(hi.x), box->upper_y = round_up(hi.y), box->upper_z = round_up(hi.z);
-  if (impl->origin != Vec3{}) {  // one float more on every side covers the rounded subtraction
+  if (impl->origin != Vec3{}) {  // one float more on every side covers a query point's rounded move
     constexpr float inf = std::numeric_limits<float>::infinity();
     box->lower_x = std::nextafter(box->lower_x, -inf), box->lower_y = std::nextafter(box->lower_y, -inf);
     box->lower_z = std::nextafter(box->lower_z, -inf);
@@ -132,7 +137,7 @@ void triangle_bounds(const RTCBoundsFunctionArguments* args) {
 
 struct QueryState {
   const ClosestPointIndex::Impl* impl;
-  Vec3 p;
+  Vec3 p;               // the query point, relative to the index's origin
   double query_offset;  // |p - float(p)| in Embree's units: the BVH measures from the rounded query point
   const int* group;     // if not null: only triangles t with group[t] == group_id count
   int group_id;
@@ -164,14 +169,18 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
     const Vec3 centre = 0.5 * box.min + 0.5 * box.max, extent = box.max - box.min;
     const double size = std::max({extent.x, extent.y, extent.z});
     // Only where floats would lose the model: elsewhere the boxes are as they always were.
-    if (is_finite(centre) && std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) > 64 * size)
-      impl_->origin = centre;
+    const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z),
+                                   std::abs(box.max.x), std::abs(box.max.y), std::abs(box.max.z)});
+    if (is_finite(centre) && std::isfinite(reach) && reach > 0 &&
+        std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) > 64 * size) {
+      const double unit = std::ldexp(1.0, std::ilogb(reach) - 52);  // the largest coordinate's ulp
+      impl_->origin = {unit * std::nearbyint(centre.x / unit), unit * std::nearbyint(centre.y / unit),
+                       unit * std::nearbyint(centre.z / unit)};
+      for (Vec3& p : impl_->positions) p = p - impl_->origin;  // exact
+    }
   }
   double largest = 0;
-  for (const Vec3& p : positions) {
-    const Vec3 d = p - impl_->origin;
-    largest = std::max({largest, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
-  }
+  for (const Vec3& d : impl_->positions) largest = std::max({largest, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
   // (A subnormal largest coordinate would need a factor beyond the doubles: it gets 2^1000.)
   if (largest > 0 && std::isfinite(largest)) impl_->scale = std::ldexp(1.0, std::min(-std::ilogb(largest), 1000));
   impl_->device = rtcNewDevice("threads=1");
@@ -200,12 +209,13 @@ ClosestPoint ClosestPointIndex::query(const Vec3& p, int hint) const { return qu
 
 ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, int g, int hint) const {
   RTCPointQuery q;
-  const Vec3 scaled = impl_->scale * (p - impl_->origin);
+  const Vec3 moved = p - impl_->origin;  // exact for points within the model's reach
+  const Vec3 scaled = impl_->scale * moved;
   q.x = static_cast<float>(scaled.x), q.y = static_cast<float>(scaled.y), q.z = static_cast<float>(scaled.z);
   const Vec3 rounded{q.x, q.y, q.z};
   // With an origin, the subtraction's rounding (at most 2^-53 of each coordinate) is added.
   const double offset = distance(scaled, rounded) + (impl_->origin != Vec3{} ? 0x1p-51 * norm(scaled) : 0.0);
-  QueryState state{impl_.get(), p, offset, group, g, {}};
+  QueryState state{impl_.get(), moved, offset, group, g, {}};
   q.time = 0;
   q.radius = std::numeric_limits<float>::infinity();
   if (hint >= 0 && hint < static_cast<int>(impl_->triangles.size()) && (!group || group[hint] == g)) {
@@ -214,12 +224,13 @@ ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, in
     // without a hint. The radius is the one visit_triangle would set after meeting the hint.
     const auto& tri = impl_->triangles[hint];
     const auto& pos = impl_->positions;
-    const double d = closest_point_on_triangle(p, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
+    const double d = closest_point_on_triangle(moved, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
     q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 1e-12));
   }
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);
+  if (impl_->origin != Vec3{} && state.best.triangle >= 0) state.best.point = state.best.point + impl_->origin;
   return state.best;
 }
 

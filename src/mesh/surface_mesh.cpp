@@ -391,10 +391,32 @@ void require_workable_size(const std::vector<Vec3>& positions, const char* what,
   // std::hypot, not BoundingBox::diagonal(): squaring the extents would overflow or vanish outside the range.
   const Vec3 extent = box.max - box.min;
   const double diagonal = std::hypot(extent.x, extent.y, extent.z);
+  if (!std::isfinite(diagonal))  // extents past the largest double: box.max - box.min overflowed
+    throw InputError(fmt::format("{} spans more than the doubles hold (coordinates from {:.3g} to {:.3g}); {} works "
+                                 "with sizes from {:g} to {:g}: scale the model first",
+                                 what, std::min({box.min.x, box.min.y, box.min.z}), std::max({box.max.x, box.max.y, box.max.z}),
+                                 task, kSmallestModel, kLargestModel));
   if (!(diagonal >= kSmallestModel && diagonal <= kLargestModel))
     throw InputError(fmt::format("{} is {:.3g} across (bounding-box diagonal); {} works with sizes from {:g} to "
                                  "{:g}: scale the model first",
                                  what, diagonal, task, kSmallestModel, kLargestModel));
+}
+
+void require_fine_coordinates(const std::vector<Vec3>& positions, const char* what, const char* task) {
+  if (positions.empty()) return;
+  const BoundingBox box = bounding_box(positions);
+  const Vec3 extent = box.max - box.min;
+  const double diagonal = std::hypot(extent.x, extent.y, extent.z);
+  const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
+                                 std::abs(box.max.y), std::abs(box.max.z)});
+  if (!(diagonal > 0) || !std::isfinite(reach)) return;  // require_workable_size's to refuse
+  const double step = std::ldexp(1.0, std::ilogb(reach) - 52);
+  if (diagonal / step >= kFewestCoordinateSteps) return;
+  const Vec3 centre = 0.5 * box.min + 0.5 * box.max;
+  throw InputError(fmt::format("{} is {:.3g} across but lies at coordinates up to {:.3g}, where doubles step by {:.3g}: "
+                               "{} needs at least {:.0f} steps across it; move the model nearer the origin (its "
+                               "centre is at {:.6g} {:.6g} {:.6g})",
+                               what, diagonal, reach, step, task, kFewestCoordinateSteps, centre.x, centre.y, centre.z));
 }
 
 void require_workable_size(const SurfaceMesh& mesh, const char* task) {

@@ -175,6 +175,16 @@ void require_workable_size(const SurfaceMesh& mesh, const char* task);
 //! ("the remesh").
 void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task);
 
+//! The fewest steps of the doubles across a model (its bounding-box diagonal over the unit in the
+//! last place of its largest coordinate) that sampling, the CVT and the metrics work with. Their
+//! points are constructed in doubles: a unit cube at 1e15, where doubles step by 0.125, remeshed to
+//! a "valid" mesh 25 % of its size away from it. At a million steps the constructions' rounding is
+//! a millionth of the model; a model 1e-6 across at 1000 has 1e7 and remeshes as at the origin.
+constexpr double kFewestCoordinateSteps = 1 << 20;
+//! \throw InputError, saying to move the model nearer the origin, when the doubles step too
+//! coarsely across it (kFewestCoordinateSteps).
+void require_fine_coordinates(const std::vector<Vec3>& positions, const char* what, const char* task);
+
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.
 double suggested_refinement_length(const SurfaceMesh& mesh, int n);
