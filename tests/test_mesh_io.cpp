@@ -2,6 +2,7 @@
 // exact round trips of the writers, CGAL's data-set meshes, and the Voronoi-cells PLY.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -74,7 +75,8 @@ TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into th
                                "file ends after 5 vertices"));
   REQUIRE_THROWS_WITH(read_mesh(data("not_a_number.off")), Contains("vertex 1 (line 4): 'O' is not a number"));
 
-  // A truncated binary PLY: the header promises 4 faces, the body holds 3 and a half.
+  // A truncated binary PLY: the header promises 4 faces, the body holds 3 and a half, fewer bytes
+  // than 4 vertices and 4 triangles take.
   std::string ply =
       "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
       "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
@@ -87,7 +89,8 @@ TEST_CASE("read_mesh turns CGAL's refusal of a truncated or garbled file into th
   const std::string truncated_ply = scratch("truncated.ply");
   write_file(truncated_ply, ply.substr(0, ply.size() - 7));
   REQUIRE_THROWS_WITH(read_mesh(truncated_ply),
-                      Contains("cannot be parsed as binary_little_endian PLY") && Contains("4 vertices, 4 faces"));
+                      Contains("is too short for its header: it declares 4 vertices and 4 faces, which take at least "
+                               "100 bytes after its 169-byte header, but the file has only 262 bytes"));
 
   const std::string truncated_stl = scratch("truncated.stl");
   write_file(truncated_stl, read_file(data("tetrahedron.stl")).substr(0, 150));
@@ -565,6 +568,158 @@ TEST_CASE("PLY and STL, ascii and binary, are read") {
   const std::string stl_path = scratch("tetrahedron_binary.stl");
   write_file(stl_path, stl);
   check_tetrahedron(read_mesh(stl_path));
+}
+
+namespace {
+
+// The tetrahedron as a PLY of the given format, with `faces` face records under a header that
+// declares `declared_faces`, indices of `index_type` ("int", "uchar", ...), counts as uchar.
+std::string tetrahedron_ply(const std::string& format, int declared_vertices, int declared_faces, int faces,
+                            const std::string& index_type = "int") {
+  std::string ply = fmt::format(
+      "ply\nformat {} 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face {}\nproperty list uchar {} vertex_indices\nend_header\n",
+      format, declared_vertices, declared_faces, index_type);
+  const bool ascii = format == "ascii";
+  for (const auto& p : tetra_points)
+    if (ascii)
+      ply += fmt::format("{} {} {}\n", p[0], p[1], p[2]);
+    else
+      for (float c : p) append(ply, c);
+  for (int f = 0; f < faces; ++f) {
+    if (ascii) {
+      ply += fmt::format("3 {} {} {}\n", tetra_faces[f][0], tetra_faces[f][1], tetra_faces[f][2]);
+      continue;
+    }
+    append(ply, static_cast<unsigned char>(3));
+    for (int v : tetra_faces[f]) {
+      if (index_type == "int") append(ply, v);
+      if (index_type == "uchar" || index_type == "char") append(ply, static_cast<unsigned char>(v));
+      if (index_type == "ushort" || index_type == "short") append(ply, static_cast<std::uint16_t>(v));
+    }
+  }
+  return ply;
+}
+
+// The tetrahedron as binary STL: `facets` records under a header count of `declared`.
+std::string tetrahedron_stl(std::uint32_t declared, int facets) {
+  std::string stl(80, ' ');
+  append(stl, declared);
+  for (int f = 0; f < facets; ++f) {
+    for (int c = 0; c < 3; ++c) append(stl, 0.0f);
+    for (int v : tetra_faces[f % 4])
+      for (float c : tetra_points[v]) append(stl, c);
+    append(stl, std::uint16_t{0});
+  }
+  return stl;
+}
+
+}  // namespace
+
+TEST_CASE("A header declaring more elements than the file's size can hold is refused at once, before allocating") {
+  // CGAL's OFF reader sized its vectors from the header: this file took 50 s and 23 GB.
+  write_file(scratch("declares_1e9_faces.off"), "OFF\n3 1000000000 0\n0 0 0\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("declares_1e9_faces.off")),
+                      Contains("declares 3 vertices and 1000000000 faces") && Contains("its 25 bytes could not hold"));
+  write_file(scratch("declares_1e9_vertices.off"), "OFF\n1000000000 1 0\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("declares_1e9_vertices.off")),
+                      Contains("1000000000 vertices") && Contains("its 19 bytes could not hold"));
+  // The header's counts on the keyword's line, nothing after: the size alone refuses it.
+  std::string off = "OFF BINARY\n";
+  for (std::uint32_t count : {4u, 1000000000u, 0u})
+    for (int shift = 24; shift >= 0; shift -= 8) off.push_back(static_cast<char>(count >> shift & 0xff));
+  write_file(scratch("declares_1e9_faces_binary.off"), off);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("declares_1e9_faces_binary.off")),
+                      Contains("is too short for its header: it declares 4 vertices and 1000000000 faces") &&
+                          Contains("the file has only 23 bytes"));
+  // An OFF face declaring 2e9 vertices (CGAL allocated them before reading one).
+  write_file(scratch("huge_face.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2000000000 0 1 2\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("huge_face.off")), Contains("face 0 (line 6) lists 3 of its 2000000000"));
+  for (const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+    const std::string path = scratch("declares_1e9_faces_" + format + ".ply");
+    write_file(path, tetrahedron_ply(format, 4, 1000000000, 4));
+    REQUIRE_THROWS_WITH(read_mesh(path), Contains("is too short for its header: it declares 4 vertices and "
+                                                  "1000000000 faces") &&
+                                             Contains(fmt::format("the file has only {} bytes",
+                                                                  std::filesystem::file_size(path))));
+  }
+  // A PLY list declaring more entries than the rest of the file holds (CGAL resized its buffer to it).
+  write_file(scratch("huge_list.ply"),
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+             "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+             "2000000000 0 1 2\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("huge_list.ply")),
+                      Contains("face 0's vertex_indices list declares 2000000000 entries, more than the 7 bytes left"));
+  std::string stl = tetrahedron_stl(1000000000, 4);
+  write_file(scratch("declares_1e9_facets.stl"), stl);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("declares_1e9_facets.stl")),
+                      Contains("it has 284 bytes, not the 84 + 50 x 1000000000 = 50000000084 its header's count of "
+                               "1000000000 facets takes"));
+}
+
+TEST_CASE("PLY and binary STL files holding more elements than their header declares are refused") {
+  write_file(scratch("more_faces_ascii.ply"), tetrahedron_ply("ascii", 4, 3, 4));
+  REQUIRE_THROWS_WITH(read_mesh(scratch("more_faces_ascii.ply")),
+                      Contains("has more than its 3 declared faces: line 17 ('3 1 2 3') follows them"));
+  write_file(scratch("more_faces_binary.ply"), tetrahedron_ply("binary_little_endian", 4, 3, 4));
+  REQUIRE_THROWS_WITH(read_mesh(scratch("more_faces_binary.ply")),
+                      Contains("has more than its 3 declared faces: 13 bytes follow them, room for another"));
+  // Trailing whitespace (ascii) and a few bytes too short for a face (binary) are no more faces.
+  write_file(scratch("trailing_space.ply"), tetrahedron_ply("ascii", 4, 4, 4) + "\n  \n");
+  REQUIRE(read_mesh(scratch("trailing_space.ply")).mesh.triangle_count() == 4);
+  write_file(scratch("trailing_bytes.ply"), tetrahedron_ply("binary_little_endian", 4, 4, 4) + std::string(12, '\0'));
+  REQUIRE(read_mesh(scratch("trailing_bytes.ply")).mesh.triangle_count() == 4);
+
+  write_file(scratch("count_2_has_4.stl"), tetrahedron_stl(2, 4));
+  REQUIRE_THROWS_WITH(read_mesh(scratch("count_2_has_4.stl")),
+                      Contains("is a binary STL whose header declares 2 facets (84 + 50 x 2 = 184 bytes), but it has "
+                               "284 bytes, room for 2 more facets"));
+  // Padding shorter than a facet is let through, as some writers add it.
+  write_file(scratch("padded.stl"), tetrahedron_stl(4, 4) + std::string(49, '\0'));
+  REQUIRE(read_mesh(scratch("padded.stl")).mesh.triangle_count() == 4);
+  std::string padded_nan = tetrahedron_stl(4, 4) + std::string(10, '\0');
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&padded_nan[84 + 12], &nan, 4);  // facet 0's first corner's x
+  write_file(scratch("padded_nan.stl"), padded_nan);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("padded_nan.stl")), Contains("facet 0 has a non-finite coordinate"));
+}
+
+TEST_CASE("Messages for an OFF on one line, a too short STL and PLY indices of every integer type") {
+  // CGAL takes the counts across lines but each vertex and face from a line of its own.
+  write_file(scratch("one_line.off"),
+             "OFF 4 4 0 0 0 0 1 0 0 0 1 0 0 0 1 3 0 2 1 3 0 1 3 3 0 3 2 3 1 2 3\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("one_line.off")),
+                      Contains("has several vertices or faces on one line (line 1 holds 28 numbers)") &&
+                          Contains("put each vertex and face on a line of its own"));
+  write_file(scratch("counts_on_keyword_line.off"), "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  REQUIRE(read_mesh(scratch("counts_on_keyword_line.off")).mesh.triangle_count() == 1);
+  write_file(scratch("counts_across_lines.off"), "OFF\n3\n1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  REQUIRE(read_mesh(scratch("counts_across_lines.off")).mesh.triangle_count() == 1);
+  write_file(scratch("vertex_on_counts_line.off"), "OFF\n3 1 0 0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  REQUIRE(read_mesh(scratch("vertex_on_counts_line.off")).mesh.triangle_count() == 1);
+
+  write_file(scratch("short.stl"), "abc");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("short.stl")),
+                      Contains("is too short to be an STL file (3 bytes): it holds neither a binary STL's 84-byte "
+                               "header nor an ascii STL's 'solid'"));
+
+  for (const std::string format : {"ascii", "binary_little_endian", "binary_big_endian"})
+    for (const std::string type : {"char", "uchar", "short", "ushort", "int"}) {
+      if (format == "binary_big_endian" && type != "uchar") continue;  // big-endian shorts are not written here
+      const std::string path = scratch("indices_" + type + "_" + format + ".ply");
+      write_file(path, tetrahedron_ply(format, 4, 4, 4, type));
+      if (format == "binary_big_endian") {  // the float coordinates must be big-endian too
+        std::string bytes = read_file(path);
+        const std::size_t body = bytes.find("end_header\n") + 11;
+        for (std::size_t at = body; at < body + 48; at += 4) std::reverse(bytes.begin() + at, bytes.begin() + at + 4);
+        write_file(path, bytes);
+      }
+      const LoadedMesh loaded = read_mesh(path);
+      CAPTURE(path);
+      REQUIRE(loaded.mesh.vertex_count() == 4);
+      REQUIRE(loaded.mesh.triangle_count() == 4);
+      REQUIRE(signed_volume(loaded.mesh) == Approx(1.0 / 6.0));
+    }
 }
 
 TEST_CASE("written meshes read back with identical positions and triangles") {

@@ -124,31 +124,52 @@ std::string diagnose_off(const std::string& path) {
   if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
     return "is not an OFF file: it does not start with 'OFF'";
   if (tokens.size() > 1 && tokens[1] == "BINARY") return magic == "OFF" ? diagnose_binary_off(path) : "";
-  if (tokens.size() == 1)
-    lines.next(tokens);
-  else
-    tokens.erase(tokens.begin());
+  // CGAL reads the header's counts as tokens, across lines, and then each vertex and face from a
+  // line of its own, the first from what is left of the line the counts end on.
+  std::vector<std::string> rest(tokens.begin() + 1, tokens.end());
   long long counts[3];
-  for (int k = 0; k < 3; ++k)
-    if (tokens.size() < 3 || !parse_long(tokens[k], counts[k]) || counts[k] < 0)
+  for (int k = 0; k < 3; ++k) {
+    while (rest.empty() && lines.next(tokens)) rest = tokens;
+    if (rest.empty() || !parse_long(rest.front(), counts[k]) || counts[k] < 0)
       return fmt::format(
           "has an invalid OFF header (line {}): expected the vertex, face and edge counts, e.g. "
           "'8 6 0'",
           lines.line_number());
+    rest.erase(rest.begin());
+  }
+  auto next_line = [&lines, &rest](std::vector<std::string>& line) {
+    if (rest.empty()) return lines.next(line);
+    line = std::move(rest);
+    rest.clear();
+    return true;
+  };
+  // A line holding more numbers than a vertex or face takes: where a file ran out early, CGAL read
+  // the elements' numbers from one line as a single element (the whole file on one line, say).
+  int crowded_line = 0;
+  std::size_t crowded_numbers = 0;
   const long long nv = counts[0], nf = counts[1];
+  auto truncated = [&](const std::string& usual) {
+    if (crowded_line == 0) return usual;
+    return fmt::format("has several vertices or faces on one line (line {} holds {} numbers), but CGAL's OFF reader "
+                       "takes each from a line of its own, so the file ends too early for the header's {} vertices "
+                       "and {} faces: put each vertex and face on a line of its own",
+                       crowded_line, crowded_numbers, nv, nf);
+  };
   for (long long v = 0; v < nv; ++v) {
-    if (!lines.next(tokens))
-      return fmt::format(
+    if (!next_line(tokens))
+      return truncated(fmt::format(
           "is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
           "vertices",
-          nv, nf, v);
+          nv, nf, v));
     if (std::string problem = check_coordinates(tokens, 0, fmt::format("vertex {}", v), lines.line_number());
         !problem.empty())
       return problem;
+    if (tokens.size() > 10 && crowded_line == 0)  // x y z, a normal and an RGBA colour at most
+      crowded_line = lines.line_number(), crowded_numbers = tokens.size();
   }
   for (long long f = 0; f < nf; ++f) {
-    if (!lines.next(tokens))
-      return fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f);
+    if (!next_line(tokens))
+      return truncated(fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f));
     long long n = 0;
     if (!parse_long(tokens[0], n) || n < 0)
       return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
@@ -168,6 +189,8 @@ std::string diagnose_off(const std::string& path) {
       if (index < 0 || index >= nv)
         return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
     }
+    if (static_cast<long long>(tokens.size()) > n + 5 && crowded_line == 0)
+      crowded_line = lines.line_number(), crowded_numbers = tokens.size();
     // A face may end with a colour (an index or three or four numbers), nothing else.
     for (std::size_t k = n + 1; k < tokens.size(); ++k) {
       double value = 0;
@@ -344,7 +367,14 @@ std::string diagnose_stl(const std::string& path) {
     in.clear();
     in.seekg(0, std::ios::end);
     const long long size = in.tellg();
-    return fmt::format("is truncated or malformed as binary STL: it has {} bytes, not 84 + 50 per facet", size);
+    unsigned char count[4] = {};
+    in.seekg(80);
+    if (size < 84 || !in.read(reinterpret_cast<char*>(count), 4))
+      return fmt::format("is truncated or malformed as binary STL: it has {} bytes, not 84 + 50 per facet", size);
+    const std::uint64_t facets = count[0] | count[1] << 8 | count[2] << 16 | std::uint64_t(count[3]) << 24;
+    return fmt::format("is truncated or malformed as binary STL: it has {} bytes, not the 84 + 50 x {} = {} its "
+                       "header's count of {} facets takes",
+                       size, facets, 84 + 50 * facets, facets);
   }
   TokenLines lines(path);
   std::vector<std::string> tokens;
@@ -409,7 +439,9 @@ std::string find_non_finite_binary_stl_coordinate(const std::string& path) {
   std::uint32_t facets = 0;
   for (int i = 0; i < 4; ++i)
     facets |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[80 + i])) << (8 * i);
-  if (bytes.size() != 84 + 50 * static_cast<std::uint64_t>(facets)) return "";  // not binary (or truncated)
+  // Not binary (or truncated); a few bytes of padding after the facets are let through, as by read_mesh.
+  const std::uint64_t expected = 84 + 50 * static_cast<std::uint64_t>(facets);
+  if (bytes.size() < expected || bytes.size() >= expected + 50) return "";
   for (std::uint32_t f = 0; f < facets; ++f)
     for (int corner = 1; corner <= 3; ++corner) {  // record: normal, 3 corners, attribute
       float xyz[3];

@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -29,10 +30,12 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include "common/error.h"
 #include "mesh/mesh_file_diagnosis.h"
+#include "mesh/mesh_file_layout.h"
 #include "mesh/weld.h"
 #include "metrics/self_intersections.h"
 
@@ -75,6 +78,58 @@ void check_readable(const std::string& path) {
 // ---------------------------------------------------------------------------------------------
 // Reading, checking and triangulating the soup.
 
+// One face element's items, with indices of type Index under `tag`; false when the element has no
+// such list (and `read` tells whether reading them went well).
+template <class Index>
+bool read_ply_faces(std::istream& in, CGAL::IO::internal::PLY_element& element, const char* tag,
+                    std::vector<Polygon>& polygons, bool& read) {
+  if (!element.has_property<std::vector<Index>>(tag)) return false;
+  read = CGAL::IO::internal::read_PLY_faces<Index>(in, element, polygons, CGAL::Emptyset_iterator(), tag);
+  return true;
+}
+
+// CGAL's read_PLY (5.5), reading face indices of every integer type PLY has: CGAL's own takes
+// int and uint only, and refused the char, uchar, short and ushort that some writers use.
+bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons) {
+  namespace ply = CGAL::IO::internal;
+  std::ifstream in(path, std::ios::binary);
+  CGAL::IO::set_mode(in, CGAL::IO::BINARY);
+  ply::PLY_reader reader(false);
+  if (!in || !reader.init(in)) return false;
+  for (std::size_t i = 0; i < reader.number_of_elements(); ++i) {
+    ply::PLY_element& element = reader.element(i);
+    const bool vertices = element.name() == "vertex" || element.name() == "vertices";
+    if (element.name() == "face" || element.name() == "faces") {
+      bool read = false, found = false;
+      for (const char* tag : {"vertex_indices", "vertex_index"}) {
+        found = found || read_ply_faces<std::int32_t>(in, element, tag, polygons, read) ||
+                read_ply_faces<std::uint32_t>(in, element, tag, polygons, read);
+      }
+      for (const char* tag : {"vertex_indices", "vertex_index"}) {
+        found = found || read_ply_faces<std::int8_t>(in, element, tag, polygons, read) ||
+                read_ply_faces<std::uint8_t>(in, element, tag, polygons, read) ||
+                read_ply_faces<std::int16_t>(in, element, tag, polygons, read) ||
+                read_ply_faces<std::uint16_t>(in, element, tag, polygons, read);
+      }
+      if (!found) return false;
+      continue;  // CGAL goes on after a face element that failed: the stream's state says it
+    }
+    for (std::size_t j = 0; j < element.number_of_items(); ++j) {
+      for (std::size_t k = 0; k < element.number_of_properties(); ++k) {
+        element.property(k)->get(in);
+        if (in.fail()) return false;
+      }
+      if (vertices) {
+        std::tuple<Point> vertex;
+        ply::process_properties(element, vertex,
+                                CGAL::IO::make_ply_point_reader(CGAL::make_nth_of_tuple_property_map<0>(vertex)));
+        points.push_back(std::get<0>(vertex));
+      }
+    }
+  }
+  return !in.fail();
+}
+
 bool read_soup(const std::string& path, Format format, std::vector<Point>& points, std::vector<Polygon>& polygons) {
   // CGAL's readers print their own complaints to std::cerr; lrvd gives one line of its own
   // (diagnose_mesh_file), so theirs are dropped while they read.
@@ -89,7 +144,7 @@ bool read_soup(const std::string& path, Format format, std::vector<Point>& point
       case Format::Obj:
         return CGAL::IO::read_OBJ(path, points, polygons);
       case Format::Ply:
-        return CGAL::IO::read_PLY(path, points, polygons);
+        return read_ply(path, points, polygons);
       case Format::Stl:
         return CGAL::IO::read_STL(path, points, polygons);
     }
@@ -709,15 +764,25 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
     if (std::string problem = find_non_finite_binary_stl_coordinate(path); !problem.empty()) fail(path, problem);
   if (format == Format::Ply)  // CGAL reads a PLY without coordinates as points at the origin
     if (std::string problem = find_missing_ply_coordinates(path); !problem.empty()) fail(path, problem);
+  // Counts the file cannot hold, before CGAL allocates for them; content after the last element.
+  if (std::string problem = find_layout_problem(path, format); !problem.empty()) fail(path, problem);
+  // CGAL's OFF reader allocates each face's declared vertex count before reading its indices, so
+  // the line scan (which catches what CGAL reads wrong: '3.7' as the index 3, words after a face's
+  // indices) runs first; its message is the one a refusal by CGAL would get.
+  if (format == Format::Off)
+    if (!find_misread_line(path, format).empty()) fail(path, diagnose_unreadable_mesh_file(path, format));
   if (!read_soup(path, format, points, polygons) &&
       !(allow_no_faces && format == Format::Obj && read_obj_vertices_only(path, points)))
     fail(path, diagnose_unreadable_mesh_file(path, format));
+  if (format == Format::Stl)  // CGAL stops after the declared facets and ignores what follows
+    if (std::string problem = find_extra_binary_stl_facets(path, polygons.size()); !problem.empty())
+      fail(path, problem);
   check_soup(path, format, points, polygons, allow_no_faces);
-  // CGAL reads '3.7' as the index 3 and skips words after a face's indices: a scan of the lines
-  // catches what it took for something else (a file of vertices alone, when allowed, has no face
-  // to misread, and the scan would call it a point cloud).
+  // The same scan for OBJ (a file of vertices alone, when allowed, has no face to misread, and the
+  // scan would call it a point cloud).
   if (allow_no_faces && polygons.empty()) return;
-  if (std::string problem = find_misread_line(path, format); !problem.empty()) fail(path, problem);
+  if (format == Format::Obj)
+    if (std::string problem = find_misread_line(path, format); !problem.empty()) fail(path, problem);
 }
 
 }  // namespace
