@@ -352,10 +352,16 @@ TEST_CASE("A --weld above the file's shortest edge says it collapsed edges, and 
   REQUIRE(kept.repair.weld_collapsed_sides == 0);
   for (const std::string& note : kept.repair.notes) REQUIRE_THAT(note, !Contains("collapsed"));
   // A weld that tears CGAL's elk apart is named as the cause, not the file.
-  options.weld = 0.09;
+  options.weld = 0.015;
   REQUIRE_THROWS_WITH(read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/elk.off", options),
-                      Contains("elk.off: --weld 0.09 collapsed") && Contains("and left seams open") &&
+                      Contains("elk.off: --weld 0.015 collapsed") && Contains("and left seams open") &&
                           !Contains("rerun with"));
+  // One so large that it takes nearly every face with the edges it collapses, leaving no seam:
+  // 2 of the elk's 3290 faces were left, and the diagram of them "passed".
+  options.weld = 0.5;
+  REQUIRE_THROWS_WITH(read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/elk.off", options),
+                      Contains("elk.off: has 2 of its 3290 faces left after --weld 0.5") &&
+                          Contains("collapsed 9578 face sides"));
 }
 
 TEST_CASE("Welding takes points to the earliest representative within the tolerance, without chains") {
