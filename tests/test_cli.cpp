@@ -151,6 +151,9 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   REQUIRE(run("--threads 1 compute " + kData + "/elk.off -n 10 --threads 2").err ==
           "lrvd: error: --threads is given 2 times; give it once (see --help)\n");
   // Text or an overflowing count for -n: one line of lrvd's, not CLI11's "Could not convert".
+  // Text for a number option: lrvd's words, not CLI11's "Could not convert: --radius = abc".
+  REQUIRE(run("mps " + kData + "/elk.off --radius abc -o " + kOut + "x.xyz").err ==
+          "lrvd: error: --radius takes a number, not 'abc' (see --help)\n");
   REQUIRE(run("compute " + kData + "/elk.off -n abc").err.find("a sample count (-n) is a whole number, not 'abc'") !=
           std::string::npos);
   REQUIRE(run("compute " + kData + "/elk.off -n 99999999999").err.find("99999999999 samples are more than lrvd takes") !=

@@ -122,6 +122,12 @@ int main(int argc, char** argv) {
     } else if (message.find(": 1 required ") != std::string::npos && message.size() > 8 &&
                message.compare(message.size() - 8, 8, " missing") == 0) {
       message = message.substr(0, message.find(": 1 required ")) + " needs a value";
+    } else if (const std::string convert = "Could not convert: "; message.rfind(convert, 0) == 0 &&
+                                                                   message.find(" = ") != std::string::npos) {
+      // "Could not convert: --radius = abc": a number option given text.
+      const std::size_t equals = message.find(" = ");
+      message = fmt::format("{} takes a number, not '{}'", message.substr(convert.size(), equals - convert.size()),
+                            message.substr(equals + 3));
     } else if (message.rfind(unexpected, 0) == 0 || message.rfind(unexpected_one, 0) == 0) {
       std::vector<std::string> words;
       std::istringstream rest(message.substr(message.find(": ") + 2));
