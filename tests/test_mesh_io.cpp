@@ -827,3 +827,26 @@ TEST_CASE("write_cells_ply writes polygons with a cell label and a colour per fa
   cells.face_cell.pop_back();
   REQUIRE_THROWS_AS(write_cells_ply(path, cells), std::invalid_argument);
 }
+
+TEST_CASE("A polygon face that crosses itself or visits a vertex twice is refused, and fanned with --repair") {
+  // A quad crossed into a bow tie covers its area twice when triangulated, and a pentagon that
+  // returns to its first vertex gave a unit square an area of 1.5: both were read without a word.
+  const std::string bowtie = scratch("bowtie.off"), twice = scratch("vertex_twice.off");
+  write_file(bowtie, "OFF\n4 1 0\n0 0 0\n1 1 0\n1 0 0\n0 1 0\n4 0 1 2 3\n");
+  write_file(twice, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n5 0 1 2 0 3\n");
+  REQUIRE_THROWS_WITH(read_mesh(bowtie), Contains("bowtie.off: face 0 (4 vertices) is self-intersecting or degenerate") &&
+                                             Contains("--repair"));
+  REQUIRE_THROWS_WITH(read_mesh(twice), Contains("vertex_twice.off: face 0 (5 vertices) visits vertex 0 twice"));
+  ReadOptions repair;
+  repair.repair = true;
+  const LoadedMesh fanned = read_mesh(bowtie, repair);
+  CHECK(fanned.mesh.triangle_count() >= 2);
+  bool noted = false;
+  for (const std::string& note : fanned.repair.notes) noted = noted || note.find("it was fanned") != std::string::npos;
+  CHECK(noted);
+  // A simple quad, convex or not, is still read: two triangles of its area.
+  write_file(scratch("dart.off"), "OFF\n4 1 0\n0 0 0\n2 0 0\n1 0.5 0\n1 2 0\n4 0 1 2 3\n");
+  const LoadedMesh dart = read_mesh(scratch("dart.off"));
+  CHECK(dart.mesh.triangle_count() == 2);
+  CHECK(dart.mesh.area() == Approx(1.25));  // the shoelace area of the dart
+}

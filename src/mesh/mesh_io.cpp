@@ -237,10 +237,14 @@ bool triangulate_polygon(const std::vector<Point>& points, const Polygon& polygo
   return clipped;
 }
 
-std::vector<SoupTriangle> triangulate(const std::vector<Point>& points, const std::vector<Polygon>& polygons,
-                                      RepairReport& report) {
+// `strict` (a read without --repair): a polygon that visits a vertex twice, or that no
+// triangulation covers without overlap (a quad crossed into a bow tie), is refused; with --repair
+// it is fanned, and a note says so.
+std::vector<SoupTriangle> triangulate(const std::string& path, const std::vector<Point>& points,
+                                      const std::vector<Polygon>& polygons, RepairReport& report, bool strict) {
   std::vector<SoupTriangle> triangles;
   triangles.reserve(polygons.size());
+  std::vector<std::size_t> corners;
   for (std::size_t f = 0; f < polygons.size(); ++f) {
     const Polygon& polygon = polygons[f];
     if (polygon.size() == 3) {
@@ -248,9 +252,22 @@ std::vector<SoupTriangle> triangulate(const std::vector<Point>& points, const st
       continue;
     }
     ++report.triangulated_faces;
-    if (!triangulate_polygon(points, polygon, triangles))
+    if (strict) {
+      corners.assign(polygon.begin(), polygon.end());
+      std::sort(corners.begin(), corners.end());
+      if (const auto twice = std::adjacent_find(corners.begin(), corners.end()); twice != corners.end())
+        fail(path, fmt::format("face {} ({} vertices) visits vertex {} twice: its triangles would overlap; fix the face, "
+                               "or rerun with --repair to fan it",
+                               f, polygon.size(), *twice));
+    }
+    if (!triangulate_polygon(points, polygon, triangles)) {
+      if (strict)
+        fail(path, fmt::format("face {} ({} vertices) is self-intersecting or degenerate: no triangulation of it "
+                               "lies inside it; fix the face, or rerun with --repair to fan it",
+                               f, polygon.size()));
       report.notes.push_back(
           fmt::format("face {} ({} vertices) is self-intersecting or degenerate; it was fanned", f, polygon.size()));
+    }
   }
   return triangles;
 }
@@ -504,7 +521,7 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
     else
       ++report.removed_degenerate_faces;
   }
-  std::vector<SoupTriangle> triangles = triangulate(points, simple, report);
+  std::vector<SoupTriangle> triangles = triangulate(path, points, simple, report, false);
   const auto degenerate = [&](const SoupTriangle& t) {
     return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || CGAL::collinear(points[t[0]], points[t[1]], points[t[2]]);
   };
@@ -800,7 +817,7 @@ PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces) {
   read_checked_soup(path, points, polygons, allow_no_faces);
   RepairReport ignored;
   PolygonSoup soup;
-  for (const SoupTriangle& t : triangulate(points, polygons, ignored))
+  for (const SoupTriangle& t : triangulate(path, points, polygons, ignored, false))
     soup.triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
   for (const Point& p : points) soup.positions.push_back({p.x(), p.y(), p.z()});
   return soup;
@@ -828,7 +845,7 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
     reversed = std::move(repaired.reversed);
     weld_damage = std::move(repaired.weld_damage);
   } else {
-    for (const SoupTriangle& t : triangulate(points, polygons, report))
+    for (const SoupTriangle& t : triangulate(path, points, polygons, report, true))
       triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
     positions.reserve(points.size());
     for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
