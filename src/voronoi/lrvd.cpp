@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
-#include <cstring>
 #include <deque>
 #include <limits>
 #include <memory>
@@ -54,7 +52,6 @@ bool erase_sorted(Sorted& sorted, int x) {
   sorted.erase(it);
   return true;
 }
-
 
 // A vertex during the region growing of §3.2: the least entry queued for it and the sample it
 // went to (-1 while none). One record, not three arrays: the growth visits the vertices in the
