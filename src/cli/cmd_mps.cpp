@@ -56,8 +56,6 @@ int run_mps(const MpsCommandOptions& opt) {
                 {{opt.mesh_path, "the input mesh"}});
   const LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
   const SurfaceMesh& input = loaded.mesh;
-  require_workable_size(input, "lrvd");
-  require_fine_coordinates(input.positions(), "the model", "lrvd");
   print_repair(loaded.repair, opt.read);
 
   MpsOptions options;

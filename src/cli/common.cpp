@@ -191,8 +191,7 @@ Input load_input(const InputOptions& opt) {
   Input input;
   input.loaded = read_mesh(opt.mesh_path, opt.read);
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
-  require_workable_size(input.loaded.mesh, "lrvd");
-  require_fine_coordinates(input.loaded.mesh.positions(), "the model", "lrvd");
+  require_workable_model(input.loaded.mesh, "lrvd");
   print_repair(input.loaded.repair, opt.read);
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);

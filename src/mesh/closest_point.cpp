@@ -169,11 +169,10 @@ ClosestPointIndex::ClosestPointIndex(const std::vector<Vec3>& positions,
     const Vec3 centre = 0.5 * box.min + 0.5 * box.max, extent = box.max - box.min;
     const double size = std::max({extent.x, extent.y, extent.z});
     // Only where floats would lose the model: elsewhere the boxes are as they always were.
-    const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z),
-                                   std::abs(box.max.x), std::abs(box.max.y), std::abs(box.max.z)});
+    const double reach = box.reach();
     if (is_finite(centre) && std::isfinite(reach) && reach > 0 &&
         std::max({std::abs(centre.x), std::abs(centre.y), std::abs(centre.z)}) > 64 * size) {
-      const double unit = std::ldexp(1.0, std::ilogb(reach) - 52);  // the largest coordinate's ulp
+      const double unit = box.coordinate_step();
       impl_->origin = {unit * std::nearbyint(centre.x / unit), unit * std::nearbyint(centre.y / unit),
                        unit * std::nearbyint(centre.z / unit)};
       for (Vec3& p : impl_->positions) p = p - impl_->origin;  // exact

@@ -277,9 +277,7 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
 // corners. The mesh's check then names a triangle the user never gave, so the message says where
 // it came from and what to change.
 [[noreturn]] void throw_refined_zero_area(const InputError& error, const SurfaceMesh& input, const std::string& split) {
-  const BoundingBox box = input.bounding_box();
-  const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
-                                 std::abs(box.max.y), std::abs(box.max.z)});
+  const double reach = input.bounding_box().reach();
   throw InputError(fmt::format("splitting {} made a zero-area triangle (refined mesh: {}): at coordinates up to "
                                "{:.3g} doubles are too coarse for edges that short; move the model nearer the origin or "
                                "split less finely",

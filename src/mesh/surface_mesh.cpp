@@ -23,6 +23,10 @@ int find_root(std::vector<int>& parent, int x) {
 }  // namespace
 
 double BoundingBox::diagonal() const { return distance(min, max); }
+double BoundingBox::reach() const {
+  return std::max({std::abs(min.x), std::abs(min.y), std::abs(min.z), std::abs(max.x), std::abs(max.y), std::abs(max.z)});
+}
+double BoundingBox::coordinate_step() const { return std::ldexp(1.0, std::ilogb(reach()) - 52); }
 
 SurfaceMesh::SurfaceMesh(std::vector<Vec3> positions, std::vector<Triangle> triangles)
     : positions_(std::move(positions)), triangles_(std::move(triangles)) {
@@ -385,9 +389,9 @@ double SurfaceMesh::max_edge_length() const {
   return longest;
 }
 
-void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task) {
-  if (positions.empty()) return;
-  const BoundingBox box = bounding_box(positions);
+namespace {
+
+void require_workable_size(const BoundingBox& box, const char* what, const char* task) {
   // std::hypot, not BoundingBox::diagonal(): squaring the extents would overflow or vanish outside the range.
   const Vec3 extent = box.max - box.min;
   const double diagonal = std::hypot(extent.x, extent.y, extent.z);
@@ -402,15 +406,12 @@ void require_workable_size(const std::vector<Vec3>& positions, const char* what,
                                  what, diagonal, task, kSmallestModel, kLargestModel));
 }
 
-void require_fine_coordinates(const std::vector<Vec3>& positions, const char* what, const char* task) {
-  if (positions.empty()) return;
-  const BoundingBox box = bounding_box(positions);
+void require_fine_coordinates(const BoundingBox& box, const char* what, const char* task) {
   const Vec3 extent = box.max - box.min;
   const double diagonal = std::hypot(extent.x, extent.y, extent.z);
-  const double reach = std::max({std::abs(box.min.x), std::abs(box.min.y), std::abs(box.min.z), std::abs(box.max.x),
-                                 std::abs(box.max.y), std::abs(box.max.z)});
+  const double reach = box.reach();
   if (!(diagonal > 0) || !std::isfinite(reach)) return;  // require_workable_size's to refuse
-  const double step = std::ldexp(1.0, std::ilogb(reach) - 52);
+  const double step = box.coordinate_step();
   if (diagonal / step >= kFewestCoordinateSteps) return;
   const Vec3 centre = 0.5 * box.min + 0.5 * box.max;
   throw InputError(fmt::format("{} is {:.3g} across but lies at coordinates up to {:.3g}, where doubles step by {:.3g}: "
@@ -419,10 +420,27 @@ void require_fine_coordinates(const std::vector<Vec3>& positions, const char* wh
                                what, diagonal, reach, step, task, kFewestCoordinateSteps, centre.x, centre.y, centre.z));
 }
 
-void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+void require_triangles(const SurfaceMesh& mesh, const char* task) {
   // A default-constructed mesh: the constructor refuses an empty one, this catches the other way.
   if (mesh.triangle_count() == 0) throw InputError(fmt::format("the mesh is empty: {} needs triangles", task));
-  require_workable_size(mesh.positions(), "the model", task);
+}
+
+}  // namespace
+
+void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task) {
+  if (!positions.empty()) require_workable_size(bounding_box(positions), what, task);
+}
+
+void require_workable_size(const SurfaceMesh& mesh, const char* task) {
+  require_triangles(mesh, task);
+  require_workable_size(mesh.bounding_box(), "the model", task);
+}
+
+void require_workable_model(const SurfaceMesh& mesh, const char* task) {
+  require_triangles(mesh, task);
+  const BoundingBox box = mesh.bounding_box();
+  require_workable_size(box, "the model", task);
+  require_fine_coordinates(box, "the model", task);
 }
 
 }  // namespace lrvd

@@ -37,6 +37,11 @@ enum class RefineOrder {
 struct BoundingBox {
   Vec3 min, max;
   double diagonal() const;
+  //! The largest absolute coordinate of the box.
+  double reach() const;
+  //! The unit in the last place of reach(): how finely doubles step anywhere in the box. Every
+  //! coordinate in it is a multiple of this power of two.
+  double coordinate_step() const;
 };
 //! The bounding box of a point set (not empty).
 BoundingBox bounding_box(const std::vector<Vec3>& points);
@@ -181,9 +186,11 @@ void require_workable_size(const std::vector<Vec3>& positions, const char* what,
 //! a "valid" mesh 25 % of its size away from it. At a million steps the constructions' rounding is
 //! a millionth of the model; a model 1e-6 across at 1000 has 1e7 and remeshes as at the origin.
 constexpr double kFewestCoordinateSteps = 1 << 20;
-//! \throw InputError, saying to move the model nearer the origin, when the doubles step too
-//! coarsely across it (kFewestCoordinateSteps).
-void require_fine_coordinates(const std::vector<Vec3>& positions, const char* what, const char* task);
+//! require_workable_size, and, for the work that constructs points on the model (sampling, the
+//! CVT, the MPS, the metrics): \throw InputError, saying to move the model nearer the origin, when
+//! the doubles step too coarsely across it (kFewestCoordinateSteps). A diagram of given points
+//! needs only the first: its decisions are exact at any coordinates.
+void require_workable_model(const SurfaceMesh& mesh, const char* task);
 
 //! The edge length to refine to so that n samples do not crowd the triangles (about four
 //! triangles a sample), or 0 when the mesh already has at least two triangles a sample.

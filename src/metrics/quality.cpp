@@ -168,8 +168,7 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   QualityMetrics m = shape_metrics(positions, triangles);
   if (triangles.empty()) throw InputError("the remesh has no triangles: no distance to the reference");
   if (reference.triangle_count() == 0) throw InputError("the reference mesh has no triangles");
-  require_workable_size(reference, "measuring the quality");
-  require_fine_coordinates(reference.positions(), "the reference", "measuring the quality");
+  require_workable_model(reference, "measuring the quality");
   // Each surface's points start with its (used) vertices. A remesh whose used vertices span far
   // more than the workable sizes has areas and distances beyond the doubles (inf and NaN metrics);
   // a vertex no triangle uses is not on the surface and does not count.

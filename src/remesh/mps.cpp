@@ -397,7 +397,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   if (!(options.max_expected_samples > 0))
     throw InputError(fmt::format("max_expected_samples must be a positive number (got {})", options.max_expected_samples));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");
-  require_workable_size(mesh, "Poisson-disk sampling");
+  require_workable_model(mesh, "Poisson-disk sampling");
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);
   };

@@ -593,8 +593,8 @@ std::string DualDefects::describe() const {
 
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options) {
-  require_workable_size(reference, "remeshing");
-  require_workable_size(mesh, "remeshing");
+  require_workable_model(reference, "remeshing");
+  require_workable_model(mesh, "remeshing");
   require_remesh_vertex_count(reference, initial.size());
   if (mesh.component_count() != reference.component_count() ||
       mesh.euler_characteristic() != reference.euler_characteristic() ||
@@ -958,7 +958,7 @@ void order_for_remeshing(SurfaceMesh& mesh, Samples& samples) {
 }
 
 RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed, const RemeshOptions& options) {
-  require_workable_size(input, "remeshing");
+  require_workable_model(input, "remeshing");
   require_remesh_vertex_count(input, n);
   const double length = suggested_refinement_length(input, n);
   const bool refine = length > 0 && input.max_edge_length() > length;

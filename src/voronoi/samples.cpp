@@ -80,8 +80,7 @@ void check_samples(const SurfaceMesh& mesh, const Samples& samples) {
 
 Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
   if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
-  require_workable_size(mesh, "sampling");
-  require_fine_coordinates(mesh.positions(), "the model", "sampling");
+  require_workable_model(mesh, "sampling");
   const int components = mesh.component_count();
   if (n < components)
     throw InputError(fmt::format("{} sample{} cannot cover the mesh's {} connected components: each needs one",
@@ -124,8 +123,7 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
 }
 
 Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const std::vector<int>& minimum) {
-  require_workable_size(mesh, "sampling");
-  require_fine_coordinates(mesh.positions(), "the model", "sampling");
+  require_workable_model(mesh, "sampling");
   if (n < 1) throw InputError(fmt::format("the number of samples must be at least 1 (got {})", n));
   if (std::any_of(minimum.begin(), minimum.end(), [](int m) { return m < 1; }))
     throw std::invalid_argument("sample_by_component: every component's minimum is at least 1");
