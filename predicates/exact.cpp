@@ -2,6 +2,7 @@
 // fallback of position() when doubles overflow.
 #include "predicates/exact.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -9,25 +10,82 @@ namespace lrvd {
 namespace {
 
 using Q = CGAL::Gmpq;
+using Interval = CGAL::Interval_nt<false>;
 
-struct QV {
-  Q x, y, z;
+// A vector of any number type (Q for exact values, Interval for enclosures).
+template <class NT>
+struct V3 {
+  NT x, y, z;
 };
+using QV = V3<Q>;
 
-QV qv(const Vec3& a) { return {Q(a.x), Q(a.y), Q(a.z)}; }
-QV operator-(const QV& a, const QV& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-QV operator+(const QV& a, const QV& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-QV operator*(const Q& s, const QV& a) { return {s * a.x, s * a.y, s * a.z}; }
-Q dot(const QV& a, const QV& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-QV cross(const QV& a, const QV& b) {
+template <class NT>
+V3<NT> lift(const Vec3& a) {
+  return {NT(a.x), NT(a.y), NT(a.z)};
+}
+template <class NT>
+V3<NT> operator-(const V3<NT>& a, const V3<NT>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class NT>
+V3<NT> operator+(const V3<NT>& a, const V3<NT>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class NT>
+V3<NT> operator*(const NT& s, const V3<NT>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+template <class NT>
+NT dot(const V3<NT>& a, const V3<NT>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class NT>
+V3<NT> cross(const V3<NT>& a, const V3<NT>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
 // f_ab(q) = d_a(q) - d_b(q).
-Q bisector_value(const QV& q, const Site& a, const Site& b) {
-  const QV u = q - qv(a.p), v = q - qv(b.p);
-  return dot(u, u) - dot(v, v) - Q(a.w) + Q(b.w);
+template <class NT>
+NT bisector_value(const V3<NT>& q, const Site& a, const Site& b) {
+  const V3<NT> u = q - lift<NT>(a.p), v = q - lift<NT>(b.p);
+  return dot(u, u) - dot(v, v) - NT(a.w) + NT(b.w);
 }
+
+// The defining formula of a type B or C vertex as origin + (numerator / denominator), in one
+// number type: type B, q = q1 + t (q2 - q1) with t = F1 / (F1 - F2), f_ab being affine along the
+// edge; type C, relative to p1: n.x = 0 and 2 (p_m - p_a).x = -f_am(p1) for m = b, c (Cramer).
+template <class NT>
+struct Formula {
+  V3<NT> origin;
+  V3<NT> direction;  // type B: q2 - q1, with numerator F1
+  V3<NT> numerator;  // type C: times 1 / denominator
+  NT edge_numerator, denominator;
+};
+
+template <class NT>
+Formula<NT> formula(const SymbolicVertex& q, const SymbolicContext& ctx) {
+  const Site& a = ctx.sites[q.label[0]];
+  const Site& b = ctx.sites[q.label[1]];
+  Formula<NT> f;
+  if (q.type == SymbolicVertex::Type::B) {
+    f.origin = lift<NT>(ctx.vertices[q.v[0]]);
+    const V3<NT> q2 = lift<NT>(ctx.vertices[q.v[1]]);
+    f.direction = q2 - f.origin;
+    f.edge_numerator = bisector_value(f.origin, a, b);
+    f.denominator = f.edge_numerator - bisector_value(q2, a, b);
+    return f;
+  }
+  const Site& c = ctx.sites[q.label[2]];
+  f.origin = lift<NT>(ctx.vertices[q.v[0]]);
+  const V3<NT> r0 = cross(lift<NT>(ctx.vertices[q.v[1]]) - f.origin, lift<NT>(ctx.vertices[q.v[2]]) - f.origin);
+  const V3<NT> r1 = NT(2) * (lift<NT>(b.p) - lift<NT>(a.p)), r2 = NT(2) * (lift<NT>(c.p) - lift<NT>(a.p));
+  const NT s1 = -bisector_value(f.origin, a, b), s2 = -bisector_value(f.origin, a, c);
+  f.denominator = dot(r0, cross(r1, r2));
+  f.numerator = s1 * cross(r2, r0) + s2 * cross(r0, r1);
+  return f;
+}
+
+ExactPoint exact_point(const QV& r) { return {r.x, r.y, r.z}; }
 
 }  // namespace
 
@@ -45,27 +103,45 @@ CGAL::Gmpq exact_power_distance(const ExactPoint& q, const Site& s) {
 ExactPoint exact_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
   using Type = SymbolicVertex::Type;
   if (q.type == Type::A) return to_exact(ctx.vertices[q.v[0]]);
-  const Site& a = ctx.sites[q.label[0]];
-  const Site& b = ctx.sites[q.label[1]];
-  if (q.type == Type::B) {
-    // q = q1 + t (q2 - q1), t = F1 / (F1 - F2): f_ab is affine along the edge.
-    const QV q1 = qv(ctx.vertices[q.v[0]]), q2 = qv(ctx.vertices[q.v[1]]);
-    const Q F1 = bisector_value(q1, a, b), F2 = bisector_value(q2, a, b);
-    if (F1 == F2) throw std::domain_error("exact_position: edge parallel to its bisector");
-    const QV r = q1 + (F1 / (F1 - F2)) * (q2 - q1);
-    return {r.x, r.y, r.z};
+  const Formula<Q> f = formula<Q>(q, ctx);
+  if (CGAL::is_zero(f.denominator))
+    throw std::domain_error(q.type == Type::B ? "exact_position: edge parallel to its bisector"
+                                              : "exact_position: plane and bisectors do not meet in one point");
+  if (q.type == Type::B) return exact_point(f.origin + (f.edge_numerator / f.denominator) * f.direction);
+  return exact_point(f.origin + (Q(1) / f.denominator) * f.numerator);
+}
+
+CGAL::Gmpq exact_edge_parameter(const SymbolicVertex& q, const SymbolicContext& ctx) {
+  if (q.type != SymbolicVertex::Type::B) throw std::invalid_argument("exact_edge_parameter: not a type B vertex");
+  const Formula<Q> f = formula<Q>(q, ctx);
+  if (CGAL::is_zero(f.denominator)) throw std::domain_error("exact_edge_parameter: edge parallel to its bisector");
+  return f.edge_numerator / f.denominator;
+}
+
+std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  PositionEnclosure e;
+  if (q.type == SymbolicVertex::Type::A) {
+    const Vec3& p = ctx.vertices[q.v[0]];
+    e.box = {Interval(p.x), Interval(p.y), Interval(p.z)};
+    return e;
   }
-  // Type C, relative to p1: n.x = 0, 2 (p_m - p_a).x = -f_am(p1) for m = b, c.
-  const Site& c = ctx.sites[q.label[2]];
-  const QV p1 = qv(ctx.vertices[q.v[0]]);
-  const QV r0 = cross(qv(ctx.vertices[q.v[1]]) - p1, qv(ctx.vertices[q.v[2]]) - p1);
-  const QV r1 = Q(2) * (qv(b.p) - qv(a.p)), r2 = Q(2) * (qv(c.p) - qv(a.p));
-  const Q s1 = -bisector_value(p1, a, b), s2 = -bisector_value(p1, a, c);
-  const Q det = dot(r0, cross(r1, r2));
-  if (CGAL::is_zero(det)) throw std::domain_error("exact_position: plane and bisectors do not meet in one point");
-  const QV x = (s1 / det) * cross(r2, r0) + (s2 / det) * cross(r0, r1);
-  const QV r = p1 + x;
-  return {r.x, r.y, r.z};
+  const Formula<Interval> f = formula<Interval>(q, ctx);
+  // The denominator's sign must be known: an interval that holds zero (or is not a number, after
+  // an overflow) leaves the vertex to the exact formula.
+  if (!(f.denominator.inf() > 0 || f.denominator.sup() < 0)) return std::nullopt;
+  V3<Interval> r;
+  if (q.type == SymbolicVertex::Type::B) {
+    e.parameter = f.edge_numerator / f.denominator;
+    r = f.origin + e.parameter * f.direction;
+  } else {
+    r = f.origin + (Interval(1) / f.denominator) * f.numerator;
+  }
+  e.box = {r.x, r.y, r.z};
+  // Past the doubles' range (an overflow gives infinite or undefined bounds): the exact formula.
+  for (const Interval& i : {e.box[0], e.box[1], e.box[2], e.parameter})
+    if (!std::isfinite(i.inf()) || !std::isfinite(i.sup())) return std::nullopt;
+  return e;
 }
 
 bool zero_area_unperturbed(const SymbolicVertex* v, int count, const SymbolicContext& ctx) {

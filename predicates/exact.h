@@ -2,7 +2,11 @@
 // pulls in GMP, so the hot code includes predicates/symbolic_vertex.h instead.
 #pragma once
 
+#include <array>
+#include <optional>
+
 #include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
 
 #include "predicates/symbolic_vertex.h"
 
@@ -18,6 +22,20 @@ struct ExactPoint {
 //! \pre the vertex exists: type B's edge is not parallel to its bisector, type C's plane and
 //!      bisectors meet in one point. \throw std::domain_error otherwise.
 ExactPoint exact_position(const SymbolicVertex& q, const SymbolicContext& ctx);
+
+//! The exact parameter of a type B vertex along its edge: 0 at v[0], 1 at v[1].
+//! \throw std::domain_error when the edge is parallel to the bisector (the vertex does not exist).
+CGAL::Gmpq exact_edge_parameter(const SymbolicVertex& q, const SymbolicContext& ctx);
+
+//! Intervals that hold the exact position of a vertex (and, type B, its edge parameter),
+//! evaluated from the defining doubles in interval arithmetic: a filter in front of the rationals.
+struct PositionEnclosure {
+  std::array<CGAL::Interval_nt<false>, 3> box;
+  CGAL::Interval_nt<false> parameter;  //!< type B only: encloses exact_edge_parameter
+};
+//! The enclosure of q's position, with finite bounds; nullopt when the intervals cannot tell
+//! whether q exists (its formula's denominator holds zero) or overflow, and exact_position decides.
+std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx);
 
 //! Exact power distance |q - p|^2 - w.
 CGAL::Gmpq exact_power_distance(const ExactPoint& q, const Site& s);

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -207,6 +209,16 @@ Q twice_area(const std::vector<lrvd::ExactPoint>& p, int axis) {
   return a;
 }
 
+// Whether the interval enclosure of q's position (and its edge parameter, type B) holds the exact
+// values; an enclosure the intervals could not give (nullopt) holds nothing to check.
+bool enclosed(const SymbolicVertex& q, const lrvd::ExactPoint& x, const SymbolicContext& ctx) {
+  const std::optional<lrvd::PositionEnclosure> e = lrvd::enclose_position(q, ctx);
+  if (!e) return true;
+  auto holds = [](const CGAL::Interval_nt<false>& i, const Q& v) { return Q(i.inf()) <= v && v <= Q(i.sup()); };
+  const bool box = holds(e->box[0], x.x) && holds(e->box[1], x.y) && holds(e->box[2], x.z);
+  return box && (q.type != SymbolicVertex::Type::B || holds(e->parameter, lrvd::exact_edge_parameter(q, ctx)));
+}
+
 }  // namespace
 
 TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consistent shared vertices", "[predicates][symbolic_vertex]") {
@@ -232,6 +244,7 @@ TEST_CASE("Clipping a triangle by every bisector tiles it exactly, with consiste
       std::vector<lrvd::ExactPoint> exact;
       for (const SymbolicVertex& v : poly) {
         const lrvd::ExactPoint e = lrvd::exact_position(v, ctx);
+        REQUIRE(enclosed(v, e, ctx));
         exact.push_back(e);
         cell_vertices[i].insert(v);
         type_c += v.type == SymbolicVertex::Type::C;
@@ -263,6 +276,10 @@ TEST_CASE("position and exact_position of vertices at extreme scales", "[predica
     const SymbolicContext ctx{tri, sites};
     for (const SymbolicVertex& v : {SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicVertex::in_triangle({0, 1, 2}, 0, 1, 2)}) {
       const lrvd::ExactPoint x = lrvd::exact_position(v, ctx);
+      CHECK(enclosed(v, x, ctx));
+      // Intervals decide at ordinary scales; past the doubles' range they leave it to the rationals.
+      if (e == 0) CHECK(lrvd::enclose_position(v, ctx).has_value());
+      if (std::abs(e) == 1000) CHECK_FALSE(lrvd::enclose_position(v, ctx).has_value());
       for (int m = 1; m < v.num_labels(); ++m)
         CHECK(lrvd::exact_power_distance(x, sites[v.label[m]]) == lrvd::exact_power_distance(x, sites[v.label[0]]));
       const Vec3 p = lrvd::position(v, ctx), r = lrvd::to_double(x);
@@ -273,6 +290,32 @@ TEST_CASE("position and exact_position of vertices at extreme scales", "[predica
   const Vec3 tri[3] = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}};
   const Site sites[2] = {{{0, 1, 0}, 0, 0}, {{0, -1, 0}, 0, 1}};  // bisector y = 0 holds edge (0, 1)
   CHECK_THROWS_AS(lrvd::exact_position(SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicContext{tri, sites}), std::domain_error);
+  CHECK_THROWS_AS(lrvd::exact_edge_parameter(SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicContext{tri, sites}),
+                  std::domain_error);
+  CHECK_FALSE(lrvd::enclose_position(SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicContext{tri, sites}).has_value());
+}
+
+TEST_CASE("Interval enclosures of vertex positions hold the exact ones", "[predicates][symbolic_vertex]") {
+  // Coordinates with full mantissas, so that no formula is exact in doubles.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int enclosures = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec3 tri[3] = {{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+    const Site sites[3] = {{{u(rng), u(rng), u(rng)}, 0, 0}, {{u(rng), u(rng), u(rng)}, 0.01 * u(rng), 1},
+                           {{u(rng), u(rng), u(rng)}, 0, 2}};
+    const SymbolicContext ctx{tri, sites};
+    for (const SymbolicVertex& v : {SymbolicVertex::on_edge(0, 1, 0, 1), SymbolicVertex::on_edge(1, 2, 1, 2),
+                                    SymbolicVertex::in_triangle({0, 1, 2}, 0, 1, 2), SymbolicVertex::mesh_vertex(2)}) {
+      const lrvd::ExactPoint x = lrvd::exact_position(v, ctx);
+      REQUIRE(enclosed(v, x, ctx));
+      const std::optional<lrvd::PositionEnclosure> e = lrvd::enclose_position(v, ctx);
+      if (!e) continue;
+      ++enclosures;
+      for (const auto& i : e->box) CHECK((std::isfinite(i.inf()) && std::isfinite(i.sup())));
+    }
+  }
+  CHECK(enclosures == 4 * 2000);  // random inputs: every denominator's sign is decided by intervals
 }
 
 TEST_CASE("checked_context marks a context in range only when every vertex and site is", "[predicates][symbolic_vertex]") {

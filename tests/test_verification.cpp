@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -13,6 +14,7 @@
 
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
+#include "verification/diagram_geometry.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
@@ -177,6 +179,26 @@ TEST_CASE("Degenerate inputs pass: bisectors along mesh edges and through mesh v
       CHECK(v.passed);
       CHECK(v.connected.passed);
     }
+}
+
+TEST_CASE("A vertex the intervals cannot place is placed by the rationals", "[verification]") {
+  // Sites one ulp apart in x: their bisector is all but parallel to the edge y = 0, and the
+  // denominator of its parameter (2e-16) is below the rounding of its two terms.
+  const std::vector<Vec3> corners = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<Site> sites = {{{0.3, 0.1, 0}, 0, 0}, {{std::nextafter(0.3, 1.0), 0.7, 0}, 0, 1}};
+  const SymbolicContext ctx{corners.data(), sites.data()};
+  const SymbolicVertex q = SymbolicVertex::on_edge(0, 1, 0, 1);
+  REQUIRE_FALSE(enclose_position(q, ctx).has_value());
+  const verify_detail::ExactVertex x = verify_detail::ExactVertex::of(q, ctx);
+  REQUIRE(x.valid);
+  const ExactPoint e = exact_position(q, ctx);
+  for (int c = 0; c < 3; ++c) {
+    const CGAL::Gmpq& v = verify_detail::coordinate(e, c);
+    CHECK((CGAL::Gmpq(x.box[c].inf()) <= v && v <= CGAL::Gmpq(x.box[c].sup())));
+  }
+  CHECK(x.edge_parameter() == exact_edge_parameter(q, ctx));
+  CHECK(x.p().x == e.x);
+  CHECK_FALSE(verify_detail::within_edge(x));  // far beyond the edge's end
 }
 
 TEST_CASE("Samples on the corners of a right-angled tetrahedron: a connected LRVD in every order",

@@ -4,6 +4,7 @@
 // in its cell. (2) and (6) are decided along mesh edges (diagram_edges.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -75,8 +76,8 @@ class DiagramChecker {
  public:
   DiagramChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options,
                  DiagramVerification& out)
-      : mesh_(mesh), samples_(samples), d_(diagram), options_(options), out_(out),
-        vertices_{ExactVertices(diagram.context(mesh)), {}} {}
+      : mesh_(mesh), samples_(samples), d_(diagram), options_(options), out_(out), context_(diagram.context(mesh)),
+        vertices_{ExactVertices(context_), {}} {}
 
   void run() {
     index_vertices();
@@ -140,13 +141,13 @@ class DiagramChecker {
       if (!options_.exact_geometry) {  // (1) and (2) still need to know which polygons are flat
         points_.clear();
         for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(d_.polygons[p], k));
-        area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(twice_area(points_, f))));
+        area_sign_[p] = area_sign(points_, f);
         continue;
       }
       const std::string problem = polygon_problem(p, tri, f);
       if (!problem.empty()) {
         out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
-        area_sign_[p] = static_cast<Sign>(static_cast<int>(CGAL::sign(twice_area(points_, f))));
+        area_sign_[p] = area_sign(points_, f);
       }
     }
     if (!options_.exact_geometry) return;
@@ -198,8 +199,7 @@ class DiagramChecker {
       if (!defined_on_triangle(q, tri)) return fmt::format("has vertex {} of another triangle", describe(q));
       bool inside = true;
       if (q.type == SymbolicVertex::Type::B) {  // exactly on its edge's line: inside iff within the edge
-        const Q& s = points_[k]->edge_parameter;
-        inside = !CGAL::is_negative(s) && s <= Q(1);
+        inside = within_edge(*points_[k]);
       } else if (q.type == SymbolicVertex::Type::C) {
         for (int c = 0; c < 3 && inside; ++c)
           inside = orient(*corner_[c], *corner_[(c + 1) % 3], *points_[k], f) != Sign::Negative;
@@ -234,9 +234,7 @@ class DiagramChecker {
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
   Q parameter_along(const SymbolicVertex& q, int id, int from) const {
-    if (q.type == SymbolicVertex::Type::A) return Q(q.v[0] == from ? 0 : 1);
-    const Q& s = vertices_.exact[id].edge_parameter;  // from v[0] towards v[1]
-    return q.v[0] == from ? s : Q(1) - s;
+    return EdgePosition::of(id, q, vertices_.exact[id], from).exact();
   }
 
   // (5) The polygons' areas sum to the triangle's, exactly. The sum of the shoelace formulas with
@@ -244,6 +242,8 @@ class DiagramChecker {
   // an edge used in both directions cancels exactly; an edge along a mesh edge through a adds 0;
   // an edge along (b, c) with parameters s_u, s_w from b adds (s_w - s_u) cross(b - a, c - b), and
   // cross(b - a, c - b) is twice the triangle's area. Any other edge left over is summed in full.
+  // The edges along (b, c) add sum_v n_v s_v, n_v the times v ends such an edge less the times it
+  // starts one: when only c is left with n_c = 1 (besides b, at s = 0), that is 1 without arithmetic.
   void check_area_sum(int t, int begin, int end, const Frame& f) {
     const Triangle& tri = mesh_.triangle(t);
     edges_.clear();
@@ -260,7 +260,8 @@ class DiagramChecker {
     std::sort(edges_.begin(), edges_.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
       return std::tie(x.from, x.to) < std::tie(y.from, y.to);
     });
-    Q along_bc(0), rest(0);
+    Q rest(0);
+    along_bc_.clear();  // (exact vertex id, index into Diagram::vertices, +-count)
     for (size_t k = 0; k < edges_.size();) {
       size_t m = k;
       int count = 0;
@@ -273,13 +274,35 @@ class DiagramChecker {
       if (u.on_mesh_edge(tri[0], tri[1]) && w.on_mesh_edge(tri[0], tri[1])) continue;
       if (u.on_mesh_edge(tri[2], tri[0]) && w.on_mesh_edge(tri[2], tri[0])) continue;
       if (u.on_mesh_edge(tri[1], tri[2]) && w.on_mesh_edge(tri[1], tri[2])) {
-        along_bc += Q(count) * (parameter_along(w, e.to, tri[1]) - parameter_along(u, e.from, tri[1]));
+        along_bc_.push_back({e.to, e.to_vertex, count});
+        along_bc_.push_back({e.from, e.from_vertex, -count});
         continue;
       }
       points_ = {corner_[0], &vertices_.exact[e.from], &vertices_.exact[e.to]};
       rest += Q(count) * twice_area(points_, f);
     }
-    if (CGAL::is_zero(rest) && along_bc == Q(1)) return;  // sum = along_bc * area + rest = area
+    std::sort(along_bc_.begin(), along_bc_.end());
+    bool unit = true;  // along_bc is 1 by the ends' counts alone
+    for (size_t k = 0; k < along_bc_.size();) {
+      int n = 0;
+      size_t m = k;
+      for (; m < along_bc_.size() && along_bc_[m][0] == along_bc_[k][0]; ++m) n += along_bc_[m][2];
+      const SymbolicVertex& v = d_.vertices[along_bc_[k][1]];
+      const bool at_b = v.type == SymbolicVertex::Type::A && v.v[0] == tri[1];
+      const bool at_c = v.type == SymbolicVertex::Type::A && v.v[0] == tri[2];
+      unit = unit && (n == 0 || at_b || (at_c && n == 1));
+      along_bc_[k][2] = n;  // the first entry of each vertex carries its total
+      for (size_t j = k + 1; j < m; ++j) along_bc_[j][2] = 0;
+      k = m;
+    }
+    const bool c_counted = std::any_of(along_bc_.begin(), along_bc_.end(), [&](const std::array<int, 3>& x) {
+      const SymbolicVertex& v = d_.vertices[x[1]];
+      return x[2] == 1 && v.type == SymbolicVertex::Type::A && v.v[0] == tri[2];
+    });
+    if (CGAL::is_zero(rest) && unit && c_counted) return;  // sum = along_bc * area + rest = area
+    Q along_bc(0);
+    for (const auto& [id, vertex, n] : along_bc_)
+      if (n != 0) along_bc += Q(n) * parameter_along(d_.vertices[vertex], id, tri[1]);
     points_.assign(corner_.begin(), corner_.end());
     const Q triangle = twice_area(points_, f);
     const Q ratio = along_bc + rest / triangle;
@@ -322,7 +345,9 @@ class DiagramChecker {
   // (3) Every vertex q of cell i's polygon is at least as close (power distance, exact) to x_i as
   // to every cell with a polygon in the triangle, and lies on as many bisectors of i with those
   // cells as its type says (B: one, C: two). The cells come from the polygons, not from q's labels,
-  // so a vertex with wrong labels is caught; the labels themselves are checked equidistant once.
+  // so a vertex with wrong labels is caught. q is equidistant from its own labels by construction:
+  // its exact point is the solution of their bisector equations (exact_position, whose equations
+  // tests/test_symbolic_vertex.cpp checks exactly), so those pairs are counted without arithmetic.
   void check_equidistance(int t, int begin, int end) {
     present_.clear();
     for (int p = begin; p < end; ++p)
@@ -337,12 +362,11 @@ class DiagramChecker {
         ++out_.equidistant.checked;
         const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
         const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
-        const bool labels_equidistant = check_labels(id);
         int equidistant = 0;
         std::string problem;
         for (int j : present_) {
           if (j == i) continue;
-          const Sign s = labels_equidistant && q.has_label(i) && q.has_label(j)
+          const Sign s = q.has_label(i) && q.has_label(j)
                              ? Sign::Zero
                              : compare_power_distance(vertices_.exact[id], d_.sites[i], d_.sites[j]);
           if (s == Sign::Zero) ++equidistant;
@@ -357,19 +381,6 @@ class DiagramChecker {
     }
   }
 
-  // Whether vertex id is exactly (power-)equidistant from the sites it is defined by; reported once.
-  bool check_labels(int id) {
-    if (static_cast<int>(label_state_.size()) <= id) label_state_.resize(id + 1, -1);
-    if (label_state_[id] >= 0) return label_state_[id] == 1;
-    const SymbolicVertex& q = vertices_.exact.symbolic(id);
-    bool ok = true;
-    for (int k = 1; k < q.num_labels() && ok; ++k)
-      ok = compare_power_distance(vertices_.exact[id], d_.sites[q.label[0]], d_.sites[q.label[k]]) == Sign::Zero;
-    if (!ok) out_.equidistant.fail(fmt::format("vertex {} is not equidistant from its cells", describe(q)));
-    label_state_[id] = ok ? 1 : 0;
-    return ok;
-  }
-
   // (1) x_i, at its barycentric coordinates taken as exact rationals, lies in the closed polygon of
   // cell i in its triangle.
   void check_samples() {
@@ -382,21 +393,14 @@ class DiagramChecker {
       }
       const Triangle& tri = mesh_.triangle(t);
       const Vec3& b = samples_.barycentric[i];
-      const Q b0(b.x), b1(b.y), b2(b.z);
-      const Q sum = b0 + b1 + b2;
-      if (CGAL::is_negative(b0) || CGAL::is_negative(b1) || CGAL::is_negative(b2) || !CGAL::is_positive(sum)) {
+      // Finite and not negative, and not all zero: their exact sum is then positive.
+      const bool located = std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z) && b.x >= 0 && b.y >= 0 &&
+                           b.z >= 0 && (b.x > 0 || b.y > 0 || b.z > 0);
+      if (!located) {
         out_.sample_in_cell.fail(fmt::format("sample {}: barycentric ({}, {}, {}) is outside its triangle {}", i, b.x, b.y, b.z, t));
         continue;
       }
-      ExactPoint x{Q(0), Q(0), Q(0)};
-      const Q* w[3] = {&b0, &b1, &b2};
-      for (int c = 0; c < 3; ++c) {
-        const ExactPoint corner = to_exact(mesh_.position(tri[c]));
-        x.x += *w[c] * corner.x / sum;
-        x.y += *w[c] * corner.y / sum;
-        x.z += *w[c] * corner.z / sum;
-      }
-      const ExactVertex point = make_exact_vertex(x);
+      const ExactVertex point = ExactVertex::at_barycentric(tri, b, context_);
       for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
       const Frame f = triangle_frame(mesh_, t, corner_);
       bool has_polygon = false, inside = false;
@@ -434,8 +438,8 @@ class DiagramChecker {
     for (int axis : {f.u, f.v}) {
       bool below = false, above = false;  // some vertex <= x, some >= x along the axis
       for (const ExactVertex* p : points_) {
-        below = below || coordinate(p->p, axis) <= coordinate(x.p, axis);
-        above = above || coordinate(p->p, axis) >= coordinate(x.p, axis);
+        below = below || coordinate(p->p(), axis) <= coordinate(x.p(), axis);
+        above = above || coordinate(p->p(), axis) >= coordinate(x.p(), axis);
       }
       if (!below || !above) return false;
     }
@@ -447,11 +451,11 @@ class DiagramChecker {
   const Diagram& d_;
   const VerifyOptions& options_;
   DiagramVerification& out_;
+  SymbolicContext context_;
   VertexIndex vertices_;
   std::vector<int> mesh_vertex_;  // exact vertex id of each mesh vertex
   std::vector<char> polygon_ok_;
   std::vector<Sign> area_sign_;
-  std::vector<signed char> label_state_;  // per exact vertex: -1 unchecked, 0 failed, 1 passed
   std::vector<const ExactVertex*> points_;
   struct DirectedEdge {
     int from, to;                // exact vertex ids, from < to
@@ -459,6 +463,7 @@ class DiagramChecker {
     int direction;               // +1 if a polygon runs from -> to, -1 if to -> from
   };
   std::vector<DirectedEdge> edges_;
+  std::vector<std::array<int, 3>> along_bc_;
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
 };

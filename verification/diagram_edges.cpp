@@ -18,8 +18,7 @@ namespace {
 // A polygon edge lying along a mesh edge (lo, hi), lo < hi, oriented from lo towards hi.
 struct Segment {
   int start = -1, end = -1;  // exact vertex ids
-  const Q* s0 = nullptr;     // exact parameters along the edge, 0 at lo, 1 at hi
-  const Q* s1 = nullptr;
+  EdgePosition s0, s1;       // along the edge, 0 at lo, 1 at hi
   int cell = -1;
   int polygon = -1;
 };
@@ -54,10 +53,8 @@ class EdgeChecker {
   }
 
  private:
-  const Q& parameter(int id, int lo) const {
-    const SymbolicVertex& q = vertices_.exact.symbolic(id);
-    if (q.type == SymbolicVertex::Type::A) return q.v[0] == lo ? zero_ : one_;
-    return vertices_.exact[id].edge_parameter;  // type B: stored from its lower endpoint
+  EdgePosition parameter(int id, int lo) const {
+    return EdgePosition::of(id, vertices_.exact.symbolic(id), vertices_.exact[id], lo);
   }
 
   // The segments of triangle t's polygons along its edge e, sorted from lo to hi.
@@ -73,10 +70,11 @@ class EdgeChecker {
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = (k + 1) % poly.vertex_count;
         if (!verts[k].on_mesh_edge(a, b) || !verts[k1].on_mesh_edge(a, b)) continue;
-        Segment s{ids[k], ids[k1], &parameter(ids[k], lo), &parameter(ids[k1], lo), poly.cell, p};
+        Segment s{ids[k], ids[k1], parameter(ids[k], lo), parameter(ids[k1], lo), poly.cell, p};
         // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
-        if (*s.s1 < *s.s0 || (*s.s1 == *s.s0 && symbolic_less(vertices_.exact.symbolic(s.end),
-                                                               vertices_.exact.symbolic(s.start)))) {
+        const Sign order = compare(s.s1, s.s0);
+        if (order == Sign::Negative ||
+            (order == Sign::Zero && symbolic_less(vertices_.exact.symbolic(s.end), vertices_.exact.symbolic(s.start)))) {
           std::swap(s.start, s.end);
           std::swap(s.s0, s.s1);
         }
@@ -84,8 +82,8 @@ class EdgeChecker {
       }
     }
     std::sort(out.begin(), out.end(), [&](const Segment& x, const Segment& y) {
-      if (*x.s0 != *y.s0) return *x.s0 < *y.s0;
-      if (*x.s1 != *y.s1) return *x.s1 < *y.s1;
+      if (const Sign c = compare(x.s0, y.s0); c != Sign::Zero) return c == Sign::Negative;
+      if (const Sign c = compare(x.s1, y.s1); c != Sign::Zero) return c == Sign::Negative;
       if (x.cell != y.cell) return x.cell < y.cell;
       if (x.start != y.start) return symbolic_less(vertices_.exact.symbolic(x.start), vertices_.exact.symbolic(y.start));
       return symbolic_less(vertices_.exact.symbolic(x.end), vertices_.exact.symbolic(y.end));
@@ -103,7 +101,7 @@ class EdgeChecker {
     // no part of the split, and two such vertices are one split point.
     ++out_.conforming.checked;
     auto next_segment = [](const std::vector<Segment>& list, size_t k) {
-      while (k < list.size() && *list[k].s0 == *list[k].s1) ++k;
+      while (k < list.size() && compare(list[k].s0, list[k].s1) == Sign::Zero) ++k;
       return k;
     };
     bool same = true;
@@ -112,7 +110,8 @@ class EdgeChecker {
         same = a == mine_.size() && b == theirs_.size();
         break;
       }
-      same = *mine_[a].s0 == *theirs_[b].s0 && *mine_[a].s1 == *theirs_[b].s1 && mine_[a].cell == theirs_[b].cell;
+      same = mine_[a].cell == theirs_[b].cell && compare(mine_[a].s0, theirs_[b].s0) == Sign::Zero &&
+             compare(mine_[a].s1, theirs_[b].s1) == Sign::Zero;
     }
     if (!same) {
       const auto cells_mine = cells_of(mine_), cells_theirs = cells_of(theirs_);
@@ -130,9 +129,9 @@ class EdgeChecker {
     for (const Segment& m : mine_)
       for (const Segment& o : theirs_) {
         if (m.cell != o.cell || !piece_[m.polygon] || !piece_[o.polygon]) continue;
-        const Q& from = std::max(*m.s0, *o.s0);
-        const Q& to = std::min(*m.s1, *o.s1);
-        if (from < to) {
+        const EdgePosition& from = compare(m.s0, o.s0) == Sign::Negative ? o.s0 : m.s0;  // the later start
+        const EdgePosition& to = compare(m.s1, o.s1) == Sign::Negative ? m.s1 : o.s1;    // the earlier end
+        if (compare(from, to) == Sign::Negative) {
           const int ra = find_root(parent_, m.polygon), rb = find_root(parent_, o.polygon);
           if (ra != rb) parent_[ra] = rb;
         }
@@ -198,7 +197,6 @@ class EdgeChecker {
   DiagramVerification& out_;
   std::vector<int> parent_;
   std::vector<Segment> mine_, theirs_;
-  const Q zero_{0}, one_{1};
 };
 
 }  // namespace

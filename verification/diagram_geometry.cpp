@@ -26,33 +26,74 @@ Sign filtered_sign(const Interval& x) {
 
 const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
 
-ExactVertex make_exact_vertex(const ExactPoint& p) {
+ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx) {
   ExactVertex e;
+  e.q_ = q;
+  e.ctx_ = ctx;
+  if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
+    e.box = enclosure->box;
+    e.parameter_box = enclosure->parameter;
+    e.valid = true;
+    return e;
+  }
+  // The intervals cannot tell whether q exists: the rationals decide, and give the enclosure.
+  try {
+    e.exact_ = std::make_unique<ExactPoint>(exact_position(q, ctx));
+  } catch (const std::domain_error&) {
+    return ExactVertex{};  // invalid: reported by the checks that meet it
+  }
+  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(*e.exact_, c));
+  if (q.type == SymbolicVertex::Type::B) e.parameter_box = enclose(e.edge_parameter());
   e.valid = true;
-  e.p = p;
-  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(p, c));
   return e;
+}
+
+ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx) {
+  ExactVertex e;
+  e.source_ = Source::Barycentric;
+  e.q_.v = corners;
+  e.barycentric_ = b;
+  e.ctx_ = ctx;
+  CGAL::Protect_FPU_rounding<true> upward;
+  const Interval sum = Interval(b.x) + Interval(b.y) + Interval(b.z);
+  e.box = {Interval(0), Interval(0), Interval(0)};
+  for (int c = 0; c < 3; ++c) {
+    const Interval w = Interval(b[c]) / sum;
+    const Vec3& x = ctx.vertices[corners[c]];
+    for (int axis = 0; axis < 3; ++axis) e.box[axis] += w * Interval(x[axis]);
+  }
+  e.valid = true;
+  return e;
+}
+
+const ExactPoint& ExactVertex::p() const {
+  if (exact_) return *exact_;
+  if (source_ == Source::Symbolic) {
+    exact_ = std::make_unique<ExactPoint>(exact_position(q_, ctx_));
+  } else {
+    const Q b[3] = {Q(barycentric_.x), Q(barycentric_.y), Q(barycentric_.z)};
+    const Q sum = b[0] + b[1] + b[2];
+    ExactPoint x{Q(0), Q(0), Q(0)};
+    for (int c = 0; c < 3; ++c) {
+      const ExactPoint corner = to_exact(ctx_.vertices[q_.v[c]]);
+      x.x += b[c] * corner.x / sum;
+      x.y += b[c] * corner.y / sum;
+      x.z += b[c] * corner.z / sum;
+    }
+    exact_ = std::make_unique<ExactPoint>(std::move(x));
+  }
+  return *exact_;
+}
+
+const Q& ExactVertex::edge_parameter() const {
+  if (!parameter_) parameter_ = std::make_unique<Q>(exact_edge_parameter(q_, ctx_));
+  return *parameter_;
 }
 
 int ExactVertices::index(const SymbolicVertex& q) {
   auto [it, inserted] = index_.emplace(q, static_cast<int>(points_.size()));
   if (!inserted) return it->second;
-  ExactVertex e;
-  try {
-    e = make_exact_vertex(exact_position(q, ctx_));
-    if (q.type == SymbolicVertex::Type::B) {
-      // The point lies exactly on the line of its edge: one coordinate gives the parameter.
-      const Vec3& a = ctx_.vertices[q.v[0]];
-      const Vec3& b = ctx_.vertices[q.v[1]];
-      int axis = 0;
-      for (int c = 1; c < 3; ++c)
-        if (std::fabs(b[c] - a[c]) > std::fabs(b[axis] - a[axis])) axis = c;
-      e.edge_parameter = (coordinate(e.p, axis) - Q(a[axis])) / (Q(b[axis]) - Q(a[axis]));
-    }
-  } catch (const std::domain_error&) {
-    e = ExactVertex{};  // invalid: reported by the checks that meet it
-  }
-  points_.push_back(std::move(e));
+  points_.push_back(ExactVertex::of(q, ctx_));
   symbolic_.push_back(q);
   return it->second;
 }
@@ -79,10 +120,10 @@ Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, co
     s = filtered_sign((b.box[u] - a.box[u]) * (c.box[v] - a.box[v]) - (b.box[v] - a.box[v]) * (c.box[u] - a.box[u]));
   }
   if (s == Sign::Zero) {
-    const Q& ax = coordinate(a.p, u);
-    const Q& ay = coordinate(a.p, v);
-    const Q det = (coordinate(b.p, u) - ax) * (coordinate(c.p, v) - ay) -
-                  (coordinate(b.p, v) - ay) * (coordinate(c.p, u) - ax);
+    const Q& ax = coordinate(a.p(), u);
+    const Q& ay = coordinate(a.p(), v);
+    const Q det = (coordinate(b.p(), u) - ax) * (coordinate(c.p(), v) - ay) -
+                  (coordinate(b.p(), v) - ay) * (coordinate(c.p(), u) - ax);
     s = sign_of(det);
   }
   return f.sign > 0 ? s : -s;
@@ -93,14 +134,73 @@ Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
   const size_t n = polygon.size();
   if (n < 3) return sum;
   // Relative to the first vertex: same value, smaller products.
-  const Q& ox = coordinate(polygon[0]->p, f.u);
-  const Q& oy = coordinate(polygon[0]->p, f.v);
+  const Q& ox = coordinate(polygon[0]->p(), f.u);
+  const Q& oy = coordinate(polygon[0]->p(), f.v);
   for (size_t k = 1; k + 1 < n; ++k) {
-    const ExactPoint& p = polygon[k]->p;
-    const ExactPoint& q = polygon[k + 1]->p;
+    const ExactPoint& p = polygon[k]->p();
+    const ExactPoint& q = polygon[k + 1]->p();
     sum += (coordinate(p, f.u) - ox) * (coordinate(q, f.v) - oy) - (coordinate(q, f.u) - ox) * (coordinate(p, f.v) - oy);
   }
   return f.sign > 0 ? sum : -sum;
+}
+
+Sign area_sign(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
+  const size_t n = polygon.size();
+  if (n < 3) return Sign::Zero;
+  Sign s;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const Interval& ox = polygon[0]->box[f.u];
+    const Interval& oy = polygon[0]->box[f.v];
+    Interval sum(0);
+    for (size_t k = 1; k + 1 < n; ++k) {
+      const ExactVertex& p = *polygon[k];
+      const ExactVertex& q = *polygon[k + 1];
+      sum += (p.box[f.u] - ox) * (q.box[f.v] - oy) - (q.box[f.u] - ox) * (p.box[f.v] - oy);
+    }
+    s = filtered_sign(sum);
+  }
+  if (s == Sign::Zero) return sign_of(twice_area(polygon, f));
+  return f.sign > 0 ? s : -s;
+}
+
+bool within_edge(const ExactVertex& b) {
+  const Interval& s = b.parameter_box;
+  if (s.inf() >= 0 && s.sup() <= 1) return true;
+  if (s.inf() > 1 || s.sup() < 0) return false;
+  return !CGAL::is_negative(b.edge_parameter()) && b.edge_parameter() <= Q(1);
+}
+
+EdgePosition EdgePosition::of(int id, const SymbolicVertex& q, const ExactVertex& x, int lo) {
+  EdgePosition e;
+  e.id = id;
+  if (q.type == SymbolicVertex::Type::A) {
+    e.end = q.v[0] == lo ? 0 : 1;
+  } else {
+    e.vertex = &x;
+    e.reversed = q.v[0] != lo;
+  }
+  return e;
+}
+
+Q EdgePosition::exact() const {
+  if (!vertex) return Q(end);
+  return reversed ? Q(1) - vertex->edge_parameter() : vertex->edge_parameter();
+}
+
+Sign compare(const EdgePosition& x, const EdgePosition& y) {
+  if (x.id == y.id && x.reversed == y.reversed) return Sign::Zero;
+  auto box = [](const EdgePosition& e) {
+    if (!e.vertex) return Interval(e.end);
+    return e.reversed ? Interval(1) - e.vertex->parameter_box : e.vertex->parameter_box;
+  };
+  Sign s;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    s = filtered_sign(box(x) - box(y));
+  }
+  if (s != Sign::Zero) return s;
+  return sign_of(x.exact() - y.exact());
 }
 
 Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) {
@@ -117,7 +217,7 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
   Q exact(0);
   for (int c = 0; c < 3; ++c) {
     const Q pa(a.p[c]), pb(b.p[c]);
-    exact += Q(2) * coordinate(q.p, c) * (pb - pa) + pa * pa - pb * pb;
+    exact += Q(2) * coordinate(q.p(), c) * (pb - pa) + pa * pa - pb * pb;
   }
   exact += Q(b.w) - Q(a.w);
   return sign_of(exact);

@@ -1,9 +1,11 @@
-// Exact geometry for the diagram verification (internal to verification/): rational positions of
-// the symbolic vertices, computed once per distinct vertex, with interval enclosures used only as a
-// filter in front of exact rational sign evaluations. Nothing here uses a tolerance.
+// Exact geometry for the diagram verification (internal to verification/): the points of the
+// checks, each with an interval enclosure evaluated from the doubles that define it and exact
+// rational coordinates computed only when an enclosure cannot decide a sign. Nothing here uses a
+// tolerance: an undecided filter always falls back to the rationals.
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -22,23 +24,44 @@ using Q = CGAL::Gmpq;
 //! (CGAL::Protect_FPU_rounding) instead of once per operation.
 using Interval = CGAL::Interval_nt<false>;
 
-//! A point with its exact rational coordinates and an interval enclosure of each.
-struct ExactVertex {
+//! A point of the checks: a diagram vertex, or a sample. `box` encloses its exact coordinates;
+//! the coordinates themselves (and a type B vertex's parameter along its edge) are rationals
+//! computed on first use, when a filter on the enclosure leaves a sign undecided.
+class ExactVertex {
+ public:
   bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
-  ExactPoint p;
   std::array<Interval, 3> box;
-  Q edge_parameter;  //!< type B only: position along its edge, 0 at v[0], 1 at v[1]
+  Interval parameter_box;  //!< type B only: encloses edge_parameter()
+
+  ExactVertex() = default;
+  //! The point q defines; not valid when it defines none (decided exactly).
+  static ExactVertex of(const SymbolicVertex& q, const SymbolicContext& ctx);
+  //! The point at barycentric coordinates b (not normalised; their sum is positive) of triangle
+  //! `corners` (vertex indices into ctx.vertices).
+  static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
+
+  //! The exact coordinates (computed on the first call).
+  const ExactPoint& p() const;
+  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first call).
+  const Q& edge_parameter() const;
+
+ private:
+  enum class Source : std::uint8_t { Symbolic, Barycentric };
+  Source source_ = Source::Symbolic;
+  SymbolicVertex q_;  // Barycentric: q_.v holds the corners
+  Vec3 barycentric_;
+  SymbolicContext ctx_;
+  mutable std::unique_ptr<ExactPoint> exact_;
+  mutable std::unique_ptr<Q> parameter_;
 };
 
-//! An exact point, enclosed.
-ExactVertex make_exact_vertex(const ExactPoint& p);
 const Q& coordinate(const ExactPoint& p, int axis);
 
-//! Exact positions of the distinct symbolic vertices of one diagram, computed on first sight.
+//! The points of the distinct symbolic vertices of one diagram, made on first sight.
 class ExactVertices {
  public:
   explicit ExactVertices(const SymbolicContext& ctx) : ctx_(ctx) {}
-  //! Index of q, computing its exact position the first time q is seen.
+  //! Index of q, making its point the first time q is seen.
   int index(const SymbolicVertex& q);
   const ExactVertex& operator[](int id) const { return points_[id]; }
   const SymbolicVertex& symbolic(int id) const { return symbolic_[id]; }
@@ -66,6 +89,27 @@ Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, co
 
 //! Exact twice signed area of the projected polygon, relative to the triangle's normal.
 Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f);
+//! Its sign, filtered.
+Sign area_sign(const std::vector<const ExactVertex*>& polygon, const Frame& f);
+
+//! Whether a type B vertex lies on its edge, between its endpoints (parameter in [0, 1]), exactly.
+bool within_edge(const ExactVertex& b);
+
+//! A point's position along a mesh edge (lo, hi): 0 at lo and 1 at hi for a mesh vertex (type
+//! A), a type B vertex's parameter (from lo) otherwise. Two positions of one vertex compare equal
+//! without arithmetic.
+struct EdgePosition {
+  int id = -1;                           //!< exact vertex id
+  const ExactVertex* vertex = nullptr;  //!< type B; null for an endpoint
+  int end = 0;                           //!< endpoint: 0 at lo, 1 at hi
+  bool reversed = false;                 //!< type B: its v[0] is hi, so the position is 1 - parameter
+
+  //! The position of exact vertex `id` (symbolic q) along the edge whose lower endpoint is lo.
+  static EdgePosition of(int id, const SymbolicVertex& q, const ExactVertex& x, int lo);
+  Q exact() const;
+};
+//! Exact sign of x - y, filtered.
+Sign compare(const EdgePosition& x, const EdgePosition& y);
 
 //! Exact sign of d_a(q) - d_b(q), the power distances to sites a and b (Negative: q closer to a).
 Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b);
