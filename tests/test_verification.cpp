@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
@@ -199,6 +200,36 @@ TEST_CASE("A vertex the intervals cannot place is placed by the rationals", "[ve
   CHECK(x.edge_parameter() == exact_edge_parameter(q, ctx));
   CHECK(x.p().x == e.x);
   CHECK_FALSE(verify_detail::within_edge(x));  // far beyond the edge's end
+}
+
+TEST_CASE("The report of a diagram broken in many places is the same with one thread and with four",
+          "[verification]") {
+  // Offenders in many of the parallel passes' chunks (512 triangles): their first ten, in triangle
+  // order, are those of one pass.
+  const SurfaceMesh mesh = test::icosphere(5);  // 20,480 triangles
+  const Samples samples = sample_uniform(mesh, 2000, 3);
+  Diagram d = compute_lrvd(mesh, samples);
+  std::vector<int> broken;
+  for (int t = mesh.triangle_count() - 1; t >= 0; t -= 97)
+    if (d.triangle_offsets[t + 1] - d.triangle_offsets[t] >= 2) {
+      erase_polygon(d, d.triangle_offsets[t] + 1);
+      broken.push_back(t);
+    }
+  REQUIRE(broken.size() > 20);
+  std::sort(broken.begin(), broken.end());
+  auto verify_with = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return verify_diagram(mesh, samples, d).to_json();
+  };
+  nlohmann::json one = verify_with(1), four = verify_with(4);
+  one.erase("time_s");
+  four.erase("time_s");
+  CHECK(one == four);
+  const nlohmann::json& coverage = one.at("properties").at("coverage");
+  CHECK(coverage.at("violations").get<std::size_t>() == broken.size());
+  REQUIRE(coverage.at("first_offenders").size() == 10);
+  for (int k = 0; k < 10; ++k)
+    CHECK(coverage.at("first_offenders")[k].get<std::string>().rfind(fmt::format("triangle {}:", broken[k]), 0) == 0);
 }
 
 TEST_CASE("Samples on the corners of a right-angled tetrahedron: a connected LRVD in every order",

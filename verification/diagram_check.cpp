@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/parallel_for.h>
 
 #include "verification/diagram_geometry.h"
 
@@ -17,6 +18,10 @@ namespace lrvd {
 namespace {
 
 using namespace verify_detail;
+
+// Work items of the parallel passes; fixed, so that the merged results are alike for any threads.
+constexpr int kTrianglesAChunk = 512;
+constexpr int kSamplesAChunk = 512;
 
 // A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
@@ -72,46 +77,62 @@ std::string structure_error(const SurfaceMesh& mesh, const Samples& samples, con
   return {};
 }
 
+// What every worker of one verification reads: the inputs, the points of the distinct vertices
+// and which polygons the geometric checks can use. area_sign is written per polygon, each by the
+// worker of its triangle.
+struct Checked {
+  Checked(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options)
+      : mesh(mesh), samples(samples), d(diagram), options(options), context(diagram.context(mesh)),
+        vertices{ExactVertices(context), {}} {}
+
+  const SurfaceMesh& mesh;
+  const Samples& samples;
+  const Diagram& d;
+  const VerifyOptions& options;
+  SymbolicContext context;
+  VertexIndex vertices;
+  std::vector<int> mesh_vertex;  // exact vertex id of each mesh vertex
+  std::vector<char> polygon_ok;
+  std::vector<Sign> area_sign;
+
+  // Exact vertex ids of every distinct polygon vertex and mesh vertex (their enclosures made in
+  // parallel); which polygons the geometric checks can use.
+  void index_vertices() {
+    const int n = d.sample_count;
+    vertices.of_diagram_vertex.assign(d.vertices.size(), -1);
+    for (size_t k = 0; k < d.vertices.size(); ++k)
+      if (well_formed(d.vertices[k], mesh.vertex_count(), n))
+        vertices.of_diagram_vertex[k] = vertices.exact.add(d.vertices[k]);
+    mesh_vertex.resize(mesh.vertex_count());
+    for (int v = 0; v < mesh.vertex_count(); ++v) mesh_vertex[v] = vertices.exact.add(SymbolicVertex::mesh_vertex(v));
+    vertices.exact.make_points();
+    polygon_ok.assign(d.polygons.size(), 0);
+    area_sign.assign(d.polygons.size(), Sign::Zero);
+    for (size_t p = 0; p < d.polygons.size(); ++p) {
+      const CellPolygon& poly = d.polygons[p];
+      bool ok = poly.cell >= 0 && poly.cell < n;
+      for (int k = 0; ok && k < poly.vertex_count; ++k) {
+        const int id = vertices.of_diagram_vertex[poly.first_vertex + k];
+        ok = id >= 0 && vertices.exact[id].valid;
+      }
+      polygon_ok[p] = ok;
+    }
+  }
+};
+
+// The checks of a range of triangles or samples, into its own results (merged in order by
+// verify_diagram, so that the report does not depend on the threads).
 class DiagramChecker {
  public:
-  DiagramChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options,
-                 DiagramVerification& out)
-      : mesh_(mesh), samples_(samples), d_(diagram), options_(options), out_(out), context_(diagram.context(mesh)),
-        vertices_{ExactVertices(context_), {}} {}
+  DiagramChecker(Checked& in, DiagramVerification& out)
+      : mesh_(in.mesh), samples_(in.samples), d_(in.d), options_(in.options), out_(out), vertices_(in.vertices),
+        mesh_vertex_(in.mesh_vertex), polygon_ok_(in.polygon_ok), area_sign_(in.area_sign) {}
 
-  void run() {
-    index_vertices();
-    for (int t = 0; t < mesh_.triangle_count(); ++t) check_triangle(t);
-    check_samples();
-    std::vector<char> piece(d_.polygons.size());
-    for (size_t p = 0; p < piece.size(); ++p) piece[p] = polygon_ok_[p] && area_sign_[p] == Sign::Positive;
-    check_edges(mesh_, samples_, d_, polygon_ok_, piece, vertices_, out_);
+  void check_triangles(int begin, int end) {
+    for (int t = begin; t < end; ++t) check_triangle(t);
   }
 
  private:
-  // Exact positions of every distinct polygon vertex; which polygons the geometric checks can use.
-  void index_vertices() {
-    const int n = d_.sample_count;
-    vertices_.of_diagram_vertex.assign(d_.vertices.size(), -1);
-    for (size_t k = 0; k < d_.vertices.size(); ++k)
-      if (well_formed(d_.vertices[k], mesh_.vertex_count(), n))
-        vertices_.of_diagram_vertex[k] = vertices_.exact.index(d_.vertices[k]);
-    // Every mesh vertex too, so that no later index() call moves the cached points.
-    mesh_vertex_.resize(mesh_.vertex_count());
-    for (int v = 0; v < mesh_.vertex_count(); ++v) mesh_vertex_[v] = vertices_.exact.index(SymbolicVertex::mesh_vertex(v));
-    polygon_ok_.assign(d_.polygons.size(), 0);
-    area_sign_.assign(d_.polygons.size(), Sign::Zero);
-    for (size_t p = 0; p < d_.polygons.size(); ++p) {
-      const CellPolygon& poly = d_.polygons[p];
-      bool ok = poly.cell >= 0 && poly.cell < n;
-      for (int k = 0; ok && k < poly.vertex_count; ++k) {
-        const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
-        ok = id >= 0 && vertices_.exact[id].valid;
-      }
-      polygon_ok_[p] = ok;
-    }
-  }
-
   const ExactVertex& vertex(const CellPolygon& poly, int k) const {
     return vertices_.exact[vertices_.of_diagram_vertex[poly.first_vertex + k]];
   }
@@ -381,10 +402,11 @@ class DiagramChecker {
     }
   }
 
+ public:
   // (1) x_i, at its barycentric coordinates taken as exact rationals, lies in the closed polygon of
   // cell i in its triangle.
-  void check_samples() {
-    for (int i = 0; i < samples_.size(); ++i) {
+  void check_samples(int begin, int end) {
+    for (int i = begin; i < end; ++i) {
       ++out_.sample_in_cell.checked;
       const int t = i < static_cast<int>(samples_.triangles.size()) ? samples_.triangles[i] : -1;
       if (t < 0 || t >= mesh_.triangle_count() || i >= static_cast<int>(samples_.barycentric.size())) {
@@ -400,7 +422,7 @@ class DiagramChecker {
         out_.sample_in_cell.fail(fmt::format("sample {}: barycentric ({}, {}, {}) is outside its triangle {}", i, b.x, b.y, b.z, t));
         continue;
       }
-      const ExactVertex point = ExactVertex::at_barycentric(tri, b, context_);
+      const ExactVertex point = ExactVertex::at_barycentric(tri, b, vertices_.exact.context());
       for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
       const Frame f = triangle_frame(mesh_, t, corner_);
       bool has_polygon = false, inside = false;
@@ -422,6 +444,7 @@ class DiagramChecker {
     }
   }
 
+ private:
   // Exact point-in-closed-convex-polygon in the frame. A polygon of zero area (a degenerate
   // input's limit) contains the points of its segment.
   bool contains_point(int p, const ExactVertex& x, const Frame& f) {
@@ -451,11 +474,10 @@ class DiagramChecker {
   const Diagram& d_;
   const VerifyOptions& options_;
   DiagramVerification& out_;
-  SymbolicContext context_;
-  VertexIndex vertices_;
-  std::vector<int> mesh_vertex_;  // exact vertex id of each mesh vertex
-  std::vector<char> polygon_ok_;
-  std::vector<Sign> area_sign_;
+  const VertexIndex& vertices_;
+  const std::vector<int>& mesh_vertex_;
+  const std::vector<char>& polygon_ok_;
+  std::vector<Sign>& area_sign_;
   std::vector<const ExactVertex*> points_;
   struct DirectedEdge {
     int from, to;                // exact vertex ids, from < to
@@ -467,6 +489,35 @@ class DiagramChecker {
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
 };
+
+// Runs `check(begin, end, results)` over [0, count) in fixed chunks, in parallel, and merges the
+// chunks' results in order.
+template <class Check>
+void in_chunks(int count, int chunk, DiagramVerification& out, Check check) {
+  const int chunks = (count + chunk - 1) / chunk;
+  std::vector<DiagramVerification> parts(chunks);
+  tbb::parallel_for(0, chunks, [&](int c) { check(c * chunk, std::min(count, (c + 1) * chunk), parts[c]); });
+  for (const DiagramVerification& part : parts)
+    for (auto member : {&DiagramVerification::sample_in_cell, &DiagramVerification::connected,
+                        &DiagramVerification::equidistant, &DiagramVerification::disjoint,
+                        &DiagramVerification::coverage, &DiagramVerification::conforming})
+      merge_into(out.*member, part.*member);
+}
+
+void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options,
+               DiagramVerification& out) {
+  Checked in(mesh, samples, diagram, options);
+  in.index_vertices();
+  in_chunks(mesh.triangle_count(), kTrianglesAChunk, out, [&](int begin, int end, DiagramVerification& part) {
+    DiagramChecker(in, part).check_triangles(begin, end);
+  });
+  in_chunks(samples.size(), kSamplesAChunk, out, [&](int begin, int end, DiagramVerification& part) {
+    DiagramChecker(in, part).check_samples(begin, end);
+  });
+  std::vector<char> piece(diagram.polygons.size());
+  for (size_t p = 0; p < piece.size(); ++p) piece[p] = in.polygon_ok[p] && in.area_sign[p] == Sign::Positive;
+  check_edges(mesh, samples, diagram, in.polygon_ok, piece, in.vertices, out);
+}
 
 }  // namespace
 
@@ -482,7 +533,7 @@ DiagramVerification verify_diagram(const SurfaceMesh& mesh, const Samples& sampl
                               &out.conforming})
       p->fail("diagram is malformed: " + broken);
   } else {
-    DiagramChecker(mesh, samples, diagram, options, out).run();
+    check_all(mesh, samples, diagram, options, out);
   }
   out.passed = true;
   for (const PropertyResult* p : {&out.sample_in_cell, &out.connected, &out.equidistant, &out.disjoint, &out.coverage,

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <tbb/parallel_for.h>
 
 #include "verification/diagram_geometry.h"
 
@@ -32,24 +33,23 @@ int find_root(std::vector<int>& parent, int x) {
   return x;
 }
 
+// The edges of a range of triangles (each edge from its lower triangle): (6) into `conforming`,
+// and for (2) the pairs of polygons an edge joins, in the order met.
 class EdgeChecker {
  public:
-  EdgeChecker(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-              const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
-              DiagramVerification& out)
-      : mesh_(mesh), samples_(samples), diagram_(diagram), polygon_ok_(polygon_ok), piece_(piece), vertices_(vertices),
-        out_(out), parent_(diagram.polygons.size()) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
+  EdgeChecker(const SurfaceMesh& mesh, const Diagram& diagram, const std::vector<char>& polygon_ok,
+              const std::vector<char>& piece, const VertexIndex& vertices, PropertyResult& conforming,
+              std::vector<std::pair<int, int>>& joins)
+      : mesh_(mesh), diagram_(diagram), polygon_ok_(polygon_ok), piece_(piece), vertices_(vertices),
+        conforming_(conforming), joins_(joins) {}
 
-  void run() {
-    for (int t = 0; t < mesh_.triangle_count(); ++t)
+  void check_triangles(int begin, int end) {
+    for (int t = begin; t < end; ++t)
       for (int e = 0; e < 3; ++e) {
         const int across = mesh_.neighbor(t, e);
         if (across < t) continue;  // boundary edge, or seen from the other side already
         check_edge(t, e, across, mesh_.neighbor_edge(t, e));
       }
-    count_components();
   }
 
  private:
@@ -99,7 +99,7 @@ class EdgeChecker {
     // (6) the same split points and the same cell on each segment, in the unperturbed geometry: a
     // segment of length zero there (a perturbed side between two vertices at one exact point) is
     // no part of the split, and two such vertices are one split point.
-    ++out_.conforming.checked;
+    ++conforming_.checked;
     auto next_segment = [](const std::vector<Segment>& list, size_t k) {
       while (k < list.size() && compare(list[k].s0, list[k].s1) == Sign::Zero) ++k;
       return k;
@@ -116,10 +116,10 @@ class EdgeChecker {
     if (!same) {
       const auto cells_mine = cells_of(mine_), cells_theirs = cells_of(theirs_);
       if (cells_mine != cells_theirs)
-        out_.conforming.fail(fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]", lo, hi, t,
+        conforming_.fail(fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]", lo, hi, t,
                                          fmt::join(cells_mine, ", "), across, fmt::join(cells_theirs, ", ")));
       else
-        out_.conforming.fail(fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it at different "
+        conforming_.fail(fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it at different "
                                          "points: [{}] vs [{}]",
                                          lo, hi, t, across, fmt::join(cells_mine, ", "), split_points(mine_),
                                          split_points(theirs_)));
@@ -131,10 +131,7 @@ class EdgeChecker {
         if (m.cell != o.cell || !piece_[m.polygon] || !piece_[o.polygon]) continue;
         const EdgePosition& from = compare(m.s0, o.s0) == Sign::Negative ? o.s0 : m.s0;  // the later start
         const EdgePosition& to = compare(m.s1, o.s1) == Sign::Negative ? m.s1 : o.s1;    // the earlier end
-        if (compare(from, to) == Sign::Negative) {
-          const int ra = find_root(parent_, m.polygon), rb = find_root(parent_, o.polygon);
-          if (ra != rb) parent_[ra] = rb;
-        }
+        if (compare(from, to) == Sign::Negative) joins_.emplace_back(m.polygon, o.polygon);
       }
   }
 
@@ -153,58 +150,77 @@ class EdgeChecker {
     return fmt::format("{}", fmt::join(names, ", "));
   }
 
-  void count_components() {
-    const int n = diagram_.sample_count;
-    std::vector<std::vector<int>> polygons_of_cell(n);
-    for (int p = 0; p < static_cast<int>(diagram_.polygons.size()); ++p)
-      if (piece_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
-    std::vector<int> roots;
-    for (int i = 0; i < n; ++i) {
-      ++out_.connected.checked;
-      const std::vector<int>& polys = polygons_of_cell[i];
-      roots.clear();
-      for (int p : polys) roots.push_back(find_root(parent_, p));
-      std::vector<int> distinct = roots;
-      std::sort(distinct.begin(), distinct.end());
-      distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-      if (distinct.size() <= 1) continue;  // an empty cell is (1)'s business, not connectedness
-      ++out_.cells_with_multiple_components;
-      // The main piece holds the sample; the first other piece is named as the stray one.
-      int home = roots.front();
-      for (size_t k = 0; k < polys.size(); ++k)
-        if (i < samples_.size() && diagram_.polygons[polys[k]].triangle == samples_.triangles[i]) home = roots[k];
-      int stray = -1;
-      std::vector<int> triangles;
-      for (size_t k = 0; k < polys.size(); ++k) {
-        if (roots[k] == home || (stray >= 0 && roots[k] != stray)) continue;
-        stray = roots[k];
-        triangles.push_back(diagram_.polygons[polys[k]].triangle);
-      }
-      const size_t shown = std::min<size_t>(triangles.size(), 8);
-      out_.connected.fail(fmt::format("cell {}: {} pieces, stray piece in triangle{} {}{}", i, distinct.size(),
-                                      triangles.size() > 1 ? "s" : "",
-                                      fmt::join(triangles.begin(), triangles.begin() + shown, ", "),
-                                      triangles.size() > shown ? ", ..." : ""));
-    }
-  }
-
   const SurfaceMesh& mesh_;
-  const Samples& samples_;
   const Diagram& diagram_;
   const std::vector<char>& polygon_ok_;
   const std::vector<char>& piece_;
-  VertexIndex& vertices_;
-  DiagramVerification& out_;
-  std::vector<int> parent_;
+  const VertexIndex& vertices_;
+  PropertyResult& conforming_;
+  std::vector<std::pair<int, int>>& joins_;
   std::vector<Segment> mine_, theirs_;
 };
+
+// (2) from the polygons joined along mesh edges (union-find over `parent`).
+void count_components(const Samples& samples_, const Diagram& diagram_, const std::vector<char>& piece_,
+                    std::vector<int>& parent_, DiagramVerification& out_) {
+  const int n = diagram_.sample_count;
+  std::vector<std::vector<int>> polygons_of_cell(n);
+  for (int p = 0; p < static_cast<int>(diagram_.polygons.size()); ++p)
+    if (piece_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
+  std::vector<int> roots;
+  for (int i = 0; i < n; ++i) {
+    ++out_.connected.checked;
+    const std::vector<int>& polys = polygons_of_cell[i];
+    roots.clear();
+    for (int p : polys) roots.push_back(find_root(parent_, p));
+    std::vector<int> distinct = roots;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    if (distinct.size() <= 1) continue;  // an empty cell is (1)'s business, not connectedness
+    ++out_.cells_with_multiple_components;
+    // The main piece holds the sample; the first other piece is named as the stray one.
+    int home = roots.front();
+    for (size_t k = 0; k < polys.size(); ++k)
+      if (i < samples_.size() && diagram_.polygons[polys[k]].triangle == samples_.triangles[i]) home = roots[k];
+    int stray = -1;
+    std::vector<int> triangles;
+    for (size_t k = 0; k < polys.size(); ++k) {
+      if (roots[k] == home || (stray >= 0 && roots[k] != stray)) continue;
+      stray = roots[k];
+      triangles.push_back(diagram_.polygons[polys[k]].triangle);
+    }
+    const size_t shown = std::min<size_t>(triangles.size(), 8);
+    out_.connected.fail(fmt::format("cell {}: {} pieces, stray piece in triangle{} {}{}", i, distinct.size(),
+                                    triangles.size() > 1 ? "s" : "",
+                                    fmt::join(triangles.begin(), triangles.begin() + shown, ", "),
+                                    triangles.size() > shown ? ", ..." : ""));
+  }
+}
 
 }  // namespace
 
 void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
+                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, const VertexIndex& vertices,
                  DiagramVerification& out) {
-  EdgeChecker(mesh, samples, diagram, polygon_ok, piece, vertices, out).run();
+  // The edges in parallel, by fixed chunks of triangles merged in order; the joins then in that order.
+  constexpr int kChunk = 512;
+  const int chunks = (mesh.triangle_count() + kChunk - 1) / kChunk;
+  std::vector<PropertyResult> conforming(chunks);
+  std::vector<std::vector<std::pair<int, int>>> joins(chunks);
+  tbb::parallel_for(0, chunks, [&](int c) {
+    EdgeChecker(mesh, diagram, polygon_ok, piece, vertices, conforming[c], joins[c])
+        .check_triangles(c * kChunk, std::min(mesh.triangle_count(), (c + 1) * kChunk));
+  });
+  std::vector<int> parent(diagram.polygons.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (int c = 0; c < chunks; ++c) {
+    merge_into(out.conforming, conforming[c]);
+    for (const auto& [a, b] : joins[c]) {
+      const int ra = find_root(parent, a), rb = find_root(parent, b);
+      if (ra != rb) parent[ra] = rb;
+    }
+  }
+  count_components(samples, diagram, piece, parent, out);
 }
 
 }  // namespace lrvd::verify_detail

@@ -6,6 +6,8 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace lrvd::verify_detail {
 
@@ -38,11 +40,11 @@ ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx)
   }
   // The intervals cannot tell whether q exists: the rationals decide, and give the enclosure.
   try {
-    e.exact_ = std::make_unique<ExactPoint>(exact_position(q, ctx));
+    e.p();
   } catch (const std::domain_error&) {
     return ExactVertex{};  // invalid: reported by the checks that meet it
   }
-  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(*e.exact_, c));
+  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(e.p(), c));
   if (q.type == SymbolicVertex::Type::B) e.parameter_box = enclose(e.edge_parameter());
   e.valid = true;
   return e;
@@ -67,10 +69,8 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
 }
 
 const ExactPoint& ExactVertex::p() const {
-  if (exact_) return *exact_;
-  if (source_ == Source::Symbolic) {
-    exact_ = std::make_unique<ExactPoint>(exact_position(q_, ctx_));
-  } else {
+  return exact_.get([&] {
+    if (source_ == Source::Symbolic) return exact_position(q_, ctx_);
     const Q b[3] = {Q(barycentric_.x), Q(barycentric_.y), Q(barycentric_.z)};
     const Q sum = b[0] + b[1] + b[2];
     ExactPoint x{Q(0), Q(0), Q(0)};
@@ -80,22 +80,65 @@ const ExactPoint& ExactVertex::p() const {
       x.y += b[c] * corner.y / sum;
       x.z += b[c] * corner.z / sum;
     }
-    exact_ = std::make_unique<ExactPoint>(std::move(x));
-  }
-  return *exact_;
+    return x;
+  });
 }
 
 const Q& ExactVertex::edge_parameter() const {
-  if (!parameter_) parameter_ = std::make_unique<Q>(exact_edge_parameter(q_, ctx_));
-  return *parameter_;
+  return parameter_.get([&] { return exact_edge_parameter(q_, ctx_); });
 }
 
 int ExactVertices::index(const SymbolicVertex& q) {
-  auto [it, inserted] = index_.emplace(q, static_cast<int>(points_.size()));
-  if (!inserted) return it->second;
-  points_.push_back(ExactVertex::of(q, ctx_));
-  symbolic_.push_back(q);
-  return it->second;
+  const int id = add(q);
+  make_points();
+  return id;
+}
+
+namespace {
+
+// Slot of a hash in a table of 2^k slots (mask 2^k - 1): the high bits of a multiplicative mix.
+std::size_t home_slot(const SymbolicVertex& q, std::size_t mask) {
+  const std::uint64_t h = static_cast<std::uint64_t>(SymbolicVertexHash()(q)) * 0x9E3779B97F4A7C15ull;
+  return static_cast<std::size_t>(h >> 32) & mask;
+}
+
+}  // namespace
+
+int ExactVertices::add(const SymbolicVertex& q) {
+  if (2 * (symbolic_.size() + 1) > slots_.size()) grow();
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t k = home_slot(q, mask);; k = (k + 1) & mask) {
+    const int id = slots_[k];
+    if (id < 0) {
+      slots_[k] = static_cast<int>(symbolic_.size());
+      symbolic_.push_back(q);
+      return slots_[k];
+    }
+    if (symbolic_[id] == q) return id;
+  }
+}
+
+void ExactVertices::grow() {
+  slots_.assign(std::max<std::size_t>(1024, 2 * slots_.size()), -1);
+  const std::size_t mask = slots_.size() - 1;
+  for (int id = 0; id < static_cast<int>(symbolic_.size()); ++id) {
+    std::size_t k = home_slot(symbolic_[id], mask);
+    while (slots_[k] >= 0) k = (k + 1) & mask;
+    slots_[k] = id;
+  }
+}
+
+void ExactVertices::make_points() {
+  const std::size_t from = points_.size(), to = symbolic_.size();
+  if (from == to) return;
+  points_.resize(to);
+  if (to - from < 1024) {
+    for (std::size_t k = from; k < to; ++k) points_[k] = ExactVertex::of(symbolic_[k], ctx_);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(from, to, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) points_[k] = ExactVertex::of(symbolic_[k], ctx_);
+  });
 }
 
 Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners) {
@@ -221,6 +264,14 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
   }
   exact += Q(b.w) - Q(a.w);
   return sign_of(exact);
+}
+
+void merge_into(PropertyResult& into, const PropertyResult& part) {
+  into.passed = into.passed && part.passed;
+  into.checked += part.checked;
+  into.violations += part.violations;
+  for (const std::string& s : part.first_offenders)
+    if (into.first_offenders.size() < 10) into.first_offenders.push_back(s);
 }
 
 std::string describe(const SymbolicVertex& q) {

@@ -5,9 +5,9 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <memory>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <CGAL/Gmpq.h>
@@ -23,6 +23,36 @@ using Q = CGAL::Gmpq;
 //! Unprotected intervals: every function that computes with them sets the rounding mode once
 //! (CGAL::Protect_FPU_rounding) instead of once per operation.
 using Interval = CGAL::Interval_nt<false>;
+
+//! A value made on first use, from any thread: the first to finish publishes it, and a copy made
+//! meanwhile by another thread is dropped.
+template <class T>
+class Lazy {
+ public:
+  Lazy() = default;
+  Lazy(const Lazy&) = delete;
+  Lazy& operator=(const Lazy&) = delete;
+  Lazy(Lazy&& other) noexcept : value_(other.value_.exchange(nullptr)) {}
+  Lazy& operator=(Lazy&& other) noexcept {
+    if (this != &other) delete value_.exchange(other.value_.exchange(nullptr));
+    return *this;
+  }
+  ~Lazy() { delete value_.load(); }
+
+  explicit operator bool() const { return value_.load(std::memory_order_acquire) != nullptr; }
+  template <class Make>
+  const T& get(Make make) const {
+    if (const T* v = value_.load(std::memory_order_acquire)) return *v;
+    T* fresh = new T(make());
+    T* expected = nullptr;
+    if (value_.compare_exchange_strong(expected, fresh, std::memory_order_acq_rel)) return *fresh;
+    delete fresh;
+    return *expected;
+  }
+
+ private:
+  mutable std::atomic<T*> value_{nullptr};
+};
 
 //! A point of the checks: a diagram vertex, or a sample. `box` encloses its exact coordinates;
 //! the coordinates themselves (and a type B vertex's parameter along its edge) are rationals
@@ -40,9 +70,10 @@ class ExactVertex {
   //! `corners` (vertex indices into ctx.vertices).
   static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
 
-  //! The exact coordinates (computed on the first call).
+  //! The exact coordinates (computed on the first call, from any thread).
   const ExactPoint& p() const;
-  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first call).
+  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first
+  //! call, from any thread).
   const Q& edge_parameter() const;
 
  private:
@@ -51,8 +82,8 @@ class ExactVertex {
   SymbolicVertex q_;  // Barycentric: q_.v holds the corners
   Vec3 barycentric_;
   SymbolicContext ctx_;
-  mutable std::unique_ptr<ExactPoint> exact_;
-  mutable std::unique_ptr<Q> parameter_;
+  Lazy<ExactPoint> exact_;
+  Lazy<Q> parameter_;
 };
 
 const Q& coordinate(const ExactPoint& p, int axis);
@@ -63,12 +94,20 @@ class ExactVertices {
   explicit ExactVertices(const SymbolicContext& ctx) : ctx_(ctx) {}
   //! Index of q, making its point the first time q is seen.
   int index(const SymbolicVertex& q);
+  //! Index of q, its point left to make_points() the first time q is seen.
+  int add(const SymbolicVertex& q);
+  //! Makes the points of the vertices added since the last call, in parallel.
+  void make_points();
   const ExactVertex& operator[](int id) const { return points_[id]; }
   const SymbolicVertex& symbolic(int id) const { return symbolic_[id]; }
+  const SymbolicContext& context() const { return ctx_; }
 
  private:
+  void grow();
+
   SymbolicContext ctx_;
-  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> index_;
+  // Open addressing with linear probing: each slot an id into symbolic_, or -1; at most half full.
+  std::vector<int> slots_;
   std::vector<ExactVertex> points_;
   std::vector<SymbolicVertex> symbolic_;
 };
@@ -123,12 +162,16 @@ struct VertexIndex {
   std::vector<int> of_diagram_vertex;
 };
 
+//! Folds a range's results into the whole's, in range order: the first offenders are those a
+//! single pass would list.
+void merge_into(PropertyResult& into, const PropertyResult& part);
+
 //! (2) connectedness and (6) conformity, from the polygons' segments along mesh edges.
 //! polygon_ok: the polygon's cell and vertices are valid (both checks use it); piece: it also has
 //! positive area (only those make up a cell's region: a zero-area polygon is the unperturbed
 //! limit of an infinitesimal sliver at a degenerate input, no piece of its own).
 void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, VertexIndex& vertices,
+                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, const VertexIndex& vertices,
                  DiagramVerification& out);
 
 }  // namespace lrvd::verify_detail
