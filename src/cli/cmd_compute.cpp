@@ -20,12 +20,12 @@ namespace lrvd::cli {
 namespace {
 
 // Memory of a verified diagram per sample (the diagram, its vertices' enclosures and the checks'
-// tables), peak RSS on the elk: 5.9 kB at 200,000 samples (773,882 triangles after refinement),
-// 6.7 kB at 500,000 (1.9M triangles).
-constexpr double kVerifiedBytesPerSample = 7e3;
+// tables), peak RSS on the elk: 5.4 kB at 200,000 samples (773,882 triangles after refinement)
+// and at 500,000 (1.9M triangles).
+constexpr double kVerifiedBytesPerSample = 6e3;
 
 // Refuses a verification that would need most of the machine's memory: the system would kill the
-// process without a word long before it finished (500,000 samples: 3.3 GB).
+// process without a word long before it finished (500,000 samples: 2.7 GB).
 void require_memory_for_verification(int samples, bool can_skip) {
   const double physical = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
   const double needed = kVerifiedBytesPerSample * samples;
@@ -80,8 +80,8 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
   bool passed = true;
   std::string failures;
   if (!opt.no_verify) {
-    // About 25 us a sample on one core (the elk at 50,000 samples: 1.1 s against the diagram's
-    // 0.3 s; at 200,000, 5.5 s), so a large diagram says what it waits for.
+    // About 25 us a sample on one core, 15 on two (the elk at 50,000 samples: 1.2 s against the
+    // diagram's 0.3 s; at 200,000, 5.3 s), so a large diagram says what it waits for.
     progress(input.samples.size() >= 10000
                  ? fmt::format("verifying the diagram in exact arithmetic, about {:.0f} s (--no-verify skips it)",
                                std::max(1.0, 3e-5 * input.samples.size()))

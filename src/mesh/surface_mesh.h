@@ -15,9 +15,9 @@ namespace lrvd {
 using Triangle = std::array<int, 3>;
 
 //! The most triangles a refinement may be expected to give, margin included. A diagram costs about
-//! 0.6-0.75 KB a triangle to compute and 1.75 KB a triangle with its exact verification (the elk at
-//! 500,000 samples, refined to 1.9M triangles: 1.4 GB without the verification, 3.3 GB with it), so
-//! this keeps a verified diagram under about 11 GB; more is refused instead of exhausting memory.
+//! 0.6-0.75 KB a triangle to compute and 1.4 KB a triangle with its exact verification (the elk at
+//! 500,000 samples, refined to 1.9M triangles: 1.4 GB without the verification, 2.7 GB with it), so
+//! this keeps a verified diagram under about 9 GB; more is refused instead of exhausting memory.
 constexpr double kMaxRefinedTriangles = 6e6;
 
 //! A refinement refused because it would pass its triangle limit (refine_long_edges).
