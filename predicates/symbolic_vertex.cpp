@@ -168,4 +168,46 @@ Vec3 position(const SymbolicVertex& q, const SymbolicContext& ctx) {
   return to_double(exact_position(q, ctx));
 }
 
+namespace {
+
+// Slot of q in a table of mask + 1 slots (a power of two): the high half of a multiplicative mix
+// of its hash, whose low bits alone repeat along runs of consecutive indices.
+std::size_t home_slot(const SymbolicVertex& q, std::size_t mask) {
+  const std::uint64_t h = static_cast<std::uint64_t>(SymbolicVertexHash()(q)) * 0x9E3779B97F4A7C15ull;
+  return static_cast<std::size_t>(h >> 32) & mask;
+}
+
+}  // namespace
+
+void SymbolicVertexIndex::reserve(std::size_t n) {
+  vertices_.reserve(n);
+  std::size_t slots = 1024;
+  while (slots < 2 * n) slots *= 2;
+  if (slots > slots_.size()) rehash(slots);
+}
+
+int SymbolicVertexIndex::insert(const SymbolicVertex& q) {
+  if (2 * (vertices_.size() + 1) > slots_.size()) rehash(std::max<std::size_t>(1024, 2 * slots_.size()));
+  const std::size_t mask = slots_.size() - 1;
+  for (std::size_t k = home_slot(q, mask);; k = (k + 1) & mask) {
+    const int id = slots_[k];
+    if (id < 0) {
+      slots_[k] = static_cast<int>(vertices_.size());
+      vertices_.push_back(q);
+      return slots_[k];
+    }
+    if (vertices_[id] == q) return id;
+  }
+}
+
+void SymbolicVertexIndex::rehash(std::size_t slots) {
+  slots_.assign(slots, -1);
+  const std::size_t mask = slots - 1;
+  for (int id = 0; id < static_cast<int>(vertices_.size()); ++id) {
+    std::size_t k = home_slot(vertices_[id], mask);
+    while (slots_[k] >= 0) k = (k + 1) & mask;
+    slots_[k] = id;
+  }
+}
+
 }  // namespace lrvd

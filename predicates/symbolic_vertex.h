@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "predicates/predicates.h"
 #include "predicates/vec3.h"
@@ -100,6 +101,26 @@ struct SymbolicVertexHash {
     for (int x : q.label) h = h * 1000003u ^ std::hash<int>()(x);
     return h;
   }
+};
+
+//! Distinct symbolic vertices, numbered in the order first seen: an open-addressing table (linear
+//! probing, at most half full) over the vertices' list, for the passes that meet each vertex in
+//! several polygons (output, verification).
+class SymbolicVertexIndex {
+ public:
+  //! Room for n distinct vertices without regrowing.
+  void reserve(std::size_t n);
+  //! The number of q: a new one (size() before the call) the first time q is seen.
+  int insert(const SymbolicVertex& q);
+  std::size_t size() const { return vertices_.size(); }
+  const SymbolicVertex& operator[](int id) const { return vertices_[id]; }
+  const std::vector<SymbolicVertex>& vertices() const { return vertices_; }
+
+ private:
+  void rehash(std::size_t slots);
+
+  std::vector<int> slots_;  // an id into vertices_, or -1; a power of two of them
+  std::vector<SymbolicVertex> vertices_;
 };
 
 }  // namespace lrvd

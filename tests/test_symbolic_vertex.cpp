@@ -367,3 +367,28 @@ TEST_CASE("coincide_unperturbed finds perturbed sides of zero length along a mes
   // Two points of different bisectors with no common label are not a polygon side.
   CHECK_THROWS_AS(lrvd::coincide_unperturbed(SymbolicVertex::on_edge(0, 1, j, m), bin, ctx), std::logic_error);
 }
+
+TEST_CASE("SymbolicVertexIndex numbers distinct vertices in the order first seen, across regrowth",
+          "[predicates][symbolic_vertex]") {
+  lrvd::SymbolicVertexIndex index;
+  std::vector<SymbolicVertex> distinct;
+  for (int e = 0; e < 3000; ++e) {  // enough for several regrowths of the table (1024 slots first)
+    distinct.push_back(SymbolicVertex::on_edge(e, e + 1, e % 7, 7 + e % 5));
+    distinct.push_back(SymbolicVertex::in_triangle({e, e + 1, e + 2}, 0, 1, 2 + e % 3));
+    distinct.push_back(SymbolicVertex::mesh_vertex(e));
+  }
+  for (std::size_t k = 0; k < distinct.size(); ++k) {
+    REQUIRE(index.insert(distinct[k]) == static_cast<int>(k));
+    if (k % 3 == 0) REQUIRE(index.insert(distinct[k / 2]) == static_cast<int>(k / 2));  // seen before
+  }
+  REQUIRE(index.size() == distinct.size());
+  for (std::size_t k = 0; k < distinct.size(); k += 17) {
+    CHECK(index.insert(distinct[k]) == static_cast<int>(k));
+    CHECK(index[static_cast<int>(k)] == distinct[k]);
+  }
+  CHECK(index.vertices() == distinct);
+  lrvd::SymbolicVertexIndex reserved;
+  reserved.reserve(5000);
+  for (const SymbolicVertex& q : distinct) reserved.insert(q);
+  CHECK(reserved.vertices() == distinct);
+}

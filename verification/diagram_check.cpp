@@ -100,6 +100,7 @@ struct Checked {
   void index_vertices() {
     const int n = d.sample_count;
     vertices.of_diagram_vertex.assign(d.vertices.size(), -1);
+    vertices.exact.reserve(d.vertices.size() / 2 + mesh.vertex_count());  // most vertices are in two or more polygons
     for (size_t k = 0; k < d.vertices.size(); ++k)
       if (well_formed(d.vertices[k], mesh.vertex_count(), n))
         vertices.of_diagram_vertex[k] = vertices.exact.add(d.vertices[k]);

@@ -94,39 +94,7 @@ int ExactVertices::index(const SymbolicVertex& q) {
   return id;
 }
 
-namespace {
-
-// Slot of a hash in a table of 2^k slots (mask 2^k - 1): the high bits of a multiplicative mix.
-std::size_t home_slot(const SymbolicVertex& q, std::size_t mask) {
-  const std::uint64_t h = static_cast<std::uint64_t>(SymbolicVertexHash()(q)) * 0x9E3779B97F4A7C15ull;
-  return static_cast<std::size_t>(h >> 32) & mask;
-}
-
-}  // namespace
-
-int ExactVertices::add(const SymbolicVertex& q) {
-  if (2 * (symbolic_.size() + 1) > slots_.size()) grow();
-  const std::size_t mask = slots_.size() - 1;
-  for (std::size_t k = home_slot(q, mask);; k = (k + 1) & mask) {
-    const int id = slots_[k];
-    if (id < 0) {
-      slots_[k] = static_cast<int>(symbolic_.size());
-      symbolic_.push_back(q);
-      return slots_[k];
-    }
-    if (symbolic_[id] == q) return id;
-  }
-}
-
-void ExactVertices::grow() {
-  slots_.assign(std::max<std::size_t>(1024, 2 * slots_.size()), -1);
-  const std::size_t mask = slots_.size() - 1;
-  for (int id = 0; id < static_cast<int>(symbolic_.size()); ++id) {
-    std::size_t k = home_slot(symbolic_[id], mask);
-    while (slots_[k] >= 0) k = (k + 1) & mask;
-    slots_[k] = id;
-  }
-}
+int ExactVertices::add(const SymbolicVertex& q) { return symbolic_.insert(q); }
 
 void ExactVertices::make_points() {
   const std::size_t from = points_.size(), to = symbolic_.size();

@@ -98,18 +98,16 @@ class ExactVertices {
   int add(const SymbolicVertex& q);
   //! Makes the points of the vertices added since the last call, in parallel.
   void make_points();
+  //! Room for n distinct vertices.
+  void reserve(std::size_t n) { symbolic_.reserve(n); }
   const ExactVertex& operator[](int id) const { return points_[id]; }
   const SymbolicVertex& symbolic(int id) const { return symbolic_[id]; }
   const SymbolicContext& context() const { return ctx_; }
 
  private:
-  void grow();
-
   SymbolicContext ctx_;
-  // Open addressing with linear probing: each slot an id into symbolic_, or -1; at most half full.
-  std::vector<int> slots_;
+  SymbolicVertexIndex symbolic_;
   std::vector<ExactVertex> points_;
-  std::vector<SymbolicVertex> symbolic_;
 };
 
 //! A triangle's own 2D frame: the coordinate plane that drops `drop`, where the triangle has

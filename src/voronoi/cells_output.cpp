@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "mesh/surface_mesh.h"
 
@@ -28,21 +30,30 @@ std::array<unsigned char, 3> palette_color(int index) {
   return {byte(r), byte(g), byte(b)};
 }
 
-std::vector<int> color_cells(const Diagram& diagram) {
-  const int n = diagram.sample_count;
-  std::vector<std::vector<int>> adjacent(n);
-  for (const SymbolicVertex& q : diagram.vertices)
-    for (int a = 0; a < q.num_labels(); ++a)
-      for (int b = 0; b < q.num_labels(); ++b)
-        if (a != b) adjacent[q.label[a]].push_back(q.label[b]);
+std::vector<int> color_cells(int cell_count, const std::vector<SymbolicVertex>& vertices) {
+  const int n = cell_count;
+  // Each cell's neighbours, one list after another (offsets first, then the lists).
+  std::vector<int> offset(n + 1, 0);
+  auto for_each_pair = [&](auto&& visit) {
+    for (const SymbolicVertex& q : vertices)
+      for (int a = 0; a < q.num_labels(); ++a)
+        for (int b = 0; b < q.num_labels(); ++b)
+          if (a != b) visit(q.label[a], q.label[b]);
+  };
+  for_each_pair([&](int i, int) { ++offset[i + 1]; });
+  for (int i = 0; i < n; ++i) offset[i + 1] += offset[i];
+  std::vector<int> adjacent(offset[n]);
+  std::vector<int> fill(offset.begin(), offset.end() - 1);
+  for_each_pair([&](int i, int j) { adjacent[fill[i]++] = j; });
   std::vector<int> color(n, -1);
   std::vector<char> used;
   for (int i = 0; i < n; ++i) {
-    std::sort(adjacent[i].begin(), adjacent[i].end());
-    adjacent[i].erase(std::unique(adjacent[i].begin(), adjacent[i].end()), adjacent[i].end());
-    used.assign(adjacent[i].size() + 1, 0);
-    for (int j : adjacent[i])
-      if (color[j] >= 0 && color[j] < static_cast<int>(used.size())) used[color[j]] = 1;
+    const auto begin = adjacent.begin() + offset[i], end = adjacent.begin() + offset[i + 1];
+    std::sort(begin, end);
+    const auto last = std::unique(begin, end);
+    used.assign(static_cast<std::size_t>(last - begin) + 1, 0);
+    for (auto it = begin; it != last; ++it)
+      if (color[*it] >= 0 && color[*it] < static_cast<int>(used.size())) used[color[*it]] = 1;
     color[i] = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
   }
   return color;
@@ -51,20 +62,29 @@ std::vector<int> color_cells(const Diagram& diagram) {
 PolygonMesh diagram_polygon_mesh(const Diagram& diagram, const SurfaceMesh& mesh) {
   PolygonMesh out;
   const SymbolicContext ctx = diagram.context(mesh);
-  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> index;
-  const std::vector<int> colors = color_cells(diagram);
-  for (const CellPolygon& poly : diagram.polygons) {
-    std::vector<int> face;
+  SymbolicVertexIndex index;
+  index.reserve(diagram.vertices.size() / 2);  // most vertices are in two or more polygons
+  const std::size_t np = diagram.polygons.size();
+  out.faces.resize(np);
+  out.face_cell.resize(np);
+  for (std::size_t p = 0; p < np; ++p) {
+    const CellPolygon& poly = diagram.polygons[p];
     const SymbolicVertex* verts = diagram.polygon_vertices(poly);
-    for (int a = 0; a < poly.vertex_count; ++a) {
-      auto [it, fresh] = index.try_emplace(verts[a], static_cast<int>(out.positions.size()));
-      if (fresh) out.positions.push_back(position(verts[a], ctx));
-      face.push_back(it->second);
-    }
-    out.faces.push_back(std::move(face));
-    out.face_cell.push_back(poly.cell);
-    out.face_color.push_back(palette_color(colors[poly.cell]));
+    std::vector<int>& face = out.faces[p];
+    face.resize(poly.vertex_count);
+    for (int a = 0; a < poly.vertex_count; ++a) face[a] = index.insert(verts[a]);
+    out.face_cell[p] = poly.cell;
   }
+  const std::vector<int> colors = color_cells(diagram.sample_count, index.vertices());
+  std::vector<std::array<unsigned char, 3>> palette;  // colours are small numbers: each made once
+  for (int c : colors)
+    while (static_cast<int>(palette.size()) <= c) palette.push_back(palette_color(static_cast<int>(palette.size())));
+  out.face_color.resize(np);
+  for (std::size_t p = 0; p < np; ++p) out.face_color[p] = palette[colors[out.face_cell[p]]];
+  out.positions.resize(index.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, index.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) out.positions[k] = position(index[static_cast<int>(k)], ctx);
+  });
   return out;
 }
 
