@@ -117,12 +117,12 @@ class EdgeChecker {
       const auto cells_mine = cells_of(mine_), cells_theirs = cells_of(theirs_);
       if (cells_mine != cells_theirs)
         conforming_.fail(fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]", lo, hi, t,
-                                         fmt::join(cells_mine, ", "), across, fmt::join(cells_theirs, ", ")));
+                                     fmt::join(cells_mine, ", "), across, fmt::join(cells_theirs, ", ")));
       else
         conforming_.fail(fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it at different "
-                                         "points: [{}] vs [{}]",
-                                         lo, hi, t, across, fmt::join(cells_mine, ", "), split_points(mine_),
-                                         split_points(theirs_)));
+                                     "points: [{}] vs [{}]",
+                                     lo, hi, t, across, fmt::join(cells_mine, ", "), split_points(mine_),
+                                     split_points(theirs_)));
     }
 
     // (2) polygons of one cell are joined when their segments overlap in positive length.
@@ -161,39 +161,39 @@ class EdgeChecker {
 };
 
 // (2) from the polygons joined along mesh edges (union-find over `parent`).
-void count_components(const Samples& samples_, const Diagram& diagram_, const std::vector<char>& piece_,
-                    std::vector<int>& parent_, DiagramVerification& out_) {
-  const int n = diagram_.sample_count;
+void count_components(const Samples& samples, const Diagram& diagram, const std::vector<char>& piece,
+                      std::vector<int>& parent, DiagramVerification& out) {
+  const int n = diagram.sample_count;
   std::vector<std::vector<int>> polygons_of_cell(n);
-  for (int p = 0; p < static_cast<int>(diagram_.polygons.size()); ++p)
-    if (piece_[p]) polygons_of_cell[diagram_.polygons[p].cell].push_back(p);
+  for (int p = 0; p < static_cast<int>(diagram.polygons.size()); ++p)
+    if (piece[p]) polygons_of_cell[diagram.polygons[p].cell].push_back(p);
   std::vector<int> roots;
   for (int i = 0; i < n; ++i) {
-    ++out_.connected.checked;
+    ++out.connected.checked;
     const std::vector<int>& polys = polygons_of_cell[i];
     roots.clear();
-    for (int p : polys) roots.push_back(find_root(parent_, p));
+    for (int p : polys) roots.push_back(find_root(parent, p));
     std::vector<int> distinct = roots;
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
     if (distinct.size() <= 1) continue;  // an empty cell is (1)'s business, not connectedness
-    ++out_.cells_with_multiple_components;
+    ++out.cells_with_multiple_components;
     // The main piece holds the sample; the first other piece is named as the stray one.
     int home = roots.front();
     for (size_t k = 0; k < polys.size(); ++k)
-      if (i < samples_.size() && diagram_.polygons[polys[k]].triangle == samples_.triangles[i]) home = roots[k];
+      if (i < samples.size() && diagram.polygons[polys[k]].triangle == samples.triangles[i]) home = roots[k];
     int stray = -1;
     std::vector<int> triangles;
     for (size_t k = 0; k < polys.size(); ++k) {
       if (roots[k] == home || (stray >= 0 && roots[k] != stray)) continue;
       stray = roots[k];
-      triangles.push_back(diagram_.polygons[polys[k]].triangle);
+      triangles.push_back(diagram.polygons[polys[k]].triangle);
     }
     const size_t shown = std::min<size_t>(triangles.size(), 8);
-    out_.connected.fail(fmt::format("cell {}: {} pieces, stray piece in triangle{} {}{}", i, distinct.size(),
-                                    triangles.size() > 1 ? "s" : "",
-                                    fmt::join(triangles.begin(), triangles.begin() + shown, ", "),
-                                    triangles.size() > shown ? ", ..." : ""));
+    out.connected.fail(fmt::format("cell {}: {} pieces, stray piece in triangle{} {}{}", i, distinct.size(),
+                                   triangles.size() > 1 ? "s" : "",
+                                   fmt::join(triangles.begin(), triangles.begin() + shown, ", "),
+                                   triangles.size() > shown ? ", ..." : ""));
   }
 }
 

@@ -1,5 +1,6 @@
-// Exact geometry for the diagram verification: cached rational vertex positions, the triangle's 2D
-// frame, filtered exact orientation, areas and power-distance comparisons.
+// Exact geometry for the diagram verification: the points' interval enclosures and their rational
+// positions made on first use, the triangle's 2D frame, filtered exact orientation, areas,
+// power-distance and edge-parameter comparisons.
 #include "verification/diagram_geometry.h"
 
 #include <cmath>
