@@ -81,8 +81,8 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
   std::string failures;
   if (!opt.no_verify) {
     // About 25 us a sample on one core, 15 on two (the elk at 50,000 samples: 1.2 s against the
-    // diagram's 0.3 s; at 200,000, 5.3 s), so a large diagram says what it waits for.
-    progress(input.samples.size() >= 10000
+    // diagram's 0.3 s; at 200,000, 5.3 s), so a diagram that takes seconds says what it waits for.
+    progress(input.samples.size() >= 100000
                  ? fmt::format("verifying the diagram in exact arithmetic, about {:.0f} s (--no-verify skips it)",
                                std::max(1.0, 3e-5 * input.samples.size()))
                  : std::string("verifying"));
