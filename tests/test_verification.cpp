@@ -179,6 +179,9 @@ TEST_CASE("Degenerate inputs pass: bisectors along mesh edges and through mesh v
       INFO(name << " " << to_string(kind) << "\n" << v.summary());
       CHECK(v.passed);
       CHECK(v.connected.passed);
+      // Exact ties: some signs are zero, which only the rationals can tell.
+      CHECK(v.rational_points > 0);
+      CHECK(v.rational_points <= v.distinct_vertices + samples.size());
     }
 }
 
@@ -501,6 +504,8 @@ TEST_CASE("The report has the documented JSON keys", "[verification]") {
     CHECK(p.at("first_offenders").is_array());
   }
   CHECK(v.summary().empty());
+  CHECK(j.at("distinct_vertices").get<std::int64_t>() >= mesh.vertex_count());
+  CHECK(j.at("rational_points").get<std::int64_t>() >= 0);
 }
 
 TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {

@@ -436,6 +436,7 @@ class DiagramChecker {
         if (contains && own) inside = true;
         if (contains && !own && holder < 0) holder = d_.polygons[p].cell;
       }
+      out_.rational_points += point.has_rationals();
       if (inside) continue;
       if (!has_polygon)
         out_.sample_in_cell.fail(fmt::format("sample {}: cell {} has no polygon in the sample's triangle {}", i, i, t));
@@ -503,6 +504,7 @@ void in_chunks(int count, int chunk, DiagramVerification& out, Check check) {
                         &DiagramVerification::equidistant, &DiagramVerification::disjoint,
                         &DiagramVerification::coverage, &DiagramVerification::conforming})
       merge_into(out.*member, part.*member);
+  for (const DiagramVerification& part : parts) out.rational_points += part.rational_points;
 }
 
 void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram, const VerifyOptions& options,
@@ -518,6 +520,9 @@ void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d
   std::vector<char> piece(diagram.polygons.size());
   for (size_t p = 0; p < piece.size(); ++p) piece[p] = in.polygon_ok[p] && in.area_sign[p] == Sign::Positive;
   check_edges(mesh, samples, diagram, in.polygon_ok, piece, in.vertices, out);
+  out.distinct_vertices = static_cast<std::int64_t>(in.vertices.exact.size());
+  for (std::size_t id = 0; id < in.vertices.exact.size(); ++id)
+    out.rational_points += in.vertices.exact[static_cast<int>(id)].has_rationals();
 }
 
 }  // namespace

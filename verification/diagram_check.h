@@ -37,6 +37,10 @@ struct DiagramVerification {
   PropertyResult coverage;        //!< (5) polygons of a triangle cover it
   PropertyResult conforming;      //!< (6) both sides of a mesh edge split it alike
   int cells_with_multiple_components = 0;
+  std::int64_t distinct_vertices = 0;  //!< distinct symbolic vertices of the polygons and the mesh
+  //! Points (distinct vertices and samples) whose rational coordinates or edge parameter some check
+  //! needed: an interval enclosure decided every sign of the others.
+  std::int64_t rational_points = 0;
 
   nlohmann::json to_json() const;
   //! One line per failed property, empty when all passed.

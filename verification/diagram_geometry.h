@@ -75,6 +75,8 @@ class ExactVertex {
   //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first
   //! call, from any thread).
   const Q& edge_parameter() const;
+  //! Whether p() or edge_parameter() has been computed.
+  bool has_rationals() const { return static_cast<bool>(exact_) || static_cast<bool>(parameter_); }
 
  private:
   enum class Source : std::uint8_t { Symbolic, Barycentric };
@@ -103,6 +105,7 @@ class ExactVertices {
   const ExactVertex& operator[](int id) const { return points_[id]; }
   const SymbolicVertex& symbolic(int id) const { return symbolic_[id]; }
   const SymbolicContext& context() const { return ctx_; }
+  std::size_t size() const { return points_.size(); }
 
  private:
   SymbolicContext ctx_;

@@ -26,6 +26,8 @@ nlohmann::json DiagramVerification::to_json() const {
   return {{"passed", passed},
           {"time_s", time_s},
           {"cells_with_multiple_components", cells_with_multiple_components},
+          {"distinct_vertices", distinct_vertices},
+          {"rational_points", rational_points},
           {"properties",
            {{"sample_in_cell", sample_in_cell.to_json()},
             {"connected", connected.to_json()},
