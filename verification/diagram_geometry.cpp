@@ -71,6 +71,7 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
 
 const ExactPoint& ExactVertex::p() const {
   return exact_.get([&] {
+    if (!ctx_.vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
     if (source_ == Source::Symbolic) return exact_position(q_, ctx_);
     const Q b[3] = {Q(barycentric_.x), Q(barycentric_.y), Q(barycentric_.z)};
     const Q sum = b[0] + b[1] + b[2];
@@ -86,7 +87,10 @@ const ExactPoint& ExactVertex::p() const {
 }
 
 const Q& ExactVertex::edge_parameter() const {
-  return parameter_.get([&] { return exact_edge_parameter(q_, ctx_); });
+  return parameter_.get([&] {
+    if (!ctx_.vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
+    return exact_edge_parameter(q_, ctx_);
+  });
 }
 
 int ExactVertices::index(const SymbolicVertex& q) {
