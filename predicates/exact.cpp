@@ -120,7 +120,7 @@ CGAL::Gmpq exact_edge_parameter(const SymbolicVertex& q, const SymbolicContext& 
 
 std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
   CGAL::Protect_FPU_rounding<true> upward;
-  PositionEnclosure e;
+  PositionEnclosure e{};
   if (q.type == SymbolicVertex::Type::A) {
     const Vec3& p = ctx.vertices[q.v[0]];
     e.box = {Interval(p.x), Interval(p.y), Interval(p.z)};
@@ -139,8 +139,9 @@ std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const
   }
   e.box = {r.x, r.y, r.z};
   // Past the doubles' range (an overflow gives infinite or undefined bounds): the exact formula.
-  for (const Interval& i : {e.box[0], e.box[1], e.box[2], e.parameter})
-    if (!std::isfinite(i.inf()) || !std::isfinite(i.sup())) return std::nullopt;
+  auto finite = [](const Interval& i) { return std::isfinite(i.inf()) && std::isfinite(i.sup()); };
+  if (!finite(e.box[0]) || !finite(e.box[1]) || !finite(e.box[2])) return std::nullopt;
+  if (q.type == SymbolicVertex::Type::B && !finite(e.parameter)) return std::nullopt;
   return e;
 }
 

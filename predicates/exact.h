@@ -31,7 +31,7 @@ CGAL::Gmpq exact_edge_parameter(const SymbolicVertex& q, const SymbolicContext& 
 //! evaluated from the defining doubles in interval arithmetic: a filter in front of the rationals.
 struct PositionEnclosure {
   std::array<CGAL::Interval_nt<false>, 3> box;
-  CGAL::Interval_nt<false> parameter;  //!< type B only: encloses exact_edge_parameter
+  CGAL::Interval_nt<false> parameter{0};  //!< type B only: encloses exact_edge_parameter
 };
 //! The enclosure of q's position, with finite bounds; nullopt when the intervals cannot tell
 //! whether q exists (its formula's denominator holds zero) or overflow, and exact_position decides.

@@ -309,6 +309,10 @@ TEST_CASE("Interval enclosures of vertex positions hold the exact ones", "[predi
                                     SymbolicVertex::in_triangle({0, 1, 2}, 0, 1, 2), SymbolicVertex::mesh_vertex(2)}) {
       const lrvd::ExactPoint x = lrvd::exact_position(v, ctx);
       REQUIRE(enclosed(v, x, ctx));
+      // On its bisectors exactly (weights included): the verification counts a vertex's own
+      // labels as equidistant on the strength of this construction.
+      for (int m = 1; m < v.num_labels(); ++m)
+        REQUIRE(lrvd::exact_power_distance(x, sites[v.label[m]]) == lrvd::exact_power_distance(x, sites[v.label[0]]));
       const std::optional<lrvd::PositionEnclosure> e = lrvd::enclose_position(v, ctx);
       if (!e) continue;
       ++enclosures;

@@ -187,14 +187,14 @@ bool within_edge(const ExactVertex& b) {
   return !CGAL::is_negative(b.edge_parameter()) && b.edge_parameter() <= Q(1);
 }
 
-EdgePosition EdgePosition::of(int id, const SymbolicVertex& q, const ExactVertex& x, int lo) {
+EdgePosition EdgePosition::of(int id, const SymbolicVertex& q, const ExactVertex& x, int from) {
   EdgePosition e;
   e.id = id;
   if (q.type == SymbolicVertex::Type::A) {
-    e.end = q.v[0] == lo ? 0 : 1;
+    e.end = q.v[0] == from ? 0 : 1;
   } else {
     e.vertex = &x;
-    e.reversed = q.v[0] != lo;
+    e.reversed = q.v[0] != from;
   }
   return e;
 }

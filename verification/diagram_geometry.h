@@ -61,7 +61,7 @@ class ExactVertex {
  public:
   bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
   std::array<Interval, 3> box;
-  Interval parameter_box;  //!< type B only: encloses edge_parameter()
+  Interval parameter_box{0};  //!< type B only: encloses edge_parameter()
 
   ExactVertex() = default;
   //! The point q defines; not valid when it defines none (decided exactly).
@@ -135,17 +135,18 @@ Sign area_sign(const std::vector<const ExactVertex*>& polygon, const Frame& f);
 //! Whether a type B vertex lies on its edge, between its endpoints (parameter in [0, 1]), exactly.
 bool within_edge(const ExactVertex& b);
 
-//! A point's position along a mesh edge (lo, hi): 0 at lo and 1 at hi for a mesh vertex (type
-//! A), a type B vertex's parameter (from lo) otherwise. Two positions of one vertex compare equal
-//! without arithmetic.
+//! A point's position along a mesh edge, measured from one of its ends (`from`): 0 at that end
+//! and 1 at the other for a mesh vertex (type A), a type B vertex's parameter otherwise. Two
+//! positions of one vertex compare equal without arithmetic, so positions compared with each
+//! other must be measured from the same end. \pre the point lies on the edge by definition.
 struct EdgePosition {
   int id = -1;                           //!< exact vertex id
   const ExactVertex* vertex = nullptr;  //!< type B; null for an endpoint
-  int end = 0;                           //!< endpoint: 0 at lo, 1 at hi
-  bool reversed = false;                 //!< type B: its v[0] is hi, so the position is 1 - parameter
+  int end = 0;                           //!< endpoint: 0 at `from`, 1 at the other end
+  bool reversed = false;                 //!< type B: its v[0] is not `from`, so the position is 1 - parameter
 
-  //! The position of exact vertex `id` (symbolic q) along the edge whose lower endpoint is lo.
-  static EdgePosition of(int id, const SymbolicVertex& q, const ExactVertex& x, int lo);
+  //! The position of exact vertex `id` (symbolic q) along its edge, measured from mesh vertex `from`.
+  static EdgePosition of(int id, const SymbolicVertex& q, const ExactVertex& x, int from);
   Q exact() const;
 };
 //! Exact sign of x - y, filtered.
