@@ -521,8 +521,19 @@ void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d
   for (size_t p = 0; p < piece.size(); ++p) piece[p] = in.polygon_ok[p] && in.area_sign[p] == Sign::Positive;
   check_edges(mesh, samples, diagram, in.polygon_ok, piece, in.vertices, out);
   out.distinct_vertices = static_cast<std::int64_t>(in.vertices.exact.size());
-  for (std::size_t id = 0; id < in.vertices.exact.size(); ++id)
-    out.rational_points += in.vertices.exact[static_cast<int>(id)].has_rationals();
+  for (int id = 0; id < static_cast<int>(in.vertices.exact.size()); ++id) {
+    const ExactVertex& x = in.vertices.exact[id];
+    out.rational_points += x.has_rationals();
+    // (3) counts a vertex's own labels as equidistant by construction (check_equidistance). Where
+    // a check made its rational point anyway, at ties, the construction is checked too, for free.
+    if (!x.has_point()) continue;
+    const SymbolicVertex& q = in.vertices.exact.symbolic(id);
+    for (int k = 1; k < q.num_labels(); ++k)
+      if (compare_power_distance(x, diagram.sites[q.label[0]], diagram.sites[q.label[k]]) != Sign::Zero) {
+        out.equidistant.fail(fmt::format("vertex {} is not equidistant from its cells", describe(q)));
+        break;
+      }
+  }
 }
 
 }  // namespace

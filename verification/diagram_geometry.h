@@ -77,6 +77,8 @@ class ExactVertex {
   const Q& edge_parameter() const;
   //! Whether p() or edge_parameter() has been computed.
   bool has_rationals() const { return static_cast<bool>(exact_) || static_cast<bool>(parameter_); }
+  //! Whether p() has been computed.
+  bool has_point() const { return static_cast<bool>(exact_); }
 
  private:
   enum class Source : std::uint8_t { Symbolic, Barycentric };
