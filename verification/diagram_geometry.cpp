@@ -206,12 +206,19 @@ Q EdgePosition::exact() const {
 
 Sign compare(const EdgePosition& x, const EdgePosition& y) {
   if (x.id == y.id && x.reversed == y.reversed) return Sign::Zero;
-  auto box = [](const EdgePosition& e) {
-    if (!e.vertex) return Interval(e.end);
-    return e.reversed ? Interval(1) - e.vertex->parameter_box : e.vertex->parameter_box;
-  };
-  Sign s;
-  {
+  Sign s = Sign::Zero;
+  if (!x.reversed && !y.reversed) {
+    // Both boxes hold the positions themselves: disjoint boxes order them, and no arithmetic
+    // (nor rounding mode) is needed. Overlapping ones are what the filter below leaves undecided.
+    const Interval bx = x.vertex ? x.vertex->parameter_box : Interval(x.end);
+    const Interval by = y.vertex ? y.vertex->parameter_box : Interval(y.end);
+    if (bx.inf() > by.sup()) s = Sign::Positive;
+    else if (bx.sup() < by.inf()) s = Sign::Negative;
+  } else {
+    auto box = [](const EdgePosition& e) {
+      if (!e.vertex) return Interval(e.end);
+      return e.reversed ? Interval(1) - e.vertex->parameter_box : e.vertex->parameter_box;
+    };
     CGAL::Protect_FPU_rounding<true> upward;
     s = filtered_sign(box(x) - box(y));
   }
