@@ -60,7 +60,7 @@ class Lazy {
 class ExactVertex {
  public:
   bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
-  std::array<Interval, 3> box;
+  std::array<Interval, 3> box{Interval(0), Interval(0), Interval(0)};
   Interval parameter_box{0};  //!< type B only: encloses edge_parameter()
 
   ExactVertex() = default;
