@@ -19,9 +19,6 @@ namespace {
 
 using namespace verify_detail;
 
-// Work items of the parallel passes; fixed, so that the merged results are alike for any threads.
-constexpr int kTrianglesAChunk = 512;
-constexpr int kSamplesAChunk = 512;
 
 // A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
@@ -304,24 +301,22 @@ class DiagramChecker {
       rest += Q(count) * twice_area(points_, f);
     }
     std::sort(along_bc_.begin(), along_bc_.end());
-    bool unit = true;  // along_bc is 1 by the ends' counts alone
+    int n_c = 0;             // n_v at corner c
+    bool elsewhere = false;  // a non-zero n_v at a vertex other than the corners b and c
     for (size_t k = 0; k < along_bc_.size();) {
       int n = 0;
       size_t m = k;
       for (; m < along_bc_.size() && along_bc_[m][0] == along_bc_[k][0]; ++m) n += along_bc_[m][2];
-      const SymbolicVertex& v = d_.vertices[along_bc_[k][1]];
-      const bool at_b = v.type == SymbolicVertex::Type::A && v.v[0] == tri[1];
-      const bool at_c = v.type == SymbolicVertex::Type::A && v.v[0] == tri[2];
-      unit = unit && (n == 0 || at_b || (at_c && n == 1));
       along_bc_[k][2] = n;  // the first entry of each vertex carries its total
       for (size_t j = k + 1; j < m; ++j) along_bc_[j][2] = 0;
+      const SymbolicVertex& v = d_.vertices[along_bc_[k][1]];
+      const bool corner = v.type == SymbolicVertex::Type::A;
+      if (corner && v.v[0] == tri[2]) n_c = n;
+      else if (n != 0 && !(corner && v.v[0] == tri[1])) elsewhere = true;
       k = m;
     }
-    const bool c_counted = std::any_of(along_bc_.begin(), along_bc_.end(), [&](const std::array<int, 3>& x) {
-      const SymbolicVertex& v = d_.vertices[x[1]];
-      return x[2] == 1 && v.type == SymbolicVertex::Type::A && v.v[0] == tri[2];
-    });
-    if (CGAL::is_zero(rest) && unit && c_counted) return;  // sum = along_bc * area + rest = area
+    // With s_b = 0 and s_c = 1: sum = n_c * area + rest = area.
+    if (CGAL::is_zero(rest) && n_c == 1 && !elsewhere) return;
     Q along_bc(0);
     for (const auto& [id, vertex, n] : along_bc_)
       if (n != 0) along_bc += Q(n) * parameter_along(d_.vertices[vertex], id, tri[1]);
@@ -511,10 +506,10 @@ void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d
                DiagramVerification& out) {
   Checked in(mesh, samples, diagram, options);
   in.index_vertices();
-  in_chunks(mesh.triangle_count(), kTrianglesAChunk, out, [&](int begin, int end, DiagramVerification& part) {
+  in_chunks(mesh.triangle_count(), kCheckChunk, out, [&](int begin, int end, DiagramVerification& part) {
     DiagramChecker(in, part).check_triangles(begin, end);
   });
-  in_chunks(samples.size(), kSamplesAChunk, out, [&](int begin, int end, DiagramVerification& part) {
+  in_chunks(samples.size(), kCheckChunk, out, [&](int begin, int end, DiagramVerification& part) {
     DiagramChecker(in, part).check_samples(begin, end);
   });
   std::vector<char> piece(diagram.polygons.size());

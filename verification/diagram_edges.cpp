@@ -203,13 +203,12 @@ void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram&
                  const std::vector<char>& polygon_ok, const std::vector<char>& piece, const VertexIndex& vertices,
                  DiagramVerification& out) {
   // The edges in parallel, by fixed chunks of triangles merged in order; the joins then in that order.
-  constexpr int kChunk = 512;
-  const int chunks = (mesh.triangle_count() + kChunk - 1) / kChunk;
+  const int chunks = (mesh.triangle_count() + kCheckChunk - 1) / kCheckChunk;
   std::vector<PropertyResult> conforming(chunks);
   std::vector<std::vector<std::pair<int, int>>> joins(chunks);
   tbb::parallel_for(0, chunks, [&](int c) {
     EdgeChecker(mesh, diagram, polygon_ok, piece, vertices, conforming[c], joins[c])
-        .check_triangles(c * kChunk, std::min(mesh.triangle_count(), (c + 1) * kChunk));
+        .check_triangles(c * kCheckChunk, std::min(mesh.triangle_count(), (c + 1) * kCheckChunk));
   });
   std::vector<int> parent(diagram.polygons.size());
   std::iota(parent.begin(), parent.end(), 0);

@@ -166,6 +166,10 @@ struct VertexIndex {
   std::vector<int> of_diagram_vertex;
 };
 
+//! Triangles or samples a work item of the parallel checks takes; fixed, so that the chunks' results,
+//! merged in order, are the same for any number of threads.
+constexpr int kCheckChunk = 512;
+
 //! Folds a range's results into the whole's, in range order: the first offenders are those a
 //! single pass would list.
 void merge_into(PropertyResult& into, const PropertyResult& part);
