@@ -2,7 +2,9 @@
 // fallback of position() when doubles overflow.
 #include "predicates/exact.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -118,8 +120,10 @@ CGAL::Gmpq exact_edge_parameter(const SymbolicVertex& q, const SymbolicContext& 
   return f.edge_numerator / f.denominator;
 }
 
-std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
-  CGAL::Protect_FPU_rounding<true> upward;
+namespace {
+
+// enclose_position's body, with the rounding mode already upward (Protect_FPU_rounding).
+std::optional<PositionEnclosure> enclose_upward(const SymbolicVertex& q, const SymbolicContext& ctx) {
   PositionEnclosure e{};
   if (q.type == SymbolicVertex::Type::A) {
     const Vec3& p = ctx.vertices[q.v[0]];
@@ -143,6 +147,25 @@ std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const
   if (!finite(e.box[0]) || !finite(e.box[1]) || !finite(e.box[2])) return std::nullopt;
   if (q.type == SymbolicVertex::Type::B && !finite(e.parameter)) return std::nullopt;
   return e;
+}
+
+}  // namespace
+
+std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  return enclose_upward(q, ctx);
+}
+
+void distance_bounds2(const SymbolicVertex* v, int count, const Vec3& center, const SymbolicContext& ctx, double* bound2) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const V3<Interval> c = lift<Interval>(center);
+  for (int k = 0; k < count; ++k) {
+    bound2[k] = std::numeric_limits<double>::infinity();
+    const std::optional<PositionEnclosure> e = enclose_upward(v[k], ctx);
+    if (!e) continue;
+    const Interval d2 = CGAL::square(e->box[0] - c.x) + CGAL::square(e->box[1] - c.y) + CGAL::square(e->box[2] - c.z);
+    if (std::isfinite(d2.sup())) bound2[k] = d2.sup();
+  }
 }
 
 bool zero_area_unperturbed(const SymbolicVertex* v, int count, const SymbolicContext& ctx) {

@@ -327,6 +327,16 @@ void reset_predicate_stats() {
 
 namespace predicates {
 
+bool ball_clear_of_bisector_weighted(const Site& i, const Site& l, double reach2) {
+  if (!(reach2 >= 0) || !std::isfinite(reach2)) return false;
+  CGAL::Protect_FPU_rounding<true> rounding;
+  const IA dx = IA(l.p.x) - IA(i.p.x), dy = IA(l.p.y) - IA(i.p.y), dz = IA(l.p.z) - IA(i.p.z);
+  const IA d2 = CGAL::square(dx) + CGAL::square(dy) + CGAL::square(dz);
+  const IA margin = d2 + (IA(i.w) - IA(l.w));  // D^2 + w_i - w_l, which must exceed 2 D r >= 0
+  if (!(margin.inf() > 0)) return false;
+  return (CGAL::square(margin) - IA(4) * d2 * IA(reach2)).inf() > 0;
+}
+
 bool in_filter_range(const Vec3& v) { return in_range(v); }
 bool in_filter_range(const Site& s) { return in_range(s); }
 

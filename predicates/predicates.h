@@ -92,6 +92,21 @@ inline BoundedPowerDistance bounded_power_distance(const Site& s, const Vec3& q)
   return {squared - s.w, 0x1p-49 * squared + (0x1p-51 * (s.w < 0 ? -s.w : s.w) + 0x1p-1000)};
 }
 
+//! Whether every point y with |y - x_i|^2 <= reach2 is strictly closer (power distance) to site i
+//! than to site l: a certified test, false whenever it cannot tell (never true for one site twice).
+//! For such y, d_l(y) - d_i(y) = D^2 - 2 (y - x_i).(x_l - x_i) + w_i - w_l >= D^2 - 2 D r + w_i - w_l
+//! with D = |x_l - x_i| and r = sqrt(reach2), which is positive when 2 D r < D^2 + w_i - w_l; with
+//! equal weights, when 4 reach2 < D^2. The clipper skips, by it, bisectors far from a polygon.
+//! \pre i and l are in the filter range (in_filter_range).
+bool ball_clear_of_bisector_weighted(const Site& i, const Site& l, double reach2);
+inline bool ball_clear_of_bisector(const Site& i, const Site& l, double reach2) {
+  if (i.w != l.w) return ball_clear_of_bisector_weighted(i, l, reach2);
+  // D^2 from below: bounded_power_distance's value less twice its error bound (once for the bound,
+  // once more for this subtraction's and the product's roundings). 4 reach2 is exact or infinite.
+  const BoundedPowerDistance d = bounded_power_distance(Site{l.p, 0, -1}, i.p);
+  return d.value - 2 * d.error > 4 * reach2;
+}
+
 //! side1(i, l, q, true) from q's bounded power distances to i and to l: the same answer, decided in
 //! doubles when the distances differ by more than their error bounds, else by side1 itself (and
 //! counted as one side1 call either way).

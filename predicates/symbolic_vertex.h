@@ -88,6 +88,13 @@ bool coincide_unperturbed(const SymbolicVertex& u, const SymbolicVertex& w, cons
 //! clipping met an exact tie.
 bool zero_area_unperturbed(const SymbolicVertex* v, int count, const SymbolicContext& ctx);
 
+//! For each of the `count` vertices, an upper bound on the squared distance from `center` to its
+//! exact (unperturbed) position, from its interval enclosure (predicates/exact.h); +infinity when
+//! it cannot be enclosed. With predicates::ball_clear_of_bisector they tell that a clip by
+//! bisector(i, l) would keep every vertex of a polygon of cell i (side() evaluates at those
+//! positions), so Sutherland-Hodgman would return the polygon as it was.
+void distance_bounds2(const SymbolicVertex* v, int count, const Vec3& center, const SymbolicContext& ctx, double* bound2);
+
 //! Double position for output and integration. Type B: parameter F1/(F1 - F2) clamped to [0, 1];
 //! type C: Cramer's rule; falls back to the rounded exact position when doubles overflow or the
 //! double system is singular.

@@ -21,6 +21,7 @@
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"
+#include "voronoi/clip.h"
 #include "voronoi/growth_entry.h"
 #include "voronoi/lrvd.h"
 
@@ -189,6 +190,62 @@ TEST_CASE("RVD and LRVD are identical on a coarse square: one, a few and many ca
     if (n == 300) REQUIRE(most > 16);
     require_same_polygons(compute_rvd(mesh, samples), lrvd);
     REQUIRE(verify_diagram(mesh, samples, lrvd).passed);
+  }
+}
+
+TEST_CASE("The clipper's many-candidate path gives clip_triangle's polygons vertex for vertex, skipping far bisectors",
+          "[lrvd][clip]") {
+  // More than CellClipper::kMaxLabels candidates: each cell's polygon skips the bisectors that a
+  // certified bound shows cannot cut it. The polygons must be the unpruned loop's, in the same
+  // order from the same first vertex, for long and compact triangles, equal and unequal weights,
+  // and for coordinates beyond the filters' range (no bound taken there).
+  std::mt19937_64 rng(3);
+  for (const double scale : {1.0, 0x1p110}) {
+    for (const bool needle : {true, false}) {
+      const SurfaceMesh mesh({Vec3{0, 0, 0} * scale, (needle ? Vec3{100, 0, 0} : Vec3{3, 0, 0}) * scale,
+                              (needle ? Vec3{0, 0.5, 0.2} : Vec3{0, 3, 1}) * scale},
+                             {Triangle{0, 1, 2}});
+      for (const bool weighted : {false, true}) {
+        const int m = 17 + int(rng() % 44);
+        std::uniform_real_distribution<double> along(0, needle ? 100 : 3), across(-0.5, 1.5), weight(-0.2, 0.2);
+        std::vector<Site> sites(m);
+        for (int s = 0; s < m; ++s)
+          sites[s] = Site{Vec3{along(rng), across(rng), across(rng)} * scale,
+                          weighted ? weight(rng) * scale * scale : 0.0, s};
+        sites[m - 1].p = sites[m - 2].p;  // one site twice
+        const SymbolicContext ctx =
+            checked_context(mesh.positions().data(), mesh.positions().size(), sites.data(), sites.size());
+        REQUIRE(ctx.in_range == (scale == 1.0));
+        std::vector<int> labels(m);
+        for (int s = 0; s < m; ++s) labels[s] = s;
+        CellClipper clipper;
+        std::vector<TrianglePolygon> polygons;
+        std::vector<PackedVertex> verts;
+        std::vector<SymbolicVertex> wide;
+        reset_predicate_stats();
+        clipper.clip(mesh, 0, labels.data(), m, ctx, polygons, verts, wide);
+        const std::uint64_t pruned_calls = predicate_stats().total.calls;
+        REQUIRE(verts.empty());
+        std::vector<SymbolicVertex> polygon, scratch;
+        size_t next = 0, begin = 0;
+        reset_predicate_stats();
+        for (int k = 0; k < m; ++k) {
+          clip_triangle(mesh, 0, k, labels.data(), m, ctx, polygon, scratch);
+          if (polygon.empty()) continue;
+          INFO("scale " << scale << " needle " << needle << " weighted " << weighted << " m " << m << " cell " << k);
+          REQUIRE(next < polygons.size());
+          REQUIRE(polygons[next].cell == k);
+          const std::vector<SymbolicVertex> got(wide.begin() + begin, wide.begin() + polygons[next].end);
+          REQUIRE(got == polygon);
+          begin = polygons[next++].end;
+        }
+        const std::uint64_t plain_calls = predicate_stats().total.calls;
+        CHECK(next == polygons.size());
+        // Far bisectors are skipped where bounds can be taken; beyond the range every one is tested.
+        if (scale == 1.0 && needle) CHECK(pruned_calls * 2 < plain_calls);
+        if (scale != 1.0) CHECK(pruned_calls == plain_calls);
+      }
+    }
   }
 }
 

@@ -396,3 +396,65 @@ TEST_CASE("SymbolicVertexIndex numbers distinct vertices in the order first seen
   for (const SymbolicVertex& q : distinct) reserved.insert(q);
   CHECK(reserved.vertices() == distinct);
 }
+
+TEST_CASE("Distance bounds hold every vertex's exact distance, and a cleared bisector leaves the whole ball on one side",
+          "[predicates][symbolic_vertex]") {
+  // The many-candidate clipper skips bisector(i, l) when the polygon's vertices lie within
+  // sqrt(bound) of site i and ball_clear_of_bisector(i, l, bound): both must be certified.
+  std::mt19937_64 rng(7);
+  const std::array<Vec3, 3> tri = {Vec3{0, 0, 0}, Vec3{4, 2, 0}, Vec3{0, 2, 4}};
+  int bounded = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = 3 + int(rng() % 5);
+    std::vector<Site> sites(n);
+    std::uniform_real_distribution<double> coord(-1, 5);
+    for (int s = 0; s < n; ++s) sites[s] = Site{Vec3{coord(rng), coord(rng), coord(rng)}, trial % 2 ? coord(rng) : 0.0, s};
+    const SymbolicContext ctx{tri.data(), sites.data()};
+    for (int i = 0; i < n; ++i)
+      for (const SymbolicVertex& v : clip_cell(i, n, ctx)) {
+        const lrvd::ExactPoint e = lrvd::exact_position(v, ctx);
+        for (const Site& s : sites) {
+          double bound = 0;
+          lrvd::distance_bounds2(&v, 1, s.p, ctx, &bound);
+          REQUIRE(bound >= 0);
+          const Q d2 = lrvd::exact_power_distance(e, Site{s.p, 0, -1});
+          if (std::isfinite(bound)) REQUIRE(d2 <= Q(bound));
+          bounded += std::isfinite(bound);
+        }
+      }
+  }
+  CHECK(bounded > 1000);
+
+  // ball_clear_of_bisector: when it says yes, D^2 + w_i - w_l > 2 D r exactly (squared, both sides
+  // positive); bounds at, just below and just above the equal-weights threshold D^2 / 4.
+  int cleared = 0, refused_near = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::uniform_real_distribution<double> coord(-3, 3);
+    const bool weighted = trial % 3 == 0;
+    const Site i{Vec3{coord(rng), coord(rng), coord(rng)}, weighted ? coord(rng) : 0.0, 0};
+    const Site l{Vec3{coord(rng), coord(rng), coord(rng)}, weighted ? coord(rng) : 0.0, 1};
+    const double dx = l.p.x - i.p.x, dy = l.p.y - i.p.y, dz = l.p.z - i.p.z;
+    const double quarter = (dx * dx + dy * dy + dz * dz) / 4;
+    const double factors[] = {0.5, 0.999, 1 - 0x1p-50, 1, 1 + 0x1p-50, 1.001, 2};
+    const double reach2 = quarter * factors[trial % 7];
+    const bool clear = lrvd::predicates::ball_clear_of_bisector(i, l, reach2);
+    const Q ex = Q(l.p.x) - Q(i.p.x), ey = Q(l.p.y) - Q(i.p.y), ez = Q(l.p.z) - Q(i.p.z);
+    const Q d2 = ex * ex + ey * ey + ez * ez, margin = d2 + Q(i.w) - Q(l.w);
+    const bool exact_clear = margin > 0 && margin * margin > 4 * d2 * Q(reach2);
+    if (clear) REQUIRE(exact_clear);
+    cleared += clear;
+    if (!weighted && trial % 7 >= 2 && trial % 7 <= 4) refused_near += !clear;
+  }
+  CHECK(cleared > 5000);
+  CHECK(refused_near > 0);  // within rounding of the threshold the test says no
+  // At the threshold exactly: D = 2, r = 1 is not clear (the ball touches the bisector).
+  const Site a{Vec3{0, 0, 0}, 0, 0}, b{Vec3{2, 0, 0}, 0, 1};
+  CHECK_FALSE(lrvd::predicates::ball_clear_of_bisector(a, b, 1.0));
+  CHECK(lrvd::predicates::ball_clear_of_bisector(a, b, 0.99));
+  CHECK_FALSE(lrvd::predicates::ball_clear_of_bisector(a, a, 0.0));  // one site twice: no bisector
+  CHECK_FALSE(lrvd::predicates::ball_clear_of_bisector(a, b, std::numeric_limits<double>::infinity()));
+  // A heavier l moves the bisector towards i: w_l - w_i = 3 leaves D^2 - 3 = 1 = 2 D r at r = 1/4.
+  const Site heavy{Vec3{2, 0, 0}, 3, 1};
+  CHECK_FALSE(lrvd::predicates::ball_clear_of_bisector(a, heavy, 0.0625));
+  CHECK(lrvd::predicates::ball_clear_of_bisector(a, heavy, 0.06));
+}

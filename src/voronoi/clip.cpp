@@ -3,6 +3,7 @@
 #include "voronoi/clip.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 #include "mesh/surface_mesh.h"
@@ -241,6 +242,77 @@ void CellClipper::clip_two(std::vector<TrianglePolygon>& polygons, std::vector<P
   }
 }
 
+// Cell k's polygon among many candidates, as clip_triangle gives it, vertex for vertex. A long
+// triangle (a needle, a sliver along a cylinder) can meet dozens of cells, and each cell's polygon
+// would be tested against every other cell's bisector: m^2 clips per triangle, again after each
+// label the propagation adds. Most of those bisectors are far from the polygon. When every vertex
+// lies within a distance of site k that the bisector of k and l cannot reach
+// (predicates::ball_clear_of_bisector, certified), the clip by it would keep every vertex and
+// return the polygon unchanged: it is skipped, and the polygons are exactly the unpruned loop's.
+//
+// A bound for a polygon stays a bound after a clip: each new vertex is the exact crossing of a side
+// of the polygon before it with the bisector, inside any ball that holds the side's ends. So the
+// new vertices' own bounds are measured only when the looser one fails to clear a bisector.
+void CellClipper::clip_many(const std::array<int, 3>& tri, int k, const int* labels, int m, const SymbolicContext& ctx) {
+  constexpr double kUnknown = -1;  // a vertex whose bound is not measured yet
+  std::vector<SymbolicVertex>& polygon = fallback_polygon_;
+  std::vector<SymbolicVertex>& next = fallback_scratch_;
+  const Site& site = ctx.sites[k];
+  polygon.clear();
+  for (int c = 0; c < 3; ++c) polygon.push_back(SymbolicVertex::mesh_vertex(tri[c]));
+  reach2_.assign(3, kUnknown);
+  // Outside the filters' range no bound is taken, and every bisector is clipped by.
+  double reach2 = std::numeric_limits<double>::infinity();
+  bool tight = !ctx.in_range;  // reach2 is the largest of the vertices' bounds
+  auto clear = [&](const Site& other) {
+    if (predicates::ball_clear_of_bisector(site, other, reach2)) return true;
+    if (tight) return false;
+    const int n = static_cast<int>(polygon.size());
+    for (int a = 0; a < n; ++a) {
+      if (reach2_[a] != kUnknown) continue;
+      int b = a;  // the unmeasured run a..b-1, measured at once
+      while (b < n && reach2_[b] == kUnknown) ++b;
+      distance_bounds2(polygon.data() + a, b - a, site.p, ctx, reach2_.data() + a);
+      a = b - 1;
+    }
+    reach2 = *std::max_element(reach2_.begin(), reach2_.end());
+    tight = true;
+    return predicates::ball_clear_of_bisector(site, other, reach2);
+  };
+  for (int a = 0; a < m && !polygon.empty(); ++a) {
+    const int l = labels[a];
+    if (l == k || clear(ctx.sites[l])) continue;
+    // clip_by_bisector, carrying each vertex's bound along.
+    const int n = static_cast<int>(polygon.size());
+    next.clear();
+    next_reach2_.clear();
+    const Sign first = side(polygon[0], k, l, ctx);
+    if (first == Sign::Zero) throw_on_bisector();
+    bool changed = false;
+    Sign su = first;
+    for (int u = 0; u < n; ++u) {
+      const int w = u + 1 == n ? 0 : u + 1;
+      const Sign sw = w == 0 ? first : side(polygon[w], k, l, ctx);
+      if (sw == Sign::Zero) throw_on_bisector();
+      if (su == Sign::Positive) {
+        next.push_back(polygon[u]);
+        next_reach2_.push_back(reach2_[u]);
+      } else {
+        changed = true;
+      }
+      if (su != sw) {
+        next.push_back(intersect(polygon[u], polygon[w], k, l, tri));
+        next_reach2_.push_back(kUnknown);
+      }
+      su = sw;
+    }
+    if (!changed) continue;
+    polygon.swap(next);
+    reach2_.swap(next_reach2_);
+    tight = !ctx.in_range;
+  }
+}
+
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
                        std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts,
                        std::vector<SymbolicVertex>& wide) {
@@ -252,7 +324,7 @@ void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m,
   if (m > kMaxLabels) {  // the memo tables (m^3 and m^4 entries) would outgrow the cache
     for (int a = 0; a < m; ++a) {
       const int k = labels[a];
-      clip_triangle(mesh, t, k, labels, m, ctx, fallback_polygon_, fallback_scratch_);
+      clip_many(tri, k, labels, m, ctx);
       if (fallback_polygon_.empty()) continue;
       const PolygonEdges pe = polygon_edges(fallback_polygon_.data(), static_cast<int>(fallback_polygon_.size()), tri);
       wide.insert(wide.end(), fallback_polygon_.begin(), fallback_polygon_.end());

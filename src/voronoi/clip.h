@@ -154,6 +154,7 @@ class CellClipper {
   const predicates::BoundedPowerDistance& corner_distance(int a, int c);
   Sign corner_side(int c, int k, int l);
   void clip_two(std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts);
+  void clip_many(const std::array<int, 3>& tri, int k, const int* labels, int m, const SymbolicContext& ctx);
   Sign side_of(const LocalVertex& q, int k, int l, const std::int8_t* corner_signs);
   Sign evaluate_corner(int c, int k, int l);
   Sign evaluate_vertex(const LocalVertex& q, int k, int l);
@@ -182,6 +183,7 @@ class CellClipper {
   std::uint32_t epoch_ = 0;
   LocalPolygon polygon_, scratch_;
   std::vector<SymbolicVertex> fallback_polygon_, fallback_scratch_;
+  std::vector<double> reach2_, next_reach2_;  // clip_many: each vertex's squared distance bound
 };
 
 }  // namespace lrvd
