@@ -271,6 +271,50 @@ TEST_CASE("MPS with features samples the corners and feature lines first, and it
         }
 }
 
+namespace {
+
+// A closed box 1 x 1 x h as the cube of the features test: its faces x = 0, y = 0 and z = 0 hold
+// their points' coordinates exactly (every barycentric combination of zeros is zero).
+SurfaceMesh thin_box(double h) {
+  return SurfaceMesh({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, h}, {1, 0, h}, {1, 1, h}, {0, 1, h}},
+                     {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                      {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}});
+}
+
+}  // namespace
+
+TEST_CASE("MPS with features keeps samples on edges apart on every face they lie on: a thin box's side strips",
+          "[mps][features]") {
+  // The two long edges of a side strip of height h are h apart. A sample on each lies on the strip
+  // as well as on the top or bottom face; the dart test must read every triangle a dart on an edge
+  // lies on, not only the one it is stored with (an audit found pairs 0.2 r apart, passed).
+  for (const double h : {0.01, 0.001})
+    for (const bool adaptive : {false, true})
+      for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        INFO("h = " << h << (adaptive ? " adaptive" : " uniform") << ", seed " << seed);
+        MpsOptions options;
+        options.radius = 0.05;
+        options.adaptive = adaptive;
+        options.seed = seed;
+        options.sample_features = true;
+        const MpsResult r = maximal_poisson_disk_sampling(thin_box(h), options);
+        // Independently of the verifier: two samples on one of the faces x = 0, y = 0, z = 0 (a flat
+        // rectangle, so local to each other) are at least the larger radius apart.
+        int pairs_on_a_face = 0;
+        for (int i = 0; i < r.samples.size(); ++i)
+          for (int j = i + 1; j < r.samples.size(); ++j) {
+            const Vec3 &a = r.samples.positions[i], &b = r.samples.positions[j];
+            const bool same_face = (a.x == 0 && b.x == 0) || (a.y == 0 && b.y == 0) || (a.z == 0 && b.z == 0);
+            if (!same_face) continue;
+            ++pairs_on_a_face;
+            INFO("samples " << i << " and " << j);
+            REQUIRE(squared_distance(a, b) >= std::max(r.samples.weights[i], r.samples.weights[j]));
+          }
+        CHECK(pairs_on_a_face > 100);
+        check_sampling(thin_box(h), r, false);
+      }
+}
+
 TEST_CASE("The adaptive radius field stays within [r_min, r_max] and changes gradually", "[mps]") {
   const SurfaceMesh elk = cgal_mesh("elk.off");
   MpsOptions options;
@@ -566,6 +610,21 @@ TEST_CASE("The MPS verification catches a close pair and an uncovered spot", "[m
     const MpsVerification v2 = verify_mps(r.mesh, s);
     CHECK(!v2.min_distance.passed);
     CHECK(!v2.passed);
+  }
+  SECTION("two samples on the two long edges of a thin strip, stored with the faces above and below") {
+    // (0.5, 0, 0) on the bottom triangle (0, 2, 1) and (0.5, 0, h) on the top triangle (4, 5, 6):
+    // h apart, and both on the strip y = 0, so local to each other there.
+    const double h = 0.01;
+    const SurfaceMesh box = thin_box(h);
+    Samples s;
+    s.positions = {Vec3{0.5, 0, 0}, Vec3{0.5, 0, h}};
+    s.triangles = {0, 2};
+    s.barycentric = {Vec3{0.5, 0, 0.5}, Vec3{0.5, 0.5, 0}};
+    s.weights = {0.05 * 0.05, 0.05 * 0.05};
+    const MpsVerification v2 = verify_mps(box, s);
+    INFO(v2.summary());
+    CHECK(!v2.min_distance.passed);
+    CHECK(v2.min_distance_ratio == Approx(h / 0.05));
   }
   SECTION("a sample removed") {
     Samples s = r.samples;

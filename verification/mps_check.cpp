@@ -40,12 +40,20 @@ CGAL::Sign squared_distance_minus(const Vec3& a, const Vec3& b, double w) {
 // Samples of each triangle (CSR).
 struct TriangleSamples {
   std::vector<int> offset, items;
-  TriangleSamples(const SurfaceMesh& mesh, const Samples& s) : offset(mesh.triangle_count() + 1, 0) {
-    for (int t : s.triangles) ++offset[t + 1];
+  //! Each sample under every triangle it lies on (`seeds(i)`: one, or those at its edge or corner).
+  template <class Seeds>
+  TriangleSamples(const SurfaceMesh& mesh, const Samples& s, Seeds&& seeds) : offset(mesh.triangle_count() + 1, 0) {
+    std::vector<std::pair<int, int>> entries;  // (triangle, sample)
+    entries.reserve(s.size());
+    for (int i = 0; i < s.size(); ++i)
+      for (int t : seeds(i)) entries.emplace_back(t, i);
+    std::sort(entries.begin(), entries.end());
+    items.resize(entries.size());
+    for (size_t k = 0; k < entries.size(); ++k) {
+      ++offset[entries[k].first + 1];
+      items[k] = entries[k].second;
+    }
     for (int t = 0; t < mesh.triangle_count(); ++t) offset[t + 1] += offset[t];
-    items.resize(s.size());
-    std::vector<int> fill(offset.begin(), offset.end() - 1);
-    for (int i = 0; i < s.size(); ++i) items[fill[s.triangles[i]]++] = i;
   }
 };
 
@@ -181,24 +189,33 @@ struct SampleDisks {
 };
 
 // Two samples are local to each other when each one's triangle lies in the local region of the
-// other's ball of radius ρ = max(r_i, r_j); local samples closer than ρ violate the property.
-// Returns those pairs.
+// other's ball of radius ρ = max(r_i, r_j); local samples closer than ρ violate the property. A
+// sample exactly on an edge or corner lies on every triangle there (LocalRegions::seeds): any of
+// them counts as its triangle. Returns those pairs.
 std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, const Samples& s, const SampleDisks& disks,
                                                      LocalRegions& regions, MpsVerification& out) {
-  const TriangleSamples by_triangle(mesh, s);
+  std::vector<std::vector<int>> extra_seeds(s.size());  // the triangles of samples on an edge or corner
+  const TriangleSamples by_triangle(mesh, s, [&](int i) -> const std::vector<int>& {
+    const std::vector<int>& seeds = regions.seeds(s, i);
+    if (seeds.size() > 1) extra_seeds[i] = seeds;
+    return seeds;
+  });
+  auto triangles_of = [&](int i) -> std::vector<int> {
+    return extra_seeds[i].empty() ? std::vector<int>{s.triangles[i]} : extra_seeds[i];
+  };
   std::unordered_set<std::uint64_t> close;
+  std::vector<int> seen(s.size(), -1);  // the last sample i from which j was looked at
   double min_ratio2 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < s.size(); ++i) {
     const Vec3& x = s.positions[i];
     const double w = s.weights[i];
-    const int ti = s.triangles[i];
     // Every violating pair is seen from the sample with the larger radius: the other's centre
-    // lies in its ball and, the pair being local, in its region.
+    // lies in its ball and, the pair being local, one of the other's triangles in its region.
     for (const int* it = disks.begin(i); it != disks.end(i); ++it) {
-      const int t = *it;
-      for (int k = by_triangle.offset[t]; k < by_triangle.offset[t + 1]; ++k) {
+      for (int k = by_triangle.offset[*it]; k < by_triangle.offset[*it + 1]; ++k) {
         const int j = by_triangle.items[k];
-        if (j == i) continue;
+        if (j == i || seen[j] == i) continue;
+        seen[j] = i;
         const double d2 = squared_distance(x, s.positions[j]);
         const double rho2 = std::max(w, s.weights[j]);
         if (squared_distance_minus(s.positions[j], x, w) != CGAL::NEGATIVE) {
@@ -206,9 +223,13 @@ std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, co
           continue;
         }
         ++out.min_distance.checked;
-        const bool local = (s.weights[j] <= w || regions.sample_reaches(s, i, rho2, t)) &&
-                           regions.sample_reaches(s, j, rho2, ti);
-        if (!local) {
+        // i's region at ρ holds one of j's triangles (at ρ = r_i, i's disk tells), and j's one of i's.
+        auto reaches_one = [&](int a, int b) {
+          for (int t : triangles_of(b))
+            if (a == i && s.weights[j] <= w ? disks.reaches(i, t) : regions.sample_reaches(s, a, rho2, t)) return true;
+          return false;
+        };
+        if (!reaches_one(i, j) || !reaches_one(j, i)) {
           ++out.one_sided_close_pairs;
           continue;
         }

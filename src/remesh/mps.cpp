@@ -110,28 +110,34 @@ class Sampler {
   //! Radius at vertex v of the mesh.
   double radius_at(int v) const { return vertex_radius_.empty() ? std::sqrt(r_min2_) : std::max(vertex_radius_[v], std::sqrt(r_min2_)); }
 
-  //! Inserts the dart if it is accepted; its local region is then last_region().
+  //! Inserts the dart if it is accepted; its local region is then last_region(). A dart exactly on
+  //! an edge or a corner (a feature sample, a dust dart at a polygon's corner) lies on every
+  //! triangle there: a disk reaching any of them holds it, and a sample local to any is local to it.
   bool try_insert(const Vec3& p, int t, const Vec3& bary) {
-    if (disks_.in_some_disk(p, t)) return false;
+    seeds_.clear();
+    mesh_.triangles_at(t, bary, seeds_);  // t first
+    for (int s : seeds_)
+      if (disks_.in_some_disk(p, s)) return false;
     const double w = weight_at(t, bary);
     if (vertex_radius_.empty()) {
-      region_of(p, t, bary, w);
+      region_of(p, w);
       disks_.insert(p, t, bary, w, region_);
       return true;
     }
-    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets.
+    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets
+    // (edge-connected to t, so to every triangle p lies on).
     met_ = disks_.met(p, t, kScan * kScan * w);
     double hi = 0;
-    const Admission admitted = admit(p, t, w, Against::All, hi);
+    const Admission admitted = admit(p, w, Against::All, hi);
     if (admitted == Admission::Rejected) return false;
     if (admitted == Admission::NoRadius) {
       if (!allow_exceptions_) return false;
-      if (admit(p, t, w, Against::Facing, hi) != Admission::Radius && admit(p, t, w, Against::Local, hi) != Admission::Radius)
+      if (admit(p, w, Against::Facing, hi) != Admission::Radius && admit(p, w, Against::Local, hi) != Admission::Radius)
         return false;
       ++power_cell_exceptions_;
     }
     if (hi < w) ++clamped_;
-    region_of(p, t, bary, hi);
+    region_of(p, hi);
     disks_.insert(p, t, bary, hi, region_);
     return true;
   }
@@ -139,13 +145,11 @@ class Sampler {
  private:
   static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
 
-  //! region_ = the local region of (p, w): grown from t and, for a point on an edge or a corner
-  //! (a barycentric coordinate exactly 0: a dart on a feature), from every other triangle it lies
-  //! on, so that on a sharp edge or corner the darts on every face around keep their distance.
-  void region_of(const Vec3& p, int t, const Vec3& bary, double w) {
-    region_ = disks_.grow(p, t, w);
-    seeds_.clear();
-    mesh_.triangles_at(t, bary, seeds_);
+  //! region_ = the local region of (p, w): grown from each triangle p lies on (seeds_: one, or on
+  //! an edge or a corner every triangle there), so that on a sharp edge or corner the darts on
+  //! every face around keep their distance.
+  void region_of(const Vec3& p, double w) {
+    region_ = disks_.grow(p, seeds_[0], w);
     if (seeds_.size() == 1) return;
     for (size_t k = 1; k < seeds_.size(); ++k) {
       const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
@@ -155,31 +159,46 @@ class Sampler {
     region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
   }
 
+  //! Triangle s faces like one of the triangles p lies on (seeds_).
+  bool faces_dart(int s) const {
+    for (int t : seeds_)
+      if (disks_.faces_like(s, t)) return true;
+    return false;
+  }
+  //! Sample j's region at weight w reaches one of the triangles p lies on.
+  bool reaches_dart(int j, double w) {
+    for (int t : seeds_)
+      if (disks_.sample_reaches(j, w, t)) return true;
+    return false;
+  }
+
   enum class Admission { Radius, NoRadius, Rejected };
   //! The samples around p whose power cells p's radius must keep apart from its own.
   enum class Against { All, Facing, Local };
-  //! Adaptive: the largest weight `hi` ≤ w that p in triangle t may take against the samples
-  //! around (met_): below the squared distance of every local sample within reach, and keeping
-  //! both in their power cells against every sample around (All), only against those on triangles
-  //! facing like t (Facing), or only against the samples local to p (Local: t lies in the sample's
-  //! region at radius max(r(p), r_j)). Rejected: a local sample is closer than its own radius.
-  Admission admit(const Vec3& p, int t, double w, Against against, double& hi) {
+  //! Adaptive: the largest weight `hi` ≤ w that p (on the triangles seeds_) may take against the
+  //! samples around (met_): below the squared distance of every local sample within reach, and
+  //! keeping both in their power cells against every sample around (All), only against those on
+  //! triangles facing like p's (Facing), or only against the samples local to p (Local: one of p's
+  //! triangles lies in the sample's region at radius max(r(p), r_j)). Rejected: a local sample is
+  //! closer than its own radius. A sample on an edge or corner is met on each of its triangles.
+  Admission admit(const Vec3& p, double w, Against against, double& hi) {
     double lo = r_min2_;  // the allowed range of p's weight
     hi = w;
     bool reject = false;
     for (int s : met_) {
-      const bool faces = disks_.faces_like(s, t);
+      const bool faces = faces_dart(s);
       if (against != Against::All && !faces) continue;
       disks_.for_each_center(s, [&](int j) {
         if (reject) return;
         const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
-        if (against == Against::Local && !disks_.sample_reaches(j, std::max(w, wj), t)) return;
+        if (against == Against::Local && !reaches_dart(j, std::max(w, wj))) return;
         hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
         lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
         if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
-        // x_j is within p's radius: local if t is in x_j's region at radius max(r_p, r_j) (on p's
-        // side, meeting the ball and facing alike is taken as enough: cutting more is safe).
-        if (!disks_.sample_reaches(j, std::max(hi, wj), t)) return;
+        // x_j is within p's radius: local if one of p's triangles is in x_j's region at radius
+        // max(r_p, r_j) (on p's side, meeting the ball and facing alike is taken as enough:
+        // cutting more is safe).
+        if (!reaches_dart(j, std::max(hi, wj))) return;
         if (inside_disk(p, disks_.center(j), wj)) {
           reject = true;  // closer than r_j: no radius for p helps
           return;

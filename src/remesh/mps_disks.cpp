@@ -178,8 +178,12 @@ int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, c
   disk_records_.push_back({p, w});
   barycentric_.push_back(barycentric);
   triangles_.push_back(t);
-  center_next_.push_back(center_head_[t]);
-  center_head_[t] = i;
+  seeds_.clear();
+  mesh_.triangles_at(t, barycentric, seeds_);
+  for (int s : seeds_) {
+    center_links_.push_back({i, center_head_[s]});
+    center_head_[s] = static_cast<int>(center_links_.size()) - 1;
+  }
   if (++vertex_stamp_value_ == 0) {  // wrapped: forget every old test
     std::fill(vertex_stamp_.begin(), vertex_stamp_.end(), 0);
     vertex_stamp_value_ = 1;

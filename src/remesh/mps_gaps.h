@@ -86,10 +86,11 @@ class DiskIndex {
     for (int k = covered_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
     for (int k = partial_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
   }
-  //! f(sample) for every sample whose centre lies in t.
+  //! f(sample) for every sample whose centre lies in t: a centre exactly on an edge or a corner
+  //! lies in every triangle there (SurfaceMesh::triangles_at).
   template <class F>
   void for_each_center(int t, F&& f) const {
-    for (int i = center_head_[t]; i >= 0; i = center_next_[i]) f(i);
+    for (int k = center_head_[t]; k >= 0; k = center_links_[k].next) f(center_links_[k].item);
   }
 
   Samples samples() const;
@@ -131,7 +132,8 @@ class DiskIndex {
   };
   std::vector<Disk> disk_records_;
   std::vector<Vec3> barycentric_;
-  std::vector<int> triangles_, center_next_;
+  std::vector<int> triangles_;
+  std::vector<Link> center_links_;
   std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
   std::vector<Link> links_;
   std::uint32_t stamp_value_ = 0;  // of the current growth (TriangleInfo::stamp)
