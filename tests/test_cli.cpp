@@ -271,6 +271,15 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
     CHECK(r.err.find(reason) != std::string::npos);
   }
   CHECK(run("compute " + coloured + " -n 10").status == 0);  // colours after the indices, comments after the faces
+  // A vertex no face uses is left out with a line that says so (it would otherwise widen the
+  // bounding box, the unit of mps --radius, without a word).
+  const std::string stray = kOut + "stray_vertex.off";
+  std::ofstream(stray) << "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 5 5\n" << faces;
+  const Run left_out = run("compute " + stray + " -n 10 --report " + kOut + "stray.json");
+  CHECK(left_out.status == 0);
+  CHECK(left_out.out.find("input: left out 1 vertex that no face uses") != std::string::npos);
+  CHECK(read_json(kOut + "stray.json")["input"]["vertices"] == 4);
+  CHECK(run("compute " + coloured + " -n 10").out.find("left out") == std::string::npos);
   // A control character read from a file is shown escaped; a huge token does not make a huge line.
   const std::string escape = kOut + "escape.xyz", long_token = kOut + "long_token.xyz";
   std::ofstream(escape) << "0.1\x1b[31mRED 0 0\n";

@@ -124,6 +124,11 @@ void print_repair(const RepairReport& r, const ReadOptions& read) {
       changes.push_back("triangulated " + counted(r.triangulated_faces, "polygon", "polygons"));
     std::printf("repair: %s\n", changes.empty() ? "nothing to change" : fmt::format("{}", fmt::join(changes, ", ")).c_str());
   }
+  // Dropped even without --repair: say so, since they leave the counts and the bounding box (the
+  // unit of a relative radius) as the faces have them, not as the file lists its vertices.
+  if (!read.repair && r.removed_unreferenced_vertices > 0)
+    std::printf("input: left out %s that no face uses\n",
+                counted(r.removed_unreferenced_vertices, "vertex", "vertices").c_str());
   if (!read.repair && !(read.fill_holes > 0)) return;
   for (const std::string& note : r.notes) std::printf("repair: %s\n", note.c_str());
 }
