@@ -4,8 +4,8 @@
 On a shared VM the speed drifts by tens of percent within an hour, so two timings taken minutes
 apart say little; runs of the two builds interleaved, one after the other, can be compared. Each
 run is a fresh process (as a user runs it). For each build the script reports the median and
-minimum of the command's own `time_s` (from its --report JSON: the remesh, or the MPS sampler's
-total), the ratio of the medians, and the process's minor page faults and kernel time (fresh
+minimum of the command's own `time_s` (from its --report JSON: the remesh, the MPS sampler's
+total, or compute's diagram), the ratio of the medians, and the process's minor page faults and kernel time (fresh
 pages cost about 1.7 us each on this project's VM: docs/performance.md, "Sixth session"). With
 --same-output it also checks that both builds wrote byte-identical outputs.
 
@@ -44,7 +44,8 @@ def run_once(binary, command, workdir, tag, index):
     if done.returncode not in (0, 3):
         sys.exit(f"{binary} exited with {done.returncode}: {done.stderr.strip().splitlines()[-1:]}")
     with open(report) as f:
-        t = json.load(f)["time_s"]
+        r = json.load(f)
+    t = r["time_s"] if "time_s" in r else r["diagram"]["time_s"]  # compute: the diagram's time
     seconds = t["total"] if isinstance(t, dict) else t
     return seconds, after.ru_minflt - before.ru_minflt, after.ru_stime - before.ru_stime, output
 

@@ -637,7 +637,7 @@ TEST_CASE("lrvd works on a tiny model far from the origin and refuses one whose 
   }
   const Run ok = run("remesh " + tiny + " -n 20 --threads 2 -o " + out);
   CHECK(ok.status == 0);
-  for (const std::string command : {"remesh " + coarse + " -n 20 -o " + out, "compute " + coarse + " -n 20",
+  for (const std::string& command : {"remesh " + coarse + " -n 20 -o " + out, "compute " + coarse + " -n 20",
                                     "mps " + coarse + " --radius 0.1 -o " + kOut + "tet_far.xyz",
                                     "quality " + coarse + " " + tiny}) {
     INFO(command);
