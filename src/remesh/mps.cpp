@@ -213,7 +213,7 @@ class Sampler {
   const SurfaceMesh& mesh_;
   double r_min2_;
   std::vector<double> vertex_radius_;
-  std::vector<int> seeds_;  // region_of()'s triangles to grow from
+  std::vector<int> seeds_;  // the triangles the dart of try_insert() lies on, t first
   DiskIndex disks_;
   std::vector<int> region_, met_;
   int clamped_ = 0, power_cell_exceptions_ = 0;
