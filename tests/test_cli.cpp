@@ -383,6 +383,14 @@ TEST_CASE("lrvd quality says a closed manifold only of a closed reference", "[cl
   REQUIRE(read_json(big_report)["frame_warning"].get<std::string>().find("one unit and frame") != std::string::npos);
   REQUIRE(open.out.find("warning") == std::string::npos);
   REQUIRE(closed.out.find("warning") == std::string::npos);
+  // A vertex no triangle uses fails the vertex count, but the distances do not read it, and nor
+  // does the frame: no warning for a stray vertex far away.
+  const std::string stray = kOut + "square_stray.off";
+  std::ofstream(stray) << "OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n500 500 500\n3 0 1 2\n3 0 2 3\n";
+  const Run strayed = run("quality " + square + " " + stray);
+  REQUIRE(strayed.status == 3);
+  REQUIRE(strayed.out.find("used by no triangle") != std::string::npos);
+  REQUIRE(strayed.out.find("warning") == std::string::npos);
 }
 
 TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails a check", "[cli][remesh]") {

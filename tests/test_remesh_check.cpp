@@ -213,6 +213,23 @@ TEST_CASE("Crossings between components that cross in the input too are inherite
   REQUIRE(r.passed);
   REQUIRE(r.self_intersecting_pairs == 0);
   REQUIRE(r.inherited_intersecting_pairs == pmp_self_intersections(spheres.positions(), spheres.triangles()));
+  // Only the components that cross in the input pass on their crossings: a third sphere, apart in
+  // the input (0.05 from the first), that the remesh swells by a tenth into the first counts, while
+  // the first two spheres' crossings stay inherited. (An audit found them all passed: any crossing
+  // in the input excused every crossing between two output components.)
+  const SurfaceMesh sphere = test::icosphere(2);
+  const SurfaceMesh three = test::merge(spheres, sphere, {0, 2.05, 0});
+  std::vector<Vec3> swollen = three.positions();
+  const Vec3 centre{0, 2.05, 0};
+  for (int v = spheres.vertex_count(); v < three.vertex_count(); ++v) swollen[v] = centre + 1.1 * (swollen[v] - centre);
+  const RemeshVerification third = verify_remesh(three, swollen, three.triangles(), three.vertex_count());
+  INFO(third.summary());
+  REQUIRE(verify_self(three).passed);
+  REQUIRE_FALSE(third.no_self_intersection.passed);
+  REQUIRE(third.self_intersecting_pairs > 0);
+  REQUIRE(third.inherited_intersecting_pairs == r.inherited_intersecting_pairs);
+  REQUIRE(third.self_intersecting_pairs + third.inherited_intersecting_pairs ==
+          pmp_self_intersections(swollen, three.triangles()));
   // A crossing inside one component still counts: a vertex of the first sphere pushed through it.
   std::vector<Vec3> dented = spheres.positions();
   dented[0] = -1.5 * dented[0];

@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <numeric>
 #include <tuple>
 
 #include <fmt/format.h>
 
+#include "mesh/closest_point.h"
 #include "metrics/self_intersections.h"
 #include "predicates/predicates.h"
 
@@ -258,23 +260,52 @@ std::vector<char> check_non_degenerate(const std::vector<Vec3>& positions, const
   return testable;
 }
 
-// Counts the pairs of intersecting output triangles. When the input's own components cut through
-// each other, pairs from different output components are the input's intersections carried over,
-// counted in `inherited`, not as violations; pairs within one component always count.
+// Counts the pairs of intersecting output triangles. Where two of the input's own components cut
+// through each other, a pair from the two output components that lie on them is the input's
+// intersection carried over: counted in `inherited`, not as a violation. Each output component lies
+// on the input component that most of its vertices are closest to. Pairs within one output
+// component, or between output components whose input components do not meet, always count.
 int count_self_intersections(const SurfaceMesh& input, const std::vector<Vec3>& positions,
                              const std::vector<Triangle>& triangles, const std::vector<char>& testable,
                              PropertyResult& p, int& inherited) {
   p.checked = std::count(testable.begin(), testable.end(), 1);
   const auto pairs = find_self_intersections(positions, triangles, testable);
-  std::vector<int> component;
-  if (!pairs.empty() && components_intersect(input))
+  std::vector<int> component;  // of each output triangle, and the input component it lies on
+  std::vector<std::pair<int, int>> input_pairs;
+  std::map<int, int> lies_on;
+  if (!pairs.empty()) input_pairs = intersecting_component_pairs(input);
+  if (!input_pairs.empty()) {
     component = soup_components(static_cast<int>(positions.size()), triangles, testable);
+    std::map<int, std::map<int, int>> votes;  // output component -> input component -> vertices
+    for (const auto& [s, t] : pairs)
+      if (component[s] != component[t]) {
+        votes[component[s]];
+        votes[component[t]];
+      }
+    const ClosestPointIndex index(input);
+    std::vector<char> seen(positions.size(), 0);
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (component[t] < 0 || !votes.count(component[t])) continue;
+      for (int v : triangles[t]) {
+        if (seen[v]) continue;
+        seen[v] = 1;
+        ++votes[component[t]][input.triangle_components()[index.query(positions[v]).triangle]];
+      }
+    }
+    for (const auto& [c, count] : votes)
+      lies_on[c] = std::max_element(count.begin(), count.end(), [](const auto& a, const auto& b) {
+                     return a.second < b.second;
+                   })->first;
+  }
   int counted = 0;
   inherited = 0;
   for (const auto& [s, t] : pairs) {
     if (!component.empty() && component[s] != component[t]) {
-      ++inherited;
-      continue;
+      const int a = lies_on[component[s]], b = lies_on[component[t]];
+      if (std::binary_search(input_pairs.begin(), input_pairs.end(), std::make_pair(std::min(a, b), std::max(a, b)))) {
+        ++inherited;
+        continue;
+      }
     }
     ++counted;
     p.fail(fmt::format("{} and {} intersect", triangle_text(s, triangles[s]), triangle_text(t, triangles[t])));

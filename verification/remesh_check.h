@@ -29,7 +29,7 @@ struct RemeshVerification {
   int components = 0, euler_characteristic = 0, genus = 0;
   int boundary_loops = 0, input_boundary_loops = 0;  //!< reported; promised equal only through `topology`
   int self_intersecting_pairs = 0;       //!< intersecting pairs that count as violations
-  int inherited_intersecting_pairs = 0;  //!< pairs between components whose input components intersect too
+  int inherited_intersecting_pairs = 0;  //!< pairs between two components lying on input components that meet
   nlohmann::json to_json() const;
   std::string summary() const;
 };

@@ -277,9 +277,19 @@ int run_quality(const QualityOptions& opt) {
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
   if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
-  // Two meshes in different units or frames give distances that measure that, not the remesh.
+  // Two meshes in different units or frames give distances that measure that, not the remesh. The
+  // distances read the triangles only, so does the frame: a vertex no triangle uses does not count.
+  std::vector<Vec3> used;
+  {
+    std::vector<char> in_triangle(soup.positions.size(), 0);
+    for (const Triangle& t : soup.triangles)
+      for (int v : t)
+        if (v >= 0 && static_cast<std::size_t>(v) < in_triangle.size()) in_triangle[v] = 1;
+    for (std::size_t v = 0; v < soup.positions.size(); ++v)
+      if (in_triangle[v]) used.push_back(soup.positions[v]);
+  }
   const std::string frame =
-      measurable ? frame_mismatch(reference.bounding_box(), bounding_box(soup.positions)) : std::string();
+      measurable && !used.empty() ? frame_mismatch(reference.bounding_box(), bounding_box(used)) : std::string();
   if (!frame.empty()) report["frame_warning"] = frame;
   report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
   report["verification"] = check.to_json();

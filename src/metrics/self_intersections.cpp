@@ -116,11 +116,17 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
   return pairs;
 }
 
-bool components_intersect(const SurfaceMesh& mesh) {
-  if (mesh.component_count() < 2) return false;
+bool components_intersect(const SurfaceMesh& mesh) { return !intersecting_component_pairs(mesh).empty(); }
+
+std::vector<std::pair<int, int>> intersecting_component_pairs(const SurfaceMesh& mesh) {
+  std::vector<std::pair<int, int>> out;
+  if (mesh.component_count() < 2) return out;
+  const std::vector<int>& component = mesh.triangle_components();
   for (const auto& [s, t] : find_self_intersections(mesh.positions(), mesh.triangles()))
-    if (mesh.triangle_components()[s] != mesh.triangle_components()[t]) return true;
-  return false;
+    if (component[s] != component[t]) out.emplace_back(std::min(component[s], component[t]), std::max(component[s], component[t]));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
 }
 
 std::vector<int> soup_components(int vertex_count, const std::vector<Triangle>& triangles,

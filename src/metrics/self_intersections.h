@@ -26,6 +26,10 @@ std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std
 //! self-intersecting surface such as two interpenetrating spheres, paper Fig. 11).
 bool components_intersect(const SurfaceMesh& mesh);
 
+//! The pairs (a, b), a < b, of connected components (SurfaceMesh::triangle_components) that meet,
+//! sorted: what components_intersect tells, component by component.
+std::vector<std::pair<int, int>> intersecting_component_pairs(const SurfaceMesh& mesh);
+
 //! Connected component of each triangle of a triangle soup (triangles joined through shared
 //! vertices); -1 for triangles with testable[t] == 0.
 std::vector<int> soup_components(int vertex_count, const std::vector<Triangle>& triangles,
