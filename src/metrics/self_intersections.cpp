@@ -105,14 +105,16 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
       const Triangle& f = triangles[t];
       boxes.emplace_back(points[f[0]].bbox() + points[f[1]].bbox() + points[f[2]].bbox(), static_cast<int>(t));
     }
-  std::vector<std::pair<int, int>> candidates;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
-    candidates.push_back(std::minmax(a.triangle(), b.triangle()));
-  });
-  std::sort(candidates.begin(), candidates.end());
+  // Each candidate is decided as the box search meets it, and only the crossing pairs are kept: the
+  // triangles around a vertex of high valence all have overlapping boxes (a fan of 20,000 gives
+  // 2 * 10^8 candidates; stored and sorted, `lrvd quality` of it took 2.1 GB and 110 s, now 39 MB
+  // and 81 s). The search is still quadratic there.
   std::vector<std::pair<int, int>> pairs;
-  for (const auto& [s, t] : candidates)
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
+    const int s = std::min(a.triangle(), b.triangle()), t = std::max(a.triangle(), b.triangle());
     if (intersect_illegitimately(triangles[s], triangles[t], points)) pairs.emplace_back(s, t);
+  });
+  std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
