@@ -11,23 +11,49 @@
 
 namespace lrvd {
 
-void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
-                      std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch) {
-  const size_t n = polygon.size();
-  if (n == 0) return;
-  scratch.clear();
-  const Sign first = side(polygon[0], k, l, ctx);
-  if (first == Sign::Zero) throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
+namespace {
+
+[[noreturn]] void throw_on_bisector() {
+  throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
+}
+
+// One Sutherland-Hodgman step: cell k's polygon `in` (not empty) clipped by bisector(k, l) into
+// `out`. kept(a) is called after in[a] is copied to `out`, born() after each new vertex. Returns
+// whether a vertex was dropped (if not, `out` is `in`).
+template <class Kept, class Born>
+bool clip_step(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
+               const std::vector<SymbolicVertex>& in, std::vector<SymbolicVertex>& out, Kept&& kept, Born&& born) {
+  const std::size_t n = in.size();
+  out.clear();
+  const Sign first = side(in[0], k, l, ctx);
+  if (first == Sign::Zero) throw_on_bisector();
+  bool dropped = false;
   Sign su = first;
-  for (size_t a = 0; a < n; ++a) {
-    const SymbolicVertex& u = polygon[a];
-    const SymbolicVertex& w = polygon[(a + 1) % n];
-    const Sign sw = a + 1 == n ? first : side(w, k, l, ctx);
-    if (sw == Sign::Zero) throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
-    if (su == Sign::Positive) scratch.push_back(u);
-    if (su != sw) scratch.push_back(intersect(u, w, k, l, triangle));
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t b = a + 1 == n ? 0 : a + 1;
+    const Sign sw = b == 0 ? first : side(in[b], k, l, ctx);
+    if (sw == Sign::Zero) throw_on_bisector();
+    if (su == Sign::Positive) {
+      out.push_back(in[a]);
+      kept(a);
+    } else {
+      dropped = true;
+    }
+    if (su != sw) {
+      out.push_back(intersect(in[a], in[b], k, l, triangle));
+      born();
+    }
     su = sw;
   }
+  return dropped;
+}
+
+}  // namespace
+
+void clip_by_bisector(const std::array<int, 3>& triangle, int k, int l, const SymbolicContext& ctx,
+                      std::vector<SymbolicVertex>& polygon, std::vector<SymbolicVertex>& scratch) {
+  if (polygon.empty()) return;
+  clip_step(triangle, k, l, ctx, polygon, scratch, [](std::size_t) {}, [] {});
   polygon.swap(scratch);
 }
 
@@ -58,10 +84,6 @@ constexpr std::uint8_t kNoLabel = 0xff;
 // The edge mask of corner c: edges c - 1 and c (edge e joins corners e and e + 1).
 constexpr std::uint8_t kCornerMask[3] = {0b101, 0b011, 0b110};
 constexpr std::uint32_t kMaxEpoch = 1u << 30;
-
-[[noreturn]] void throw_on_bisector() {
-  throw std::logic_error("clip: a polygon vertex already lies on the clipping bisector");
-}
 
 }  // namespace
 
@@ -283,30 +305,11 @@ void CellClipper::clip_many(const std::array<int, 3>& tri, int k, const int* lab
     const int l = labels[a];
     if (l == k || clear(ctx.sites[l])) continue;
     // clip_by_bisector, carrying each vertex's bound along.
-    const int n = static_cast<int>(polygon.size());
-    next.clear();
     next_reach2_.clear();
-    const Sign first = side(polygon[0], k, l, ctx);
-    if (first == Sign::Zero) throw_on_bisector();
-    bool changed = false;
-    Sign su = first;
-    for (int u = 0; u < n; ++u) {
-      const int w = u + 1 == n ? 0 : u + 1;
-      const Sign sw = w == 0 ? first : side(polygon[w], k, l, ctx);
-      if (sw == Sign::Zero) throw_on_bisector();
-      if (su == Sign::Positive) {
-        next.push_back(polygon[u]);
-        next_reach2_.push_back(reach2_[u]);
-      } else {
-        changed = true;
-      }
-      if (su != sw) {
-        next.push_back(intersect(polygon[u], polygon[w], k, l, tri));
-        next_reach2_.push_back(kUnknown);
-      }
-      su = sw;
-    }
-    if (!changed) continue;
+    const bool dropped = clip_step(
+        tri, k, l, ctx, polygon, next, [&](std::size_t u) { next_reach2_.push_back(reach2_[u]); },
+        [&] { next_reach2_.push_back(kUnknown); });
+    if (!dropped) continue;
     polygon.swap(next);
     reach2_.swap(next_reach2_);
     tight = !ctx.in_range;
