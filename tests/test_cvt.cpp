@@ -14,6 +14,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
+#include "metrics/self_intersections.h"
 #include "remesh/remesh.h"
 #include "test_meshes.h"
 #include "verification/remesh_check.h"
@@ -55,8 +56,8 @@ struct FirstCvt {
 FirstCvt first_cvt(const SurfaceMesh& mesh, int n, int seed) {
   FirstCvt r;
   r.cvt = optimize_cvt(mesh, sample_uniform(mesh, n, seed), CvtOptions{});
-  r.defects = find_dual_defects(compute_dual(r.cvt.diagram, mesh, r.cvt.samples), r.cvt.diagram, mesh,
-                                mesh.is_closed(), false);
+  r.defects = find_dual_defects(compute_dual(r.cvt.diagram, mesh, r.cvt.samples), r.cvt.diagram, mesh, r.cvt.samples,
+                                mesh.is_closed());
   return r;
 }
 
@@ -390,6 +391,56 @@ TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's t
   }
 }
 
+TEST_CASE("Only crossings between input components that cross each other are the input's own", "[cvt][remesh]") {
+  // Two spheres that cross (as in paper Fig. 11) and a third 0.05 from the first, which the "remesh"
+  // (the input's own vertices, the third sphere's swollen by a tenth) pushes into the first: its
+  // crossings are the remesh's, the first two spheres' the input's.
+  const SurfaceMesh spheres = test::merge(test::icosphere(2), test::icosphere(2), {1, 0, 0});
+  const SurfaceMesh three = test::merge(spheres, test::icosphere(2), {0, 2.05, 0});
+  Samples samples;  // at the vertices (some coincide where the first two spheres cross)
+  samples.positions = three.positions();
+  samples.triangles.resize(three.vertex_count());
+  samples.barycentric.resize(three.vertex_count());
+  for (int t = 0; t < three.triangle_count(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      samples.triangles[three.triangle(t)[c]] = t;
+      samples.barycentric[three.triangle(t)[c]] = Vec3{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
+    }
+  DualMesh dual{three.positions(), three.triangles()};
+  const Vec3 centre{0, 2.05, 0};
+  for (int v = spheres.vertex_count(); v < three.vertex_count(); ++v)
+    dual.positions[v] = centre + 1.1 * (dual.positions[v] - centre);
+  const std::vector<int>& component = three.triangle_components();
+  int own = 0, inherited = 0;
+  for (const auto& [s, t] : find_self_intersections(dual.positions, dual.triangles)) {
+    const int a = std::min(component[s], component[t]), b = std::max(component[s], component[t]);
+    REQUIRE(a != b);
+    ++(b == component[dual.triangles.size() - 1] ? own : inherited);
+  }
+  REQUIRE(own > 0);
+  REQUIRE(inherited > 0);
+  const InputCrossings input(three);
+  REQUIRE(input.any());
+  UntangleOptions none;
+  none.passes = 0;
+  DualMesh copy = dual;
+  REQUIRE(untangle_crossings(three, samples, copy, input, none).crossings_before == own);
+  REQUIRE(untangle_crossings(three, samples, copy, InputCrossings(), none).crossings_before == own + inherited);
+  REQUIRE_FALSE(InputCrossings(test::merge(test::icosphere(2), test::icosphere(2), {5, 0, 0})).any());
+
+  // A whole remesh: the two spheres, and a torus round the first whose inner equator runs 0.02 from
+  // it, which the remesh's chords cut into at 150 vertices. The repair once passed over those
+  // crossings as the input's (its spheres cross) and ended with them (exit 3 from the command line).
+  const SurfaceMesh ringed = test::merge(test::merge(test::icosphere(3), test::icosphere(3), {0, 0, 1}),
+                                         test::torus(1.32, 0.3, 96, 24), {0, 0, 0});
+  const RemeshResult r = remesh_to(ringed, 150);  // as `lrvd remesh -n 150` does it
+  const RemeshVerification check = verify_remesh(ringed, r.dual.positions, r.dual.triangles, 150);
+  INFO(check.summary());
+  REQUIRE(check.passed);
+  REQUIRE(check.self_intersecting_pairs == 0);
+  REQUIRE(check.inherited_intersecting_pairs > 0);
+}
+
 TEST_CASE("A run whose line search backtracks counts L-BFGS iterations, within the caps, not evaluations", "[cvt][remesh]") {
   // Elk 300's repair rounds backtrack often (about 2.7 diagrams per iteration), and some end on a
   // failed line search; such a round was once reported with its evaluations as iterations (105 and
@@ -533,7 +584,7 @@ TEST_CASE("A cell at a sharp tip that meets two cells sharing two arcs round it 
   const Samples samples = locate_points(cone, points);
   const Diagram diagram = compute_lrvd(cone, samples);
   const DualMesh dual = compute_dual(diagram, cone, samples);
-  const DualDefects defects = find_dual_defects(dual, diagram, cone, true, false);
+  const DualDefects defects = find_dual_defects(dual, diagram, cone, samples, true);
   // The apex sample is used, twice in the same triangle.
   REQUIRE(std::count(dual.triangles.begin(), dual.triangles.end(), Triangle{0, 1, 2}) +
               std::count(dual.triangles.begin(), dual.triangles.end(), Triangle{0, 2, 1}) ==
@@ -554,7 +605,7 @@ TEST_CASE("A ring cell round the narrowing part below a tip cap is named with th
   const Samples samples = locate_points(cone, points);
   const Diagram diagram = compute_lrvd(cone, samples);
   const DualMesh dual = compute_dual(diagram, cone, samples);
-  const DualDefects defects = find_dual_defects(dual, diagram, cone, true, false);
+  const DualDefects defects = find_dual_defects(dual, diagram, cone, samples, true);
   CHECK(defects.topological == std::vector<int>{0});
   CHECK(defects.tip_caps == std::vector<int>{0});
   CHECK(defects.tip_cap_rings == std::vector<int>{1});

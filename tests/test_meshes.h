@@ -131,6 +131,25 @@ inline SurfaceMesh icosphere(int levels) {
   return SurfaceMesh(p, t);
 }
 
+//! Torus round the z axis, radii R (to the tube's centre) and r (the tube's), of nu x nv quads
+//! split into two triangles each.
+inline SurfaceMesh torus(double R, double r, int nu, int nv) {
+  std::vector<Vec3> p;
+  std::vector<Triangle> t;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, w = 2 * M_PI * j / nv;
+      p.push_back({(R + r * std::cos(w)) * std::cos(u), (R + r * std::cos(w)) * std::sin(u), r * std::sin(w)});
+    }
+  auto at = [&](int i, int j) { return (i % nu) * nv + j % nv; };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      t.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  return SurfaceMesh(p, t);
+}
+
 //! Disjoint union of two meshes, the second shifted by `offset`.
 inline SurfaceMesh merge(const SurfaceMesh& a, const SurfaceMesh& b, const Vec3& offset) {
   std::vector<Vec3> p = a.positions();

@@ -118,8 +118,6 @@ std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>
   return pairs;
 }
 
-bool components_intersect(const SurfaceMesh& mesh) { return !intersecting_component_pairs(mesh).empty(); }
-
 std::vector<std::pair<int, int>> intersecting_component_pairs(const SurfaceMesh& mesh) {
   std::vector<std::pair<int, int>> out;
   if (mesh.component_count() < 2) return out;

@@ -22,12 +22,9 @@ bool triangles_cross(const std::vector<Vec3>& positions, const Triangle& f, cons
 //! The triangles find_self_intersections can take: three distinct corners, not collinear (exact).
 std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);
 
-//! Whether two different connected components of the mesh cut through each other (a
-//! self-intersecting surface such as two interpenetrating spheres, paper Fig. 11).
-bool components_intersect(const SurfaceMesh& mesh);
-
 //! The pairs (a, b), a < b, of connected components (SurfaceMesh::triangle_components) that meet,
-//! sorted: what components_intersect tells, component by component.
+//! sorted: where a self-intersecting surface such as two interpenetrating spheres (paper Fig. 11)
+//! cuts through itself.
 std::vector<std::pair<int, int>> intersecting_component_pairs(const SurfaceMesh& mesh);
 
 //! Connected component of each triangle of a triangle soup (triangles joined through shared

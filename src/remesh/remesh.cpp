@@ -239,7 +239,7 @@ void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std:
 }  // namespace
 
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
-                              bool input_closed, bool input_components_cross) {
+                              const Samples& samples, bool input_closed, const InputCrossings& inherited) {
   // Each edge and each vertex triple with its count, as runs of a sorted list.
   std::vector<std::pair<int, int>> edge_list;
   std::vector<Triangle> vertex_sets;
@@ -361,12 +361,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
   std::set<int> crossing;
   const auto pairs = find_self_intersections(dual.positions, dual.triangles, testable);
-  // Crossings between components whose input components cross too are the input's own.
-  const std::vector<int> component = input_components_cross && !pairs.empty()
-                                         ? soup_components(static_cast<int>(dual.positions.size()), dual.triangles, testable)
-                                         : std::vector<int>();
   for (const auto& [s, t] : pairs) {
-    if (!component.empty() && component[s] != component[t]) continue;
+    if (inherited.inherited(samples, dual.triangles[s], dual.triangles[t])) continue;
     crossing.insert(dual.triangles[s].begin(), dual.triangles[s].end());
     crossing.insert(dual.triangles[t].begin(), dual.triangles[t].end());
   }
@@ -618,7 +614,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     throw InputError(fmt::format("remesh options: the repair factor must be a number above 1 (got {})",
                                  options.repair_factor));
   const auto start = std::chrono::steady_clock::now();
-  const bool components_cross = components_intersect(reference);
+  // On the CVT's mesh, whose components the samples' triangles name (the reference's cross alike).
+  const InputCrossings inherited(mesh);
   const ClosestPointIndex index(mesh);  // one for every CVT and repair round
   auto progress = [&](const std::string& message) {
     if (options.on_progress) options.on_progress(message);
@@ -630,7 +627,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     // The crossings found in `d` (and then by the fitting) are not searched for again.
     if (options.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh, r.dual, options.fit_options, &index, &d.crossing_pairs);
     r.untangled_from = r.dual;
-    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, components_cross, options.untangle_options,
+    r.untangle = untangle_crossings(mesh, r.cvt.samples, r.dual, inherited, options.untangle_options,
                                     options.fit ? &r.fit.crossings : &d.crossing_pairs);
     r.fitted = true;
     std::set<int> left;
@@ -666,7 +663,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.total_iterations = result.cvt.iterations;
       result.diagram_evaluations = result.cvt.diagram_evaluations;
       result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, result.cvt.samples, reference.is_closed(), inherited);
       settle(result, defects);
       if (keep_to_sheets && options.tip_caps_retry) sheets_start = Start{result, defects};
     }
@@ -740,7 +737,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.total_iterations += result.cvt.iterations;
       result.diagram_evaluations += result.cvt.diagram_evaluations;
       result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);
-      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, reference.is_closed(), components_cross);
+      defects = find_dual_defects(result.dual, result.cvt.diagram, mesh, result.cvt.samples, reference.is_closed(), inherited);
       result.fitted = false;
       result.fit = {};
       result.untangle = {};
@@ -770,7 +767,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.total_iterations += polished.iterations;
       result.diagram_evaluations += polished.diagram_evaluations;
       DualMesh dual = compute_dual(polished.diagram, mesh, polished.samples);
-      DualDefects after = find_dual_defects(dual, polished.diagram, mesh, reference.is_closed(), components_cross);
+      DualDefects after = find_dual_defects(dual, polished.diagram, mesh, polished.samples, reference.is_closed(), inherited);
       progress(fmt::format("{} Lloyd step{} on the samples: the dual has {}{}", polished.iterations,
                            polished.iterations == 1 ? "" : "s", after.describe(),
                            after.empty() ? "" : ", the state before them stands"));
@@ -806,7 +803,8 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       result.diagram_evaluations += candidate.cvt.diagram_evaluations;
       candidate.dual = compute_dual(candidate.cvt.diagram, mesh, candidate.cvt.samples);
       const DualDefects after =
-          find_dual_defects(candidate.dual, candidate.cvt.diagram, mesh, reference.is_closed(), components_cross);
+          find_dual_defects(candidate.dual, candidate.cvt.diagram, mesh, candidate.cvt.samples, reference.is_closed(),
+                            inherited);
       progress(fmt::format("{} iterations with the density eased {}% of the way back: the dual has {}{}",
                            candidate.cvt.iterations, std::lround(100 * options.ease_fraction), after.describe(),
                            after.empty() ? "" : ", the state before them stands"));
@@ -908,7 +906,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     }
     if (options.untangle) {
       result.untangled_from = result.dual;
-      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, components_cross, options.untangle_options,
+      result.untangle = untangle_crossings(mesh, result.cvt.samples, result.dual, inherited, options.untangle_options,
                                            options.fit ? &result.fit.crossings : crossings);
     }
   }
@@ -918,7 +916,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
     UntangleOptions further = options.untangle_options;
     further.max_move = reach;
     DualMesh dual = result.untangled_from;
-    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, components_cross, further,
+    UntangleResult untangled = untangle_crossings(mesh, result.cvt.samples, dual, inherited, further,
                                                   options.fit ? &result.fit.crossings : nullptr);
     if (untangled.crossings_after < result.untangle.crossings_after) {
       result.dual = std::move(dual);

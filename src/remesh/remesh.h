@@ -70,8 +70,8 @@ struct RemeshOptions {
 
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
-//! triangle, and triangles that intersect each other (but for crossings between
-//! components when the input's components cross each other too: `input_components_cross`): the
+//! triangle, and triangles that intersect each other (but for the crossings the input has too:
+//! `inherited`, between samples on two input components that cross each other): the
 //! samples involved; also the cells that are not disks (a ring around a thin part, a handle
 //! inside one cell), share more
 //! than one boundary arc with a neighbour, or meet across a strip of an open mesh narrower than
@@ -156,7 +156,7 @@ struct RemeshResult {
 };
 
 DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
-                              bool input_closed, bool input_components_cross);
+                              const Samples& samples, bool input_closed, const InputCrossings& inherited = {});
 
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.

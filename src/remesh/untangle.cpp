@@ -40,16 +40,29 @@ Vec3 unit(const Vec3& v) {
 
 }  // namespace
 
+InputCrossings::InputCrossings(const SurfaceMesh& mesh) : mesh_(&mesh), pairs_(intersecting_component_pairs(mesh)) {}
+
+int InputCrossings::component(const Samples& samples, const Triangle& t) const {
+  const std::vector<int>& of = mesh_->triangle_components();
+  const int c = of[samples.triangles[t[0]]];
+  return of[samples.triangles[t[1]]] == c && of[samples.triangles[t[2]]] == c ? c : -1;
+}
+
+bool InputCrossings::inherited(const Samples& samples, const Triangle& s, const Triangle& t) const {
+  if (pairs_.empty()) return false;
+  const int a = component(samples, s), b = component(samples, t);
+  return a >= 0 && b >= 0 && a != b && std::binary_search(pairs_.begin(), pairs_.end(), std::pair{std::min(a, b), std::max(a, b)});
+}
+
 UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& samples, DualMesh& dual,
-                                  bool ignore_between_components, const UntangleOptions& options,
+                                  const InputCrossings& inherited, const UntangleOptions& options,
                                   const std::vector<std::pair<int, int>>* crossings) {
   UntangleResult result;
   std::vector<Vec3>& p = dual.positions;
   std::vector<Triangle>& tris = dual.triangles;
   const int n = static_cast<int>(p.size()), nt = static_cast<int>(tris.size());
   std::vector<char> proper = proper_triangles(p, tris);
-  const std::vector<int> component = ignore_between_components ? soup_components(n, tris, proper) : std::vector<int>();
-  auto counted = [&](int s, int t) { return component.empty() || component[s] == component[t]; };
+  auto counted = [&](int s, int t) { return !inherited.inherited(samples, tris[s], tris[t]); };
   auto counted_only = [&](const std::vector<std::pair<int, int>>& all) {
     std::vector<std::pair<int, int>> out;
     for (const auto& st : all)

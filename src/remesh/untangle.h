@@ -31,6 +31,23 @@ struct UntangleOptions {
   bool flip_edges = true;              //!< also flip edges of crossing triangles
 };
 
+//! The crossings a remesh inherits from its input: those between dual triangles whose samples lie
+//! on two components of `mesh` that cross each other there. Built with no mesh, it excuses none.
+class InputCrossings {
+ public:
+  InputCrossings() = default;
+  explicit InputCrossings(const SurfaceMesh& mesh);
+  bool any() const { return !pairs_.empty(); }
+  //! Whether the crossing of dual triangles s and t (vertex i = sample i) is the input's own: the
+  //! samples of each lie on one component, and the two components cross each other.
+  bool inherited(const Samples& samples, const Triangle& s, const Triangle& t) const;
+
+ private:
+  int component(const Samples& samples, const Triangle& t) const;
+  const SurfaceMesh* mesh_ = nullptr;
+  std::vector<std::pair<int, int>> pairs_;  //!< intersecting_component_pairs(mesh)
+};
+
 struct UntangleResult {
   int crossings_before = 0;   //!< crossing pairs counted (see untangle_crossings) before
   int crossings_after = 0;    //!< and after
@@ -51,13 +68,12 @@ struct UntangleResult {
 //! min(30°, the mesh's smallest angle) and its orientation, and each vertex stays within max_move
 //! of its mean edge length of where it started; a flip only if both new triangles are proper, keep
 //! those floors and face the side their two predecessors faced, and the new edge is not in the
-//! mesh. Pairs between two components are not counted when `ignore_between_components` (an input
-//! that crosses itself). With no crossing nothing changes; an edge without exactly two triangles
+//! mesh. Pairs the input has too (`inherited`) are not counted. With no crossing nothing changes; an edge without exactly two triangles
 //! oriented consistently is never flipped.
 //! `crossings`, if given, are find_self_intersections of `dual`'s proper triangles as it is passed
 //! (the caller found them already).
 UntangleResult untangle_crossings(const SurfaceMesh& mesh, const Samples& samples, DualMesh& dual,
-                                  bool ignore_between_components, const UntangleOptions& options = {},
+                                  const InputCrossings& inherited, const UntangleOptions& options = {},
                                   const std::vector<std::pair<int, int>>* crossings = nullptr);
 
 }  // namespace lrvd
