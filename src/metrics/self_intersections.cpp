@@ -43,9 +43,12 @@ bool intersect_illegitimately(const Triangle& f, const Triangle& g, const Points
   const Kernel::Triangle_3 tf(p[f[0]], p[f[1]], p[f[2]]), tg(p[g[0]], p[g[1]], p[g[2]]);
   if (shared == 0) return CGAL::do_intersect(tf, tg);
   if (shared == 1) {
+    // Around a vertex of high valence every pair of its triangles is a candidate (their boxes all
+    // hold it); an opposite edge's box, which the edge lies in, seldom meets the other triangle's.
     const int i = fi[0], j = gi[0];
     const Kernel::Segment_3 ef(p[f[(i + 1) % 3]], p[f[(i + 2) % 3]]), eg(p[g[(j + 1) % 3]], p[g[(j + 2) % 3]]);
-    return CGAL::do_intersect(ef, tg) || CGAL::do_intersect(eg, tf);
+    return (CGAL::do_overlap(ef.bbox(), tg.bbox()) && CGAL::do_intersect(ef, tg)) ||
+           (CGAL::do_overlap(eg.bbox(), tf.bbox()) && CGAL::do_intersect(eg, tf));
   }
   if (shared == 2) {
     const Point &u = p[f[fi[0]]], &w = p[f[fi[1]]];
