@@ -527,6 +527,13 @@ TEST_CASE("remesh_to (the library call) gives the mesh that lrvd remesh writes a
     CHECK(take_file(kOut + "remesh_to.off") == take_file(kOut + "remesh_cli.off"));
   }
   REQUIRE_THROWS_AS(lrvd::remesh_to(two, 7), lrvd::InputError);  // two spheres need 4 vertices each
+  // Fewer vertices than components: the command names the fewest a remesh has (8), not one each.
+  for (const char* n : {"1", "7"}) {
+    const Run few = run(std::string("remesh ") + kOut + "two_spheres.off -n " + n + " -o " + kOut + "remesh_cli.off");
+    REQUIRE(few.status == 2);
+    REQUIRE(lines(few.err) == 1);
+    CHECK(few.err.find("has fewer than 8") != std::string::npos);
+  }
   REQUIRE_THROWS_WITH(lrvd::remesh_to(two, 4'000'000), Catch::Contains("use fewer vertices"));  // ~16M triangles
 }
 

@@ -406,7 +406,9 @@ TEST_CASE("Only crossings between input components that cross each other are the
       samples.triangles[three.triangle(t)[c]] = t;
       samples.barycentric[three.triangle(t)[c]] = Vec3{c == 0 ? 1.0 : 0.0, c == 1 ? 1.0 : 0.0, c == 2 ? 1.0 : 0.0};
     }
-  DualMesh dual{three.positions(), three.triangles()};
+  DualMesh dual;
+  dual.positions = three.positions();
+  dual.triangles = three.triangles();
   const Vec3 centre{0, 2.05, 0};
   for (int v = spheres.vertex_count(); v < three.vertex_count(); ++v)
     dual.positions[v] = centre + 1.1 * (dual.positions[v] - centre);

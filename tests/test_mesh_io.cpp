@@ -252,6 +252,56 @@ TEST_CASE("an unwelded triangle soup is refused without --repair and welded into
   REQUIRE(loaded.repair.changed());
 }
 
+TEST_CASE("A crack where one side of a seam has corners the other lacks is refused, and --repair splits its edge") {
+  // The unit cube with its front face split at two points of its bottom edge, which the bottom face
+  // uses whole (a T-junction, common in CAD exports): on the edge, and a hair off it.
+  for (const double lift : {0.0, 1e-8}) {
+    INFO("lift " << lift);
+    std::string off = "OFF\n10 14 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n";
+    off += fmt::format("{} {} 0\n{} {} 0\n", 1.0 / 3, lift, 2.0 / 3, -lift);
+    off += "3 0 2 3\n3 0 3 1\n3 4 5 7\n3 4 7 6\n3 2 6 7\n3 2 7 3\n3 0 4 6\n3 0 6 2\n3 1 3 7\n3 1 7 5\n"
+           "3 0 8 4\n3 8 9 4\n3 9 1 5\n3 9 5 4\n";
+    const std::string path = scratch("cube_cracked.off");
+    write_file(path, off);
+    REQUIRE_THROWS_WITH(read_mesh(path), Contains("cube_cracked.off: has a crack: vertex 8 lies on the boundary edge (1, 0) "
+                                                  "of another face") &&
+                                             Contains("2 such corners") && Contains("rerun with --repair"));
+    const LoadedMesh loaded = read_mesh(path, {true});
+    REQUIRE(loaded.repair.split_edges == 1);
+    REQUIRE(loaded.repair.soup_changed());
+    REQUIRE(loaded.mesh.vertex_count() == 10);
+    REQUIRE(loaded.mesh.triangle_count() == 16);
+    REQUIRE(loaded.mesh.is_closed());
+    REQUIRE(loaded.mesh.euler_characteristic() == 2);
+    REQUIRE(signed_volume(loaded.mesh) == Approx(1.0));
+  }
+}
+
+TEST_CASE("T-junctions: corners on another face's boundary edge, away from its ends, split edge by edge") {
+  // Triangle 0 has corner 3 on its edge 0 and corner 4 on its edge 1; they are corners of triangle 1.
+  // Corner 5 lies a hair beyond the end of triangle 0's edge 2 (a near twin of corner 0, not a
+  // junction), and corner 2 of triangle 0 is its own.
+  const std::vector<Vec3> p = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {1, 0, 0}, {1, 1, 0}, {0, -1e-9, 0}, {2, 2, 1}};
+  std::vector<Triangle> t = {{0, 1, 2}, {3, 4, 6}, {5, 6, 4}};
+  std::vector<TJunction> found = find_t_junctions(p, t, 1e-6);
+  REQUIRE(found.size() == 2);
+  CHECK(found[0].vertex == 3);
+  CHECK(found[0].triangle == 0);
+  CHECK(found[0].edge == 0);
+  CHECK(found[0].along == 0.5);
+  CHECK(found[1].vertex == 4);
+  CHECK(found[1].edge == 1);
+  REQUIRE(split_at_t_junctions(t, found) == 1);  // edge 0 first; edge 1 is whole in one of its parts
+  REQUIRE(t == std::vector<Triangle>{{0, 3, 2}, {3, 4, 6}, {5, 6, 4}, {3, 1, 2}});
+  found = find_t_junctions(p, t, 1e-6);
+  REQUIRE(found.size() == 1);
+  CHECK(found[0].vertex == 4);
+  CHECK(found[0].triangle == 3);
+  REQUIRE(split_at_t_junctions(t, found) == 1);
+  REQUIRE(t == std::vector<Triangle>{{0, 3, 2}, {3, 4, 6}, {5, 6, 4}, {1, 4, 3}, {4, 2, 3}});
+  REQUIRE(find_t_junctions(p, t, 1e-6).empty());
+}
+
 TEST_CASE("a soup whose corners nearly coincide is refused naming --weld, and --weld welds it") {
   // soup_jittered.off: the octahedron soup with its corner copies 1e-10 to 2.3e-9 apart. The exact
   // twin test sees no seam; the near one does, and suggests a weld that takes every pair.

@@ -23,6 +23,14 @@ namespace lrvd::cli {
 
 namespace {
 
+// The crossings the check let pass as the input's own, when there are any: " (N crossing pairs
+// inherited ...)".
+std::string inherited_note(const RemeshVerification& check) {
+  if (check.inherited_intersecting_pairs == 0) return "";
+  return fmt::format(" ({} inherited: between components that cross or touch in the input too)",
+                     counted(check.inherited_intersecting_pairs, "crossing pair", "crossing pairs"));
+}
+
 struct RemeshCommandOptions {
   InputOptions input;
   std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance";
@@ -103,12 +111,13 @@ int run_remesh(const RemeshCommandOptions& opt) {
   if (opt.output.empty()) throw InputError("give an output file with -o");
   check_outputs({{opt.output, "-o", kMeshWriteExtensions}, {opt.report, "--report", {}, kMeshReadExtensions}},
                 read_files(opt.input));
-  Input input = load_input(opt.input);
+  InputOptions read = opt.input;
+  read.check_count = require_remesh_vertex_count;  // before sampling, which asks one per component
+  Input input = load_input(read);
   if (input.samples.weighted())
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
-  require_remesh_vertex_count(input.loaded.mesh, input.samples.size());
   // The CVT keeps each sample on its component: each gets its share of the samples up front, and
   // at least the fewest vertices its own topology needs.
   if (input.mesh.component_count() > 1 && opt.input.points_path.empty())
@@ -205,7 +214,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
               counted(dual.triangles.size(), "triangle", "triangles").c_str(),
               counted(remeshed.total_iterations, "iteration", "iterations").c_str(), remeshed.time_s, opt.output.c_str());
   print_quality(measurable ? &quality : nullptr, false);
-  std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
+  std::printf("verification: %s%s\n", check.passed ? "passed" : "FAILED", inherited_note(check).c_str());
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
   if (!check.passed && !remeshed.defects.empty()) {
     // Where the repair gave up, on the input surface: a thin part or a handle too small for the cells.
@@ -305,11 +314,11 @@ int run_quality(const QualityOptions& opt) {
     std::printf("quality: not measured (the mesh has no triangles)\n");
   if (!frame.empty()) std::printf("warning: %s\n", frame.c_str());
   // The key `closed_manifold` asks for a closed mesh only when the reference is closed.
-  std::printf("%s: %s, genus preserved: %s, self-intersecting pairs: %d\n",
+  std::printf("%s: %s, genus preserved: %s, self-intersecting pairs: %d%s\n",
               reference.is_closed() ? "closed manifold" : "manifold (open, as the reference)",
               measurable && check.manifold.passed && check.closed.passed ? "yes" : "no",  // no triangle: no surface
               check.topology.passed ? "yes" : "no",
-              check.self_intersecting_pairs);
+              check.self_intersecting_pairs, inherited_note(check).c_str());
   // Like a remesh of our own: 3 when the mesh fails a check, so that a script can tell.
   std::printf("verification: %s\n", check.passed ? "passed" : "FAILED");
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);

@@ -117,6 +117,7 @@ void print_repair(const RepairReport& r, const ReadOptions& read) {
                         counted(r.removed_unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"));
     if (r.reoriented_faces > 0) changes.push_back("reoriented " + counted(r.reoriented_faces, "face", "faces"));
     if (r.stitched_edges > 0) changes.push_back("stitched " + counted(r.stitched_edges, "edge", "edges"));
+    if (r.split_edges > 0) changes.push_back("split " + counted(r.split_edges, "edge at T-junctions", "edges at T-junctions"));
     if (r.duplicated_nonmanifold_vertices > 0)
       changes.push_back("copied " + counted(r.duplicated_nonmanifold_vertices, "non-manifold vertex",
                                             "non-manifold vertices"));
@@ -212,6 +213,7 @@ Input load_input(const InputOptions& opt) {
                                     : fmt::format("give a sample count -n >= 1 or a point file --points (got -n {})", opt.count));
   if (n > kMaxSamples)
     throw InputError(fmt::format("{} samples are more than lrvd takes (limit {})", n, kMaxSamples));
+  if (opt.check_count) opt.check_count(input.loaded.mesh, n);
 
   double length = 0;
   if (opt.refine == "auto") {

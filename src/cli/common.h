@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,9 @@ struct InputOptions {
   std::string weights_path;   //!< --weights: one weight per line (or 4th column of --points)
   std::uint64_t seed = 1;
   std::string refine = "auto";  //!< auto | off | a maximum edge length
+  //! Called with the mesh as read and the sample count, before refining and sampling: a command's
+  //! own bound on the count (remesh: the fewest vertices a mesh of the surface's topology has).
+  std::function<void(const SurfaceMesh&, int)> check_count;
 };
 
 //! "1 vertex", "3 vertices": a count with its noun in the right number.

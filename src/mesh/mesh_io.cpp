@@ -417,6 +417,34 @@ void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& posi
                          near.distance / diagonal, near.count, weld_advice));
 }
 
+// The distance within which a boundary corner counts as lying on another face's boundary edge: as
+// near twins, a fraction of the bounding-box diagonal of the vertices the triangles use.
+double t_junction_tolerance(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  std::vector<Vec3> used;
+  used.reserve(3 * triangles.size());
+  for (const Triangle& t : triangles)
+    for (int v : t) used.push_back(positions[v]);
+  return kNearTwinFraction * bounding_box(used).diagonal();
+}
+
+// A boundary corner on another face's boundary edge (a T-junction): the seam is open there, a crack
+// the remesh would keep. --repair splits such edges; after it, what is left is refused as well.
+void refuse_t_junctions(const std::string& path, const std::vector<Vec3>& positions,
+                        const std::vector<Triangle>& triangles, const std::vector<int>& original, bool repaired) {
+  const std::vector<TJunction> found = find_t_junctions(positions, triangles, t_junction_tolerance(positions, triangles));
+  if (found.empty()) return;
+  const auto first = std::min_element(found.begin(), found.end(), [&](const TJunction& a, const TJunction& b) {
+    return std::tie(a.triangle, a.vertex) < std::tie(b.triangle, b.vertex);
+  });
+  const Triangle& t = triangles[first->triangle];
+  const auto number = [&](int v) { return repaired ? v : original[v]; };
+  fail(path, fmt::format("{}has a crack: vertex {} lies on the boundary edge ({}, {}) of another face, which does not "
+                         "use it (a T-junction; {} such corner{}){}",
+                         repaired ? "is still invalid after --repair: it " : "", number(first->vertex),
+                         number(t[first->edge]), number(t[(first->edge + 1) % 3]), found.size(),
+                         found.size() == 1 ? "" : "s", repaired ? "" : "; rerun with --repair to split those edges"));
+}
+
 SurfaceMesh validated_mesh(const std::string& path, std::vector<Vec3> positions, std::vector<Triangle> triangles,
                            const std::string& numbering_note, bool repaired) {
   try {
@@ -504,6 +532,35 @@ std::string weld_near_points(std::vector<Point>& points, std::vector<Polygon>& p
   return damage;
 }
 
+// Splits the boundary edges that corners of other faces lie on (T-junctions), so that both sides of
+// the crack share those corners: each split triangle becomes a fan from its opposite corner. A
+// triangle with such corners on several edges is split edge by edge (at most three passes).
+void split_t_junctions(const std::vector<Point>& points, std::vector<SoupTriangle>& soup, RepairReport& report) {
+  std::vector<Vec3> positions;
+  positions.reserve(points.size());
+  for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
+  std::vector<Triangle> triangles;
+  triangles.reserve(soup.size());
+  for (const SoupTriangle& t : soup)
+    triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  const double tolerance = t_junction_tolerance(positions, triangles);
+  int corners = 0;
+  for (int pass = 0; pass < 3; ++pass) {
+    const std::vector<TJunction> junctions = find_t_junctions(positions, triangles, tolerance);
+    if (junctions.empty()) break;
+    if (pass == 0) corners = static_cast<int>(junctions.size());
+    report.split_edges += split_at_t_junctions(triangles, junctions);
+  }
+  if (report.split_edges == 0) return;
+  report.notes.push_back(fmt::format("split {} boundary edge{} at {} corner{} of other faces lying on {} (T-junctions: "
+                                     "cracks along seams)",
+                                     report.split_edges, report.split_edges == 1 ? "" : "s", corners,
+                                     corners == 1 ? "" : "s", report.split_edges == 1 ? "it" : "them"));
+  soup.clear();
+  for (const Triangle& t : triangles)
+    soup.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+}
+
 RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
                          double weld, RepairReport& report) {
   const std::size_t faces_read = polygons.size();
@@ -539,6 +596,7 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
     fail(path, fmt::format("has {} of its {} faces left after --weld {:g} joined their corners: {}", triangles.size(),
                            faces_read, weld, weld_damage));
   report.removed_duplicate_faces = static_cast<int>(PMP::merge_duplicate_polygons_in_polygon_soup(points, triangles));
+  split_t_junctions(points, triangles, report);
 
   RepairedSoup out;
   out.weld_damage = weld_damage;
@@ -612,7 +670,7 @@ void choose_component_orientation(SurfaceMesh& mesh, std::vector<char>& reversed
 
 bool RepairReport::soup_changed() const {
   return welded_vertices || merged_vertices || removed_degenerate_faces || removed_duplicate_faces ||
-         removed_unreferenced_vertices || reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges ||
+         removed_unreferenced_vertices || reoriented_faces || duplicated_nonmanifold_vertices || stitched_edges || split_edges ||
          triangulated_faces;
 }
 
@@ -864,6 +922,7 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   try {
     refuse_triangle_soup(path, positions, triangles, original, options.repair, options.repair ? options.weld : 0.0,
                          weld_damage);
+    refuse_t_junctions(path, positions, triangles, original, options.repair);
     loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
   } catch (const InputError& e) {
     if (weld_damage.empty() || std::string(e.what()).find(weld_damage) != std::string::npos) throw;

@@ -33,6 +33,7 @@ struct RepairReport {
   int reoriented_faces = 0;                 //!< faces reversed to orient their component consistently
   int duplicated_nonmanifold_vertices = 0;  //!< vertices copied to cut non-manifold edges / vertices apart
   int stitched_edges = 0;                   //!< pairs of coincident boundary edges glued together
+  int split_edges = 0;                      //!< boundary edges split at corners of other faces lying on them (T-junctions)
   int triangulated_faces = 0;               //!< polygons with more than 3 vertices split into triangles
   int filled_holes = 0;                     //!< boundary loops closed with triangles (ReadOptions::fill_holes)
   std::vector<std::string> notes;           //!< one human-readable line per change worth knowing
@@ -52,7 +53,8 @@ struct LoadedMesh {
 //! \throw InputError "<path>: <reason>" for a missing/unreadable file, an unknown extension, an
 //!        empty, truncated or unparsable file, non-finite coordinates, out-of-range indices, an
 //!        unwelded triangle soup (suggests --repair), boundary corners within 1e-6 of the bounding-box
-//!        diagonal of each other but not at one point (suggests --repair --weld), and every
+//!        diagonal of each other but not at one point (suggests --repair --weld), a boundary corner
+//!        within that distance of another face's boundary edge (a crack; suggests --repair), and every
 //!        SurfaceMesh precondition.
 LoadedMesh read_mesh(const std::string& path, const ReadOptions& options = {});
 

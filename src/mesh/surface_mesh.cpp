@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <numeric>
 #include <unordered_map>
 
@@ -18,6 +20,48 @@ namespace {
 int find_root(std::vector<int>& parent, int x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
   return x;
+}
+
+// Whether the triangles edge-connected to `start` can be oriented consistently: a union-find with
+// parity (whether a triangle must be reversed relative to its root) over the edges that exactly
+// two triangles share. For the message on an inconsistent orientation: a Möbius-like strip has
+// none.
+bool orientable_around(const std::vector<Triangle>& triangles, int start) {
+  std::unordered_map<std::uint64_t, std::vector<std::pair<int, bool>>> users;  // edge -> (triangle, a < b)
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
+      users[(static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b))]
+          .push_back({t, a < b});
+    }
+  std::vector<int> parent(triangles.size());
+  std::vector<char> flip(triangles.size(), 0);  // relative to the parent
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<std::pair<int, char>(int)> find = [&](int x) -> std::pair<int, char> {
+    if (parent[x] == x) return {x, 0};
+    const auto [root, parity] = find(parent[x]);
+    parent[x] = root;
+    flip[x] ^= parity;
+    return {root, flip[x]};
+  };
+  std::vector<std::pair<int, int>> conflicts;  // roots that met with the wrong parity
+  for (const auto& [edge, list] : users) {
+    if (list.size() != 2) continue;
+    // Consistent when the two traverse the edge in opposite directions: the same flip for both.
+    const char must_differ = list[0].second == list[1].second;
+    const auto [ra, pa] = find(list[0].first);
+    const auto [rb, pb] = find(list[1].first);
+    if (ra == rb) {
+      if ((pa ^ pb) != must_differ) conflicts.push_back({ra, 0});
+      continue;
+    }
+    parent[ra] = rb;
+    flip[ra] = static_cast<char>(pa ^ pb ^ must_differ);
+  }
+  const int root = find(start).first;
+  for (const auto& [r, unused] : conflicts)
+    if (find(r).first == root) return false;
+  return true;
 }
 
 }  // namespace
@@ -166,8 +210,11 @@ void SurfaceMesh::link_and_check() {
       const int t0 = users[0];
       if (edge_index(t0, a, b) >= 0)
         throw InputError(fmt::format(
-            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction",
-            t0, t, a, b));
+            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction{}", t0,
+            t, a, b,
+            orientable_around(triangles_, t) ? ""
+                                             : ", and no orientation of their surface agrees on every edge (it is "
+                                               "one-sided, like a Möbius strip: a repair cuts it open)"));
       neighbors_[t][e] = t0;
       neighbors_[t0][edge_index(t0, b, a)] = t;
     }

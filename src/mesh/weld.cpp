@@ -4,7 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -84,6 +87,83 @@ NearTwins find_near_twins(const std::vector<Vec3>& points, const std::vector<int
     if (twins.a < 0 || a < twins.a) twins.a = a, twins.b = nearest, twins.distance = std::sqrt(nearest_squared);
   }
   return twins;
+}
+
+std::vector<TJunction> find_t_junctions(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                                        double tolerance) {
+  std::vector<TJunction> found;
+  if (!(tolerance >= 0)) return found;
+  const auto key = [](int a, int b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+  };
+  const auto proper = [](const Triangle& t) { return t[0] != t[1] && t[1] != t[2] && t[0] != t[2]; };
+  std::unordered_map<std::uint64_t, int> uses;
+  uses.reserve(2 * triangles.size());
+  for (const Triangle& t : triangles)
+    if (proper(t))
+      for (int e = 0; e < 3; ++e) ++uses[key(t[e], t[(e + 1) % 3])];
+  std::vector<int> corners;  // on the boundary
+  std::vector<char> on_boundary(points.size(), 0);
+  for (const Triangle& t : triangles)
+    if (proper(t))
+      for (int e = 0; e < 3; ++e)
+        if (uses[key(t[e], t[(e + 1) % 3])] == 1)
+          for (int v : {t[e], t[(e + 1) % 3]})
+            if (!on_boundary[v]) on_boundary[v] = 1, corners.push_back(v);
+  if (corners.empty()) return found;
+  PointCloud cloud{points, &corners};
+  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  tree.buildIndex();
+  for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
+    const Triangle& f = triangles[t];
+    if (!proper(f)) continue;
+    for (int e = 0; e < 3; ++e) {
+      const int a = f[e], b = f[(e + 1) % 3];
+      if (uses[key(a, b)] != 1) continue;
+      const Vec3 &pa = points[a], &pb = points[b], ab = pb - pa;
+      const double length2 = dot(ab, ab);
+      if (!(length2 > 0)) continue;
+      // The corners within reach of the edge lie in the ball round its midpoint that holds it.
+      const double reach = 0.5 * std::sqrt(length2) + tolerance;
+      const std::size_t first = found.size();
+      for (const auto& [i, squared] : within(tree, 0.5 * (pa + pb), reach)) {
+        const int v = corners[i];
+        if (v == f[0] || v == f[1] || v == f[2]) continue;
+        const Vec3& p = points[v];
+        // Its closest point on the edge's line, farther than the tolerance from both ends.
+        const double s = dot(p - pa, ab) / length2, length = std::sqrt(length2);
+        if (s * length > tolerance && (1 - s) * length > tolerance && distance(p, pa + s * ab) <= tolerance)
+          found.push_back({v, t, e, s});
+      }
+      std::sort(found.begin() + static_cast<std::ptrdiff_t>(first), found.end(),
+                [](const TJunction& x, const TJunction& y) { return std::tie(x.along, x.vertex) < std::tie(y.along, y.vertex); });
+    }
+  }
+  return found;
+}
+
+int split_at_t_junctions(std::vector<Triangle>& triangles, const std::vector<TJunction>& junctions) {
+  int split = 0;
+  for (std::size_t i = 0, j; i < junctions.size(); i = j) {
+    const int t = junctions[i].triangle, e = junctions[i].edge;
+    for (j = i + 1; j < junctions.size() && junctions[j].triangle == t; ++j) {}
+    std::size_t end = i;  // this triangle's junctions on its first such edge
+    while (end < j && junctions[end].edge == e) ++end;
+    const Triangle f = triangles[t];
+    const int opposite = f[(e + 2) % 3];
+    int from = f[e];
+    for (std::size_t k = i; k < end; ++k) {
+      const Triangle part{from, junctions[k].vertex, opposite};
+      if (k == i)
+        triangles[t] = part;
+      else
+        triangles.push_back(part);
+      from = junctions[k].vertex;
+    }
+    triangles.push_back({from, f[(e + 1) % 3], opposite});
+    ++split;
+  }
+  return split;
 }
 
 }  // namespace lrvd

@@ -29,4 +29,27 @@ struct NearTwins {
 NearTwins find_near_twins(const std::vector<Vec3>& points, const std::vector<int>& candidates, double tolerance,
                           const std::function<bool(int, int)>& joined);
 
+//! A corner on the boundary (an edge used by one triangle) that lies on another triangle's boundary
+//! edge, away from the edge's ends: a crack along a seam that one side splits at a vertex and the
+//! other does not (a T-junction, common in CAD exports).
+struct TJunction {
+  int vertex;    //!< the corner
+  int triangle;  //!< the triangle whose edge it lies on (the corner is not one of its corners)
+  int edge;      //!< edge e joins corners e and e + 1
+  double along;  //!< where its closest point on the edge is: 0 at corner e, 1 at corner e + 1
+};
+
+//! Every (corner, boundary edge) pair with the corner within `tolerance` of the edge's line at a
+//! point of the edge farther than `tolerance` from both its ends (a corner near an end is a near
+//! twin, or a corner beside it), sorted by triangle, edge and `along`. Triangles with a repeated
+//! corner are left out.
+std::vector<TJunction> find_t_junctions(const std::vector<Vec3>& points, const std::vector<Triangle>& triangles,
+                                        double tolerance);
+
+//! `triangles` with each triangle that has T-junctions on its edges split at them: at the corners
+//! on its first such edge, into a fan from the opposite corner, in order along the edge, each part
+//! oriented as the triangle. A triangle with junctions on several edges keeps those on the others
+//! for another pass (its parts hold the other edges whole). Returns the edges split.
+int split_at_t_junctions(std::vector<Triangle>& triangles, const std::vector<TJunction>& junctions);
+
 }  // namespace lrvd
