@@ -327,6 +327,32 @@ TEST_CASE("Samples on a cube's lattice: the RVD's neighbours include every two o
   }
 }
 
+TEST_CASE("Samples all in one plane on a circle round a mesh vertex: every order gives a valid RVD and RPD",
+          "[verification][degenerate][rvd]") {
+  // Four samples on the circle round the centre of a square of 2 x 2 quads, a mesh vertex. CGAL's
+  // triangulation of coplanar samples has dimension 2 and joins one diagonal pair, while the
+  // perturbation may make the other pair neighbours: before their circle grouped the triangles,
+  // 9 of the 24 orders lost the cell of a whole triangle (an audit).
+  const SurfaceMesh square = test::grid(2, 2);
+  const std::array<Vec3, 4> corners = {Vec3{0.25, 0.25, 0}, {0.75, 0.25, 0}, {0.75, 0.75, 0}, {0.25, 0.75, 0}};
+  std::array<int, 4> order{0, 1, 2, 3};
+  int orders = 0;
+  do {
+    std::vector<Vec3> points;
+    for (int c : order) points.push_back(corners[c]);
+    Samples samples = locate_points(square, points);
+    for (DiagramKind kind : {DiagramKind::Rvd, DiagramKind::Rpd}) {
+      samples.weights = kind == DiagramKind::Rpd ? std::vector<double>(4, 0.01) : std::vector<double>();
+      const Diagram d = compute_diagram(square, samples, kind);
+      const DiagramVerification v = verify_diagram(square, samples, d);
+      INFO("order " << fmt::format("{}", fmt::join(order, " ")) << ", " << to_string(kind) << "\n" << v.summary());
+      CHECK(v.passed);
+    }
+    ++orders;
+  } while (std::next_permutation(order.begin(), order.end()));
+  CHECK(orders == 24);
+}
+
 TEST_CASE("Power diagrams do not promise that a sample lies in its cell", "[verification]") {
   const SurfaceMesh mesh = test::icosphere(1);
   Samples samples = sample_uniform(mesh, 10, 5);

@@ -30,7 +30,9 @@ constexpr std::size_t kMostCosphericalSamples = 32;
 // make neighbours of two samples that CGAL's triangulation does not join (the other diagonal of a
 // cospherical cube's face, say). So the cells whose spheres are exactly one sphere are grouped
 // (a cell and its neighbour across a facet are, when the neighbour's far vertex is on the cell's
-// sphere: exact `side_of_sphere`), and every two samples of a group are neighbours.
+// sphere: exact `side_of_sphere`), and every two samples of a group are neighbours. Samples all
+// in one plane give a triangulation of dimension 2, whose triangles are grouped by their circles
+// the same way (four samples on a circle round a mesh vertex lost a triangle's cell before).
 // `on_sphere(cell, vertex)` is that exact test.
 template <class Triangulation, class OnSphere>
 std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n, OnSphere on_sphere) {
@@ -41,6 +43,14 @@ std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n, OnSp
     adjacency[b].push_back(a);
   }
   using Cell = typename Triangulation::Cell_handle;
+  // The full-dimensional faces: tetrahedra, or triangles when every sample lies in one plane (the
+  // facets (c, 3) of a triangulation of dimension 2, where a circle takes the sphere's part).
+  const int dimension = tr.dimension(), corners = dimension + 1;
+  std::vector<Cell> faces;
+  if (dimension == 3)
+    for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c) faces.push_back(c);
+  else if (dimension == 2)
+    for (auto f = tr.all_facets_begin(); f != tr.all_facets_end(); ++f) faces.push_back(f->first);
   std::map<Cell, Cell> parent;
   auto find = [&](Cell c) {
     auto it = parent.find(c);
@@ -50,10 +60,10 @@ std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n, OnSp
     }
     return c;
   };
-  for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c)
-    for (int i = 0; i < 4; ++i) {
+  for (const Cell c : faces)
+    for (int i = 0; i < corners; ++i) {
       const Cell other = c->neighbor(i);
-      if (Cell(c) < other && on_sphere(Cell(c), other->vertex(other->index(Cell(c))))) {
+      if (c < other && on_sphere(c, other->vertex(other->index(c)))) {
         const Cell a = find(c), b = find(other);
         parent.emplace(a, a);
         parent.emplace(b, b);
@@ -63,7 +73,7 @@ std::vector<std::vector<int>> neighbours_of(const Triangulation& tr, int n, OnSp
   std::map<Cell, std::vector<int>> groups;
   for (const auto& [cell, up] : parent) {
     std::vector<int>& members = groups[find(cell)];
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < corners; ++i)
       if (!tr.is_infinite(cell->vertex(i))) members.push_back(cell->vertex(i)->info());
   }
   for (auto& [root, members] : groups) {
@@ -94,6 +104,7 @@ std::vector<std::vector<int>> delaunay_neighbours(const std::vector<Site>& sites
   const auto oriented_sphere = K().side_of_oriented_sphere_3_object();
   return neighbours_of(dt, static_cast<int>(sites.size()), [&](typename Dt::Cell_handle c, typename Dt::Vertex_handle v) {
     if (dt.is_infinite(v)) return false;
+    if (dt.dimension() == 2) return dt.side_of_circle(c, 3, v->point()) == CGAL::ON_BOUNDARY;
     if (dt.is_infinite(c)) return dt.side_of_sphere(c, v->point()) == CGAL::ON_BOUNDARY;
     return oriented_sphere(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point(),
                            v->point()) == CGAL::ON_ORIENTED_BOUNDARY;
@@ -108,7 +119,9 @@ std::vector<std::vector<int>> regular_neighbours(const std::vector<Site>& sites)
   for (const Site& s : sites) points.emplace_back(K::Weighted_point_3(K::Point_3(s.p.x, s.p.y, s.p.z), s.w), s.id);
   const Rt rt(points.begin(), points.end());
   return neighbours_of(rt, static_cast<int>(sites.size()), [&](typename Rt::Cell_handle c, typename Rt::Vertex_handle v) {
-    return !rt.is_infinite(v) && rt.side_of_power_sphere(c, v->point()) == CGAL::ON_BOUNDARY;
+    if (rt.is_infinite(v)) return false;
+    if (rt.dimension() == 2) return rt.side_of_power_circle(c, 3, v->point()) == CGAL::ON_BOUNDARY;
+    return rt.side_of_power_sphere(c, v->point()) == CGAL::ON_BOUNDARY;
   });
 }
 
