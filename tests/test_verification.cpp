@@ -514,6 +514,44 @@ TEST_CASE("Pieces of a cell that touch at a single point of a mesh edge are not 
   CHECK_FALSE(v.conforming.passed);
 }
 
+TEST_CASE("With many cells in one triangle the checks compare fewer pairs and still see every fault",
+          "[verification]") {
+  // 120 samples on a square of two triangles, not refined: about 60 polygons a triangle, where
+  // the overlap and equidistance checks compare only the pairs their certified bounds keep, and
+  // each sample is looked for in its own polygons first.
+  const SurfaceMesh mesh = test::grid(1, 1);
+  std::vector<Vec3> points;
+  for (int k = 0; k < 120; ++k)
+    points.push_back({std::fmod(0.618034 * k + 0.05, 1.0) * 0.98 + 0.01, (k + 0.5) / 120.0, 0});
+  const Samples samples = locate_points(mesh, points);
+  for (DiagramKind kind : {DiagramKind::Rvd, DiagramKind::Lrvd}) {
+    INFO(to_string(kind));
+    const Diagram valid = compute_diagram(mesh, samples, kind);
+    REQUIRE(valid.triangle_offsets[1] > 40);
+    REQUIRE(verify_diagram(mesh, samples, valid).passed);
+    {
+      // Polygon 3 of triangle 0 laid over polygon 30's place: the two overlap.
+      Diagram d = valid;
+      d.polygons[30].first_vertex = d.polygons[3].first_vertex;
+      d.polygons[30].vertex_count = d.polygons[3].vertex_count;
+      const DiagramVerification v = verify_diagram(mesh, samples, d);
+      INFO(v.summary());
+      CHECK(names(v.disjoint, fmt::format("polygons of cells {} and {} overlap", d.polygons[3].cell, d.polygons[30].cell)));
+    }
+    {
+      // The cells of polygons 3 and 30 swapped: each polygon's vertices are closer to the other
+      // cell's site, far from the cell it names.
+      Diagram d = valid;
+      std::swap(d.polygons[3].cell, d.polygons[30].cell);
+      const DiagramVerification v = verify_diagram(mesh, samples, d);
+      INFO(v.summary());
+      CHECK(names(v.equidistant, fmt::format("of cell {} is closer to x_{} than to x_{}", d.polygons[3].cell,
+                                             d.polygons[30].cell, d.polygons[3].cell)));
+      CHECK_FALSE(v.sample_in_cell.passed);
+    }
+  }
+}
+
 TEST_CASE("The report has the documented JSON keys", "[verification]") {
   const SurfaceMesh mesh = test::octahedron();
   const Samples samples = sample_uniform(mesh, 4, 1);

@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
 
 #include "verification/diagram_geometry.h"
@@ -116,6 +118,59 @@ struct Checked {
       polygon_ok[p] = ok;
     }
   }
+};
+
+// The sites of the cells present in a triangle, for the equidistance check's vertices: a k-d tree
+// (nanoflann) over their positions. A vertex q of cell i need not be compared with a site j that
+// is strictly farther in power distance, π_j(q) > π_i(q): that comparison is Negative, which the
+// check passes over. With c the centre of q's enclosure and h its half diagonal, π_j(q) <= π_i(q)
+// needs |c - x_j| <= sqrt(U + w_max) + h, U >= π_i(q) a bound from |c - x_i| + h and w_max the
+// largest weight present; a slack of 1e-6 of the lengths involved covers the rounding of these
+// doubles and of the tree's distances many times over, so every site that may matter is found.
+class Near {
+ public:
+  Near(const std::vector<Site>& sites, const std::vector<int>& present) : cloud_{sites, present}, tree_(3, cloud_) {
+    for (int j : present) w_max_ = std::max(w_max_, sites[j].w);
+    tree_.buildIndex();
+  }
+  //! The cells to compare q (of cell i's site `own`) with: those the bound keeps and q's own
+  //! labels, in increasing order.
+  void select(const ExactVertex& q, const Site& own, const SymbolicVertex& labels, std::vector<int>& out) const {
+    Vec3 c;
+    double h2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      c[a] = 0.5 * (q.box[a].inf() + q.box[a].sup());
+      const double half = 0.5 * (q.box[a].sup() - q.box[a].inf());
+      h2 += half * half;
+    }
+    const double h = std::sqrt(h2), to_own = distance(c, own.p) + h;
+    const double scale = to_own + h + std::sqrt(std::abs(own.w)) + std::sqrt(std::abs(w_max_));
+    const double reach = std::sqrt(std::max(0.0, to_own * to_own - own.w + w_max_)) + h + 1e-6 * scale;
+    const double query[3] = {c.x, c.y, c.z};
+    found_.clear();
+    tree_.radiusSearch(query, reach * reach, found_, nanoflann::SearchParams(32, 0, false));
+    out.clear();
+    for (const auto& [index, squared] : found_) out.push_back(cloud_.present[index]);
+    for (int a = 0; a < labels.num_labels(); ++a) out.push_back(labels.label[a]);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  }
+
+ private:
+  struct Cloud {
+    const std::vector<Site>& sites;
+    const std::vector<int>& present;
+    std::size_t kdtree_get_point_count() const { return present.size(); }
+    double kdtree_get_pt(std::size_t k, std::size_t axis) const { return sites[present[k]].p[static_cast<int>(axis)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  Cloud cloud_;
+  nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3> tree_;
+  double w_max_ = 0;
+  mutable std::vector<std::pair<unsigned, double>> found_;
 };
 
 // The checks of a range of triangles or samples, into its own results (merged in order by
@@ -330,16 +385,50 @@ class DiagramChecker {
 
   // (4) pairwise: two convex polygons with interiors are interior-disjoint iff the line of an edge
   // of one of them has the other on its closed outer side.
+  //
+  // Many polygons in one triangle (samples crowding a triangle the mesh was not refined for) would
+  // make that quadratic: then only pairs whose boxes in the frame meet are tested, each box the
+  // union of its vertices' enclosures (ExactVertex::box), so that boxes apart in u or v hold
+  // polygons apart. A sweep along u finds those pairs; they are tested in the same order as all.
   void check_overlaps(int t, int begin, int end, const Frame& f) {
+    const Triangle& tri = mesh_.triangle(t);
+    auto test = [&](int p, int q) {
+      if (separated(p, q, tri, f) || separated(q, p, tri, f)) return;
+      out_.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
+                                     d_.polygons[q].cell));
+    };
+    candidates_.clear();
     for (int p = begin; p < end; ++p)
-      for (int q = p + 1; q < end; ++q) {
-        if (!polygon_ok_[p] || !polygon_ok_[q]) continue;
-        if (area_sign_[p] != Sign::Positive || area_sign_[q] != Sign::Positive) continue;
-        const Triangle& tri = mesh_.triangle(t);
-        if (separated(p, q, tri, f) || separated(q, p, tri, f)) continue;
-        out_.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
-                                       d_.polygons[q].cell));
+      if (polygon_ok_[p] && area_sign_[p] == Sign::Positive) candidates_.push_back(p);
+    if (candidates_.size() <= kAllPairsUpTo) {
+      for (std::size_t a = 0; a < candidates_.size(); ++a)
+        for (std::size_t b = a + 1; b < candidates_.size(); ++b) test(candidates_[a], candidates_[b]);
+      return;
+    }
+    boxes_.clear();
+    for (int p : candidates_) {
+      const CellPolygon& poly = d_.polygons[p];
+      FrameBox box{p, vertex(poly, 0).box[f.u].inf(), vertex(poly, 0).box[f.u].sup(), vertex(poly, 0).box[f.v].inf(),
+                   vertex(poly, 0).box[f.v].sup()};
+      for (int k = 1; k < poly.vertex_count; ++k) {
+        const ExactVertex& x = vertex(poly, k);
+        box.u_lo = std::min(box.u_lo, x.box[f.u].inf());
+        box.u_hi = std::max(box.u_hi, x.box[f.u].sup());
+        box.v_lo = std::min(box.v_lo, x.box[f.v].inf());
+        box.v_hi = std::max(box.v_hi, x.box[f.v].sup());
       }
+      boxes_.push_back(box);
+    }
+    std::sort(boxes_.begin(), boxes_.end(), [](const FrameBox& a, const FrameBox& b) {
+      return std::tie(a.u_lo, a.polygon) < std::tie(b.u_lo, b.polygon);
+    });
+    pairs_.clear();
+    for (std::size_t a = 0; a < boxes_.size(); ++a)
+      for (std::size_t b = a + 1; b < boxes_.size() && !(boxes_[a].u_hi < boxes_[b].u_lo); ++b)
+        if (!(boxes_[a].v_hi < boxes_[b].v_lo || boxes_[b].v_hi < boxes_[a].v_lo))
+          pairs_.push_back({std::min(boxes_[a].polygon, boxes_[b].polygon), std::max(boxes_[a].polygon, boxes_[b].polygon)});
+    std::sort(pairs_.begin(), pairs_.end());
+    for (const auto& [p, q] : pairs_) test(p, q);
   }
 
   bool separated(int p, int q, const Triangle& tri, const Frame& f) const {
@@ -371,6 +460,10 @@ class DiagramChecker {
       if (polygon_ok_[p]) present_.push_back(d_.polygons[p].cell);
     std::sort(present_.begin(), present_.end());
     present_.erase(std::unique(present_.begin(), present_.end()), present_.end());
+    // Many cells in the triangle: each vertex is compared only with the cells whose sites a
+    // certified bound does not rule out (Near), the others being strictly farther from it.
+    std::optional<Near> near;
+    if (present_.size() > kAllPairsUpTo) near.emplace(d_.sites, present_);
     for (int p = begin; p < end; ++p) {
       if (!polygon_ok_[p]) continue;
       const CellPolygon& poly = d_.polygons[p];
@@ -381,7 +474,8 @@ class DiagramChecker {
         const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
         int equidistant = 0;
         std::string problem;
-        for (int j : present_) {
+        if (near) near->select(vertices_.exact[id], d_.sites[i], q, compared_);
+        for (int j : near ? compared_ : present_) {
           if (j == i) continue;
           const Sign s = q.has_label(i) && q.has_label(j)
                              ? Sign::Zero
@@ -423,7 +517,19 @@ class DiagramChecker {
       const Frame f = triangle_frame(mesh_, t, corner_);
       bool has_polygon = false, inside = false;
       int holder = -1;
-      for (int p = d_.triangle_offsets[t]; p < d_.triangle_offsets[t + 1] && !inside; ++p) {
+      // First the cell's own polygons where the diagram's order (by cell within a triangle) puts
+      // them; when none holds the sample (or the order is broken), every polygon, as below.
+      const int first = d_.triangle_offsets[t], last = d_.triangle_offsets[t + 1];
+      if (f.valid && first <= last && last <= static_cast<int>(d_.polygons.size())) {
+        int from = first, to = last;  // the first polygon of a cell >= i
+        while (from < to) {
+          const int mid = from + (to - from) / 2;
+          if (d_.polygons[mid].cell < i) from = mid + 1; else to = mid;
+        }
+        for (int p = from; p < last && d_.polygons[p].cell == i && !inside; ++p)
+          inside = polygon_ok_[p] && contains_point(p, point, f);
+      }
+      for (int p = first; p < last && !inside; ++p) {
         if (!polygon_ok_[p] || !f.valid) continue;
         const bool own = d_.polygons[p].cell == i;
         has_polygon = has_polygon || own;
@@ -485,6 +591,16 @@ class DiagramChecker {
   std::vector<std::array<int, 3>> along_bc_;
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
+  // check_overlaps: the polygons to compare; above kAllPairsUpTo of them, their boxes in the frame.
+  static constexpr std::size_t kAllPairsUpTo = 16;
+  struct FrameBox {
+    int polygon;
+    double u_lo, u_hi, v_lo, v_hi;
+  };
+  std::vector<int> candidates_;
+  std::vector<FrameBox> boxes_;
+  std::vector<int> compared_;  // check_equidistance: the cells a vertex is compared with
+  std::vector<std::pair<int, int>> pairs_;
 };
 
 // Runs `check(begin, end, results)` over [0, count) in fixed chunks, in parallel, and merges the
