@@ -88,6 +88,32 @@ TEST_CASE("lrvd compute writes cells and a report with the promised keys", "[cli
   REQUIRE(header == "ply");
 }
 
+TEST_CASE("Point and weight files: a byte-order mark and comments are read, stray columns and NUL bytes named", "[cli]") {
+  const std::string cube = kOut + "pw_cube.off", points = kOut + "pw.xyz", weights = kOut + "pw_w.txt";
+  std::ofstream(cube) << "OFF\n8 12 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
+                         "3 0 2 3\n3 0 3 1\n3 4 5 7\n3 4 7 6\n3 2 6 7\n3 2 7 3\n3 0 4 6\n3 0 6 2\n3 1 3 7\n3 1 7 5\n"
+                         "3 0 1 5\n3 0 5 4\n";
+  std::ofstream(points) << "\xEF\xBB\xBF" "0.5 0.5 0\n0.5 0.5 1\n# a comment\n0.5 0 0.5\n";
+  std::ofstream(weights) << "# weights\n0.01\n\n0.02\n0.03\n";
+  const Run ok = run("compute " + cube + " --points " + points + " --weights " + weights + " --diagram rpd");
+  INFO(ok.err);
+  REQUIRE(ok.status == 0);
+  std::ofstream(weights) << "0.01 0.02\n0.03\n";
+  const Run two = run("compute " + cube + " --points " + points + " --weights " + weights + " --diagram rpd");
+  REQUIRE(two.status == 2);
+  REQUIRE(lines(two.err) == 1);
+  CHECK(two.err.find("pw_w.txt:1: expected one weight a line, got '0.02' after it") != std::string::npos);
+  std::ofstream(weights) << "0.01\n0.02\n";
+  const Run few = run("compute " + cube + " --points " + points + " --weights " + weights + " --diagram rpd");
+  REQUIRE(few.status == 2);
+  CHECK(few.err.find("pw_w.txt: 2 weights were given for the 3 points of") != std::string::npos);
+  std::ofstream(points, std::ios::binary) << std::string("0.5 0.5 0\n0\0 1 1\n", 17);
+  const Run nul = run("compute " + cube + " --points " + points);
+  REQUIRE(nul.status == 2);
+  REQUIRE(lines(nul.err) == 1);
+  CHECK(nul.err.find("pw.xyz:2: '0\\x00' is not a number") != std::string::npos);
+}
+
 TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   const std::string points = kOut + "far.xyz";
   std::ofstream(points) << "0 0 1000\n";

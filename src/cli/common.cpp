@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "mesh/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
@@ -176,15 +177,24 @@ std::vector<double> read_weights(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
   std::vector<double> weights;
-  std::string token;
-  while (in >> token) {
+  std::string line;
+  // One weight a line, as the points it goes with; blank lines and '#' comments as in point files.
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1) skip_byte_order_mark(line);
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    std::string token, more;
+    fields >> token;
     try {
       size_t used = 0;
       weights.push_back(std::stod(token, &used));
       if (used != token.size() || !std::isfinite(weights.back())) throw std::invalid_argument(token);
     } catch (const std::exception&) {
-      throw InputError(fmt::format("{}: '{}' is not a finite number", path, token));
+      throw InputError(fmt::format("{}:{}: '{}' is not a finite number", path, number, shown(token)));
     }
+    if (fields >> more)
+      throw InputError(fmt::format("{}:{}: expected one weight a line, got '{}' after it", path, number, shown(more)));
   }
   if (weights.empty()) throw InputError(fmt::format("weight file '{}' holds no weights", path));
   return weights;
@@ -206,6 +216,9 @@ Input load_input(const InputOptions& opt) {
       throw InputError(fmt::format("the weights are given twice: in the 4th column of {} and in --weights {}",
                                    opt.points_path, opt.weights_path));
     points.weights = read_weights(opt.weights_path);
+    if (!opt.points_path.empty() && points.weights.size() != points.points.size())
+      throw InputError(fmt::format("{}: {} weights were given for the {} points of {}", opt.weights_path,
+                                   points.weights.size(), points.points.size(), opt.points_path));
   }
   const int n = opt.points_path.empty() ? opt.count : static_cast<int>(points.points.size());
   if (opt.points_path.empty() && n < 1)
@@ -253,7 +266,9 @@ Input load_input(const InputOptions& opt) {
     input.samples = sample_uniform(input.mesh, n, opt.seed);
     if (!points.weights.empty()) {
       if (static_cast<int>(points.weights.size()) != n)
-        throw InputError(fmt::format("{} weights were given for {} samples", points.weights.size(), n));
+        throw InputError(fmt::format("{}{} weights were given for {} samples",
+                                     opt.weights_path.empty() ? std::string() : opt.weights_path + ": ",
+                                     points.weights.size(), n));
       input.samples.weights = points.weights;
     }
   } else {

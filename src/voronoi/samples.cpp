@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "mesh/closest_point.h"
 #include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
@@ -195,10 +196,16 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
     if (!weights.empty() && !std::isfinite(weights[i]))
       throw InputError(fmt::format("point {} has a non-finite weight", label(i)));
     const ClosestPoint c = index.query(p);
-    if (c.distance > tolerance)
-      throw InputError(fmt::format("point {} at ({}, {}, {}) is {:.3g} from the surface, farther than {:.3g} (1% of the "
+    if (c.distance > tolerance) {
+      // Three digits, or as many as tell the two apart.
+      std::string far = fmt::format("{:.3g}", c.distance), limit = fmt::format("{:.3g}", tolerance);
+      if (far == limit) far = fmt::format("{:.17g}", c.distance), limit = fmt::format("{:.17g}", tolerance);
+      throw InputError(fmt::format("point {} at ({}, {}, {}) is {} the surface, farther than {} (1% of the "
                                    "bounding-box diagonal, {:.4g}), up to which a point is moved onto it",
-                                   label(i), p.x, p.y, p.z, c.distance, tolerance, diagonal));
+                                   label(i), p.x, p.y, p.z,
+                                   std::isfinite(c.distance) ? far + " from" : std::string("too far to measure from"),
+                                   limit, diagonal));
+    }
     samples.positions.push_back(c.point);
     samples.triangles.push_back(c.triangle);
     // Inside the triangle near an edge, 1 - v - w can round to a hair below zero (a point given
@@ -246,6 +253,7 @@ PointFile read_xyz(const std::string& path) {
   std::string line;
   int columns = 0;
   for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1) skip_byte_order_mark(line);
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
     std::istringstream fields(line);
@@ -257,7 +265,7 @@ PointFile read_xyz(const std::string& path) {
         values.push_back(std::stod(token, &used));
         if (used != token.size()) throw std::invalid_argument(token);
       } catch (const std::exception&) {
-        throw InputError(fmt::format("{}:{}: '{}' is not a number", path, number, token));
+        throw InputError(fmt::format("{}:{}: '{}' is not a number", path, number, shown(token)));
       }
     }
     if (values.size() != 3 && values.size() != 4)
