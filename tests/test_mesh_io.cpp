@@ -277,6 +277,47 @@ TEST_CASE("A crack where one side of a seam has corners the other lacks is refus
   }
 }
 
+TEST_CASE("Repair removes the wall two welded solids share, both copies, and keeps one copy of a lone double sheet") {
+  // Boxes [0,1]^3 and [1,2]x[0,1]^2, each closed and oriented outwards, sharing the face x = 1 (its
+  // two triangles listed once by each box, in opposite orientations).
+  std::string off = "OFF\n12 24 0\n";
+  for (int x = 0; x <= 2; ++x)
+    for (int y = 0; y <= 1; ++y)
+      for (int z = 0; z <= 1; ++z) off += fmt::format("{} {} {}\n", x, y, z);
+  const auto at = [](int x, int y, int z) { return 4 * x + 2 * y + z; };
+  for (int box = 0; box < 2; ++box) {
+    const auto quad = [&](int a, int b, int c, int d) {
+      off += fmt::format("3 {} {} {}\n3 {} {} {}\n", a, b, c, a, c, d);
+    };
+    const int x0 = box, x1 = box + 1;
+    quad(at(x0, 0, 0), at(x0, 0, 1), at(x0, 1, 1), at(x0, 1, 0));  // x = x0, normal -x
+    quad(at(x1, 0, 0), at(x1, 1, 0), at(x1, 1, 1), at(x1, 0, 1));  // x = x1, normal +x
+    quad(at(x0, 0, 0), at(x1, 0, 0), at(x1, 0, 1), at(x0, 0, 1));  // y = 0, normal -y
+    quad(at(x0, 1, 0), at(x0, 1, 1), at(x1, 1, 1), at(x1, 1, 0));  // y = 1, normal +y
+    quad(at(x0, 0, 0), at(x0, 1, 0), at(x1, 1, 0), at(x1, 0, 0));  // z = 0, normal -z
+    quad(at(x0, 0, 1), at(x1, 0, 1), at(x1, 1, 1), at(x0, 1, 1));  // z = 1, normal +z
+  }
+  const std::string path = scratch("two_boxes_shared_face.off");
+  write_file(path, off);
+  REQUIRE_THROWS_WITH(read_mesh(path), Contains("duplicates") && Contains("--repair may fix it"));
+  const LoadedMesh loaded = read_mesh(path, {true});
+  CHECK(loaded.repair.removed_internal_faces == 4);
+  CHECK(loaded.repair.duplicated_nonmanifold_vertices == 0);
+  REQUIRE(loaded.mesh.triangle_count() == 20);
+  REQUIRE(loaded.mesh.is_closed());
+  REQUIRE(loaded.mesh.component_count() == 1);
+  REQUIRE(loaded.mesh.euler_characteristic() == 2);
+  REQUIRE(signed_volume(loaded.mesh) == Approx(2.0));
+
+  // A square listed twice, once each way, and nothing else: no solid on either side, one copy kept.
+  const std::string sheet = scratch("double_sheet.off");
+  write_file(sheet, "OFF\n4 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n3 0 2 1\n3 0 3 2\n");
+  const LoadedMesh kept = read_mesh(sheet, {true});
+  CHECK(kept.repair.removed_internal_faces == 0);
+  CHECK(kept.repair.removed_duplicate_faces == 2);
+  REQUIRE(kept.mesh.triangle_count() == 2);
+}
+
 TEST_CASE("T-junctions: corners on another face's boundary edge, away from its ends, split edge by edge") {
   // Triangle 0 has corner 3 on its edge 0 and corner 4 on its edge 1; they are corners of triangle 1.
   // Corner 5 lies a hair beyond the end of triangle 0's edge 2 (a near twin of corner 0, not a

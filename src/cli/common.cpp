@@ -111,6 +111,8 @@ void print_repair(const RepairReport& r, const ReadOptions& read) {
                                                           : std::string()));
     if (r.removed_degenerate_faces > 0)
       changes.push_back("removed " + counted(r.removed_degenerate_faces, "degenerate face", "degenerate faces"));
+    if (r.removed_internal_faces > 0)
+      changes.push_back("removed " + counted(r.removed_internal_faces, "internal wall face", "internal wall faces"));
     if (r.removed_duplicate_faces > 0)
       changes.push_back("removed " + counted(r.removed_duplicate_faces, "duplicate face", "duplicate faces"));
     if (r.removed_unreferenced_vertices > 0)

@@ -29,6 +29,7 @@ struct RepairReport {
   int merged_vertices = 0;                  //!< vertices welded into an earlier one with identical coordinates
   int removed_degenerate_faces = 0;         //!< zero-area faces (exact test) and faces repeating a vertex
   int removed_duplicate_faces = 0;          //!< faces on the same vertices as an earlier face, any orientation
+  int removed_internal_faces = 0;           //!< faces of walls between two solids, listed once each way (both copies)
   int removed_unreferenced_vertices = 0;    //!< vertices no face uses (dropped even without repair)
   int reoriented_faces = 0;                 //!< faces reversed to orient their component consistently
   int duplicated_nonmanifold_vertices = 0;  //!< vertices copied to cut non-manifold edges / vertices apart
