@@ -505,6 +505,8 @@ TEST_CASE("lrvd refuses a triangle soup naming --repair, and --repair welds it",
   const std::string report = kOut + "soup.json";
   REQUIRE(run("compute " + soup + " -n 10 --repair --report " + report).status == 0);
   REQUIRE(read_json(report)["input"]["closed"] == true);
+  // What the repair changed, as the console's "repair:" line says it, is in the report too.
+  REQUIRE(read_json(report)["input"]["repair_changes"] == json::array({"merged 18 vertices"}));
 
   // Corners a rounding apart: refused naming --weld, which implies --repair and welds them.
   const std::string jittered = std::string(LRVD_SOURCE_DIR) + "/tests/data/soup_jittered.off";

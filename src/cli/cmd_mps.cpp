@@ -103,6 +103,7 @@ int run_mps(const MpsCommandOptions& opt) {
                      {"closed", input.is_closed()},
                      {"euler_characteristic", input.euler_characteristic()},
                      {"longest_bbox_side", result.scale}};
+  if (opt.read.repair) report["input"]["repair_changes"] = repair_changes(loaded.repair);
   if (!loaded.repair.notes.empty()) report["input"]["repair"] = loaded.repair.notes;
   report["refined"] = {{"triangles", result.mesh.triangle_count()},
                        {"max_edge_length", result.mesh.max_edge_length()},

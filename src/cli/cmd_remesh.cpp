@@ -285,6 +285,7 @@ int run_quality(const QualityOptions& opt) {
       measurable ? quality_metrics(reference, soup.positions, soup.triangles) : QualityMetrics{};
   const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
   nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
+  if (opt.read.repair) report["reference_repair_changes"] = repair_changes(loaded.repair);
   if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
   // Two meshes in different units or frames give distances that measure that, not the remesh. The
   // distances read the triangles only, so does the frame: a vertex no triangle uses does not count.
@@ -366,7 +367,7 @@ Action add_quality_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("quality", "Quality metrics and validity of any remesh against its reference");
   cmd->add_option("reference", opt->reference, "The input surface")->required()->check(path_validator());
   // Not required by CLI11, whose "mesh is required" reads oddly after one mesh was given.
-  cmd->add_option("mesh", opt->mesh, "The remesh to measure (may be non-manifold)")->check(path_validator());
+  cmd->add_option("mesh", opt->mesh, "The remesh to measure (required; may be non-manifold)")->check(path_validator());
   add_repair_options(cmd, opt->read, "the reference (as for the remesh)");
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   return [opt]() { return run_quality(*opt); };

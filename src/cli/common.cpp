@@ -101,31 +101,36 @@ void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& wha
       ->check(fraction_validator());
 }
 
+std::vector<std::string> repair_changes(const RepairReport& r) {
+  std::vector<std::string> changes;
+  const int merged = r.welded_vertices + r.merged_vertices;
+  if (merged > 0)
+    changes.push_back(fmt::format("merged {}{}", counted(merged, "vertex", "vertices"),
+                                  r.welded_vertices > 0 ? fmt::format(" ({} within --weld)", r.welded_vertices)
+                                                        : std::string()));
+  if (r.removed_degenerate_faces > 0)
+    changes.push_back("removed " + counted(r.removed_degenerate_faces, "degenerate face", "degenerate faces"));
+  if (r.removed_internal_faces > 0)
+    changes.push_back("removed " + counted(r.removed_internal_faces, "internal wall face", "internal wall faces"));
+  if (r.removed_duplicate_faces > 0)
+    changes.push_back("removed " + counted(r.removed_duplicate_faces, "duplicate face", "duplicate faces"));
+  if (r.removed_unreferenced_vertices > 0)
+    changes.push_back("removed " +
+                      counted(r.removed_unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"));
+  if (r.reoriented_faces > 0) changes.push_back("reoriented " + counted(r.reoriented_faces, "face", "faces"));
+  if (r.stitched_edges > 0) changes.push_back("stitched " + counted(r.stitched_edges, "edge", "edges"));
+  if (r.split_edges > 0) changes.push_back("split " + counted(r.split_edges, "edge at T-junctions", "edges at T-junctions"));
+  if (r.duplicated_nonmanifold_vertices > 0)
+    changes.push_back("copied " + counted(r.duplicated_nonmanifold_vertices, "non-manifold vertex",
+                                          "non-manifold vertices"));
+  if (r.triangulated_faces > 0)
+    changes.push_back("triangulated " + counted(r.triangulated_faces, "polygon", "polygons"));
+  return changes;
+}
+
 void print_repair(const RepairReport& r, const ReadOptions& read) {
   if (read.repair) {
-    std::vector<std::string> changes;
-    const int merged = r.welded_vertices + r.merged_vertices;
-    if (merged > 0)
-      changes.push_back(fmt::format("merged {}{}", counted(merged, "vertex", "vertices"),
-                                    r.welded_vertices > 0 ? fmt::format(" ({} within --weld)", r.welded_vertices)
-                                                          : std::string()));
-    if (r.removed_degenerate_faces > 0)
-      changes.push_back("removed " + counted(r.removed_degenerate_faces, "degenerate face", "degenerate faces"));
-    if (r.removed_internal_faces > 0)
-      changes.push_back("removed " + counted(r.removed_internal_faces, "internal wall face", "internal wall faces"));
-    if (r.removed_duplicate_faces > 0)
-      changes.push_back("removed " + counted(r.removed_duplicate_faces, "duplicate face", "duplicate faces"));
-    if (r.removed_unreferenced_vertices > 0)
-      changes.push_back("removed " +
-                        counted(r.removed_unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"));
-    if (r.reoriented_faces > 0) changes.push_back("reoriented " + counted(r.reoriented_faces, "face", "faces"));
-    if (r.stitched_edges > 0) changes.push_back("stitched " + counted(r.stitched_edges, "edge", "edges"));
-    if (r.split_edges > 0) changes.push_back("split " + counted(r.split_edges, "edge at T-junctions", "edges at T-junctions"));
-    if (r.duplicated_nonmanifold_vertices > 0)
-      changes.push_back("copied " + counted(r.duplicated_nonmanifold_vertices, "non-manifold vertex",
-                                            "non-manifold vertices"));
-    if (r.triangulated_faces > 0)
-      changes.push_back("triangulated " + counted(r.triangulated_faces, "polygon", "polygons"));
+    const std::vector<std::string> changes = repair_changes(r);
     std::printf("repair: %s\n", changes.empty() ? "nothing to change" : fmt::format("{}", fmt::join(changes, ", ")).c_str());
   }
   // Dropped even without --repair: say so, since they leave the counts and the bounding box (the
@@ -208,6 +213,7 @@ std::vector<double> read_weights(const std::string& path) {
 Input load_input(const InputOptions& opt) {
   Input input;
   input.loaded = read_mesh(opt.mesh_path, opt.read);
+  input.repair_requested = opt.read.repair;
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
   require_workable_model(input.loaded.mesh, "lrvd");
   print_repair(input.loaded.repair, opt.read);
@@ -309,6 +315,7 @@ nlohmann::json input_json(const Input& input) {
                       {"euler_characteristic", mesh.euler_characteristic()}};
   if (input.refined_from >= 0)
     j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
+  if (input.repair_requested) j["repair_changes"] = repair_changes(input.loaded.repair);
   if (!input.loaded.repair.notes.empty()) j["repair"] = input.loaded.repair.notes;
   if (input.points_given)
     j["points"] = {{"count", input.samples.size()}, {"moved", input.points_moved}, {"max_move", input.points_max_move}};

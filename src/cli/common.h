@@ -38,6 +38,8 @@ std::string counted(long long count, const char* one, const char* many);
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
 //! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");
+//! What --repair changed, as the console's "repair: ..." line lists it ("merged 8 vertices", ...).
+std::vector<std::string> repair_changes(const RepairReport& report);
 //! What --repair, --weld and --fill-holes changed, one "repair: ..." line each (nothing when none is given).
 void print_repair(const RepairReport& report, const ReadOptions& read);
 //! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
@@ -47,6 +49,7 @@ CLI::Validator path_validator();
 
 struct Input {
   LoadedMesh loaded;          //!< as read (and repaired)
+  bool repair_requested = false;  //!< --repair (or --weld) was given
   SurfaceMesh mesh;           //!< after refinement
   int refined_from = -1;      //!< triangle count before refinement, -1 if not refined
   Samples samples;

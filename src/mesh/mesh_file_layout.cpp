@@ -381,8 +381,8 @@ std::string find_extra_binary_stl_facets(const std::string& path, std::size_t fa
   const std::uint64_t size = std::filesystem::file_size(path), expected = 84 + 50 * declared;
   if (size < expected + 50) return "";  // a few bytes of padding are tolerated
   return fmt::format("is a binary STL whose header declares {} facets (84 + 50 x {} = {} bytes), but it has {} bytes, "
-                     "room for {} more facets (does the header's facet count match the facets?)",
-                     declared, declared, expected, size, (size - expected) / 50);
+                     "room for {} more facet{} (does the header's facet count match the facets?)",
+                     declared, declared, expected, size, (size - expected) / 50, (size - expected) / 50 == 1 ? "" : "s");
 }
 
 }  // namespace lrvd
