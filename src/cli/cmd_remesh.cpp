@@ -227,8 +227,10 @@ int run_remesh(const RemeshCommandOptions& opt) {
     }
     std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
     if (remeshed.repair_saturated)
+      // A 10 x 1 x 0.01 plate fails so at 50 vertices and is valid at 20 and at 100 (an audit).
       std::printf("repair: every cell was at a defect or next to one, where a higher density changes nothing: the "
-                  "surface is thinner than the cells everywhere; give more vertices\n");
+                  "surface is thinner than the cells everywhere; more vertices (smaller cells) usually mend it, and "
+                  "on a part only a few cells wide, fewer sometimes do\n");
     else if (holes.count == 0)
       // CGAL's couplingdown (genus 9) fails at 200 vertices with seeds 1-3 and is valid at 500.
       std::printf("repair: there the surface is thinner, or a handle narrower, than the cells can follow; more "
