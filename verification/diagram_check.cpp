@@ -520,7 +520,7 @@ class DiagramChecker {
       // First the cell's own polygons where the diagram's order (by cell within a triangle) puts
       // them; when none holds the sample (or the order is broken), every polygon, as below.
       const int first = d_.triangle_offsets[t], last = d_.triangle_offsets[t + 1];
-      if (f.valid && first <= last && last <= static_cast<int>(d_.polygons.size())) {
+      if (f.valid && 0 <= first && first <= last && last <= static_cast<int>(d_.polygons.size())) {
         int from = first, to = last;  // the first polygon of a cell >= i
         while (from < to) {
           const int mid = from + (to - from) / 2;
