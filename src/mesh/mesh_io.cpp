@@ -995,8 +995,10 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
   try {
     refuse_triangle_soup(path, positions, triangles, original, options.repair, options.repair ? options.weld : 0.0,
                          weld_damage);
-    refuse_t_junctions(path, positions, triangles, original, options.repair);
     loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
+    // A crack is a boundary: a closed mesh has none to look for.
+    if (!loaded.mesh.is_closed())
+      refuse_t_junctions(path, loaded.mesh.positions(), loaded.mesh.triangles(), original, options.repair);
   } catch (const InputError& e) {
     if (weld_damage.empty() || std::string(e.what()).find(weld_damage) != std::string::npos) throw;
     const std::string reason = e.what();
