@@ -93,6 +93,27 @@ void add_sample(const SurfaceMesh& mesh, Samples& s, const Vec3& p, double w) {
 
 }  // namespace
 
+TEST_CASE("Adaptive MPS on a needle 1e-9 wide: no NaN radius from its slivers, maximal and apart", "[mps]") {
+  // The needle's pieces after splitting are slivers whose Gram determinant cancels to zero: their
+  // barycentric coordinates were NaN, and so was the radius there (an audit: SIGFPE in GMP).
+  const SurfaceMesh needle({{0, 0, 0}, {1, 0, 0}, {0.5, 1e-9, 0}}, {{0, 1, 2}});
+  MpsOptions options;
+  options.radius = 0.001;
+  options.adaptive = true;
+  const MpsResult r = maximal_poisson_disk_sampling(needle, options);
+  REQUIRE(r.samples.size() > 100);
+  for (int i = 0; i < r.samples.size(); ++i) REQUIRE(std::isfinite(r.samples.weights[i]));
+  const MpsVerification v = verify_mps(r.mesh, r.samples);
+  INFO(v.summary());
+  CHECK(v.passed);
+}
+
+TEST_CASE("MPS refuses a radius beyond 10 times the model's size, whose square would overflow", "[mps]") {
+  MpsOptions options;
+  options.radius = 1e160;
+  REQUIRE_THROWS_WITH(maximal_poisson_disk_sampling(test::octahedron(), options), Catch::Contains("up to 10"));
+}
+
 TEST_CASE("MPS of an icosphere is maximal, keeps the minimum distance and remeshes validly", "[mps]") {
   const SurfaceMesh sphere = test::icosphere(3);
   MpsOptions options;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -585,6 +586,20 @@ TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {
     c.diagram.vertices[0] = SymbolicVertex::mesh_vertex(100000);
     const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
     require_only_broken(v, v.disjoint, "A(100000), which is malformed");
+  }
+  SECTION("a vertex range whose end overflows an int") {
+    Case c = valid_lrvd();
+    c.diagram.polygons[0].first_vertex = std::numeric_limits<int>::max();
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.coverage, "vertex range out of bounds");
+  }
+  SECTION("sites that are not the samples: moved, or not finite (an audit: a NaN reached GMP, SIGFPE)") {
+    for (const double x : {7.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+      Case c = valid_lrvd();
+      c.diagram.sites[1].p.x = x;
+      const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+      require_only_broken(v, v.coverage, "site 1 is not sample 1");
+    }
   }
   SECTION("triangle offsets that do not match the mesh") {
     Case c = valid_lrvd();

@@ -4,6 +4,7 @@
 // in its cell. (2) and (6) are decided along mesh edges (diagram_edges.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <tuple>
@@ -59,6 +60,17 @@ std::string structure_error(const SurfaceMesh& mesh, const Samples& samples, con
     return fmt::format("diagram has {} cells for {} samples", d.sample_count, samples.size());
   if (static_cast<int>(d.sites.size()) != d.sample_count)
     return fmt::format("diagram has {} sites for {} cells", d.sites.size(), d.sample_count);
+  // The checks read the sites: they must be the samples given (a non-finite one would reach the
+  // rationals, which cannot hold it).
+  if (!samples.weights.empty() && samples.weights.size() != samples.positions.size())
+    return fmt::format("{} weights for {} samples", samples.weights.size(), samples.positions.size());
+  for (int i = 0; i < d.sample_count; ++i) {
+    const Site& s = d.sites[i];
+    const double w = is_power(d.kind) ? samples.weight(i) : 0.0;
+    if (!(s.p == samples.positions[i]) || !(s.w == w) || s.id != i)
+      return fmt::format("site {} is not sample {} (its position, weight or id differs)", i, i);
+    if (!is_finite(s.p) || !std::isfinite(s.w)) return fmt::format("site {} is not finite", i);
+  }
   if (static_cast<int>(d.triangle_offsets.size()) != nt + 1)
     return fmt::format("diagram has {} triangle offsets for {} triangles", d.triangle_offsets.size(), nt);
   if (d.triangle_offsets[0] != 0 || d.triangle_offsets[nt] != static_cast<int>(d.polygons.size()))
@@ -69,7 +81,7 @@ std::string structure_error(const SurfaceMesh& mesh, const Samples& samples, con
       const CellPolygon& poly = d.polygons[p];
       if (poly.triangle != t) return fmt::format("polygon {} is listed under triangle {} but names triangle {}", p, t, poly.triangle);
       if (poly.first_vertex < 0 || poly.vertex_count < 0 ||
-          poly.first_vertex + poly.vertex_count > static_cast<int>(d.vertices.size()))
+          static_cast<std::int64_t>(poly.first_vertex) + poly.vertex_count > static_cast<std::int64_t>(d.vertices.size()))
         return fmt::format("polygon {} in triangle {}: vertex range out of bounds", p, t);
     }
   }

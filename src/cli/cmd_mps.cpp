@@ -20,7 +20,6 @@ namespace lrvd::cli {
 
 namespace {
 
-constexpr double kMaxRelativeRadius = 10;  //!< --radius, relative to the longest bounding-box side
 
 struct MpsCommandOptions {
   std::string mesh_path;
@@ -44,10 +43,10 @@ struct MpsCommandOptions {
 int run_mps(const MpsCommandOptions& opt) {
   // A radius of the model's size already leaves one sample per sheet; far beyond it, squared
   // distances overflow.
-  if (!(opt.radius > 0) || !(opt.radius <= kMaxRelativeRadius))
+  if (!(opt.radius > 0) || !(opt.radius <= kMaxMpsRadius))
     throw InputError(fmt::format("--radius must be a positive number up to {:g} (relative to the longest bounding-box "
                                  "side), got {}",
-                                 kMaxRelativeRadius, opt.radius));
+                                 kMaxMpsRadius, opt.radius));
   if (opt.max_radius_ratio_given && !opt.adaptive) throw InputError("--max-radius-ratio applies to --adaptive");
   // The samples are text, 'x y z r^2' per line: not a mesh file.
   check_outputs({{opt.output, "-o", {}, kMeshReadExtensions},

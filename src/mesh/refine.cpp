@@ -198,9 +198,13 @@ Refinement split_long_edges(const SurfaceMesh& mesh, double max_length, std::vec
     // the width, without a bound the area could give.
     if (static_cast<double>(triangles.size()) > max_triangles)
       throw RefinementLimitError(fmt::format(
-          "splitting to edges of {:.6g} makes more than {:.0f} triangles (the limit) although the area "
-          "alone asks for about {:.3g}: the mesh has triangles far longer than they are wide",
-          max_length, max_triangles, static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared));
+          "splitting to {} makes more than {:.0f} triangles (the limit) although the area alone asks for "
+          "about {:.3g}{}",
+          values_are_lengths ? std::string("the length field") : fmt::format("edges of {:.6g}", max_length),
+          max_triangles, static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared,
+          static_cast<double>(mesh.triangle_count()) + kSplitAreaDivisor * per_length_squared > max_triangles
+              ? ": use longer edges"
+              : ": the mesh has triangles far longer than they are wide"));
   }
   // Freed before the copies below are made, which can then reuse the memory.
   queue = {};
@@ -312,7 +316,7 @@ SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>&
     if (!(length > 0) || !std::isfinite(length))
       throw InputError(fmt::format("refinement lengths must be positive (got {})", length));
   const double shortest = *std::min_element(vertex_lengths.begin(), vertex_lengths.end());
-  Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true, order);
+  Refinement r = split_long_edges(mesh, 0, &vertex_lengths, true, order, nullptr, kMaxRefinedTriangles);
   try {
     return SurfaceMesh(std::move(r.positions), std::move(r.triangles), std::move(r.neighbors), r.edge_count,
                        std::move(r.components), mesh.component_count());
@@ -327,7 +331,7 @@ double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_lengt
 }
 
 double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
-  if (mesh.triangle_count() >= 2 * n) return 0;
+  if (mesh.triangle_count() >= 2.0 * n) return 0;  // (in doubles: 2 n overflows an int past 1.07e9)
   // Splitting to edges no longer than L leaves triangles of about L^2 / kSplitAreaDivisor in area
   // (edges between L/2 and L, not equilateral triangles of side L): 4n of them cover the area.
   return std::sqrt(kSplitAreaDivisor * mesh.area() / (4.0 * n));

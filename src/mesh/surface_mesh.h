@@ -158,7 +158,8 @@ SurfaceMesh refine_long_edges(const SurfaceMesh& mesh, double max_length, std::v
 //! new vertices as refine_long_edges carries its values. A field linear over each input triangle
 //! is smallest at an edge's ends, so each edge of the result is no longer than the field anywhere
 //! along it. Used by the adaptive MPS with its radius field.
-//! \throw InputError when a length is not positive.
+//! \throw InputError when a length is not positive; RefinementLimitError past kMaxRefinedTriangles
+//! triangles, as refine_long_edges.
 SurfaceMesh refine_to_length_field(const SurfaceMesh& mesh, std::vector<double>& vertex_lengths,
                                    RefineOrder order = RefineOrder::Input);
 

@@ -394,15 +394,19 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
 }
 
 MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOptions& options) {
-  if (!(options.radius > 0) || !std::isfinite(options.radius))
-    throw InputError(fmt::format("the Poisson-disk radius must be a positive number (got {})", options.radius));
+  // Relative to the longest side: past 10 one disk covers any sheet many times over (and a radius
+  // whose square overflows would reach the exact tests as infinity).
+  if (!(options.radius > 0) || !(options.radius <= kMaxMpsRadius))
+    throw InputError(fmt::format("the Poisson-disk radius must be a positive number up to {:g} (relative to the longest "
+                                 "bounding-box side), got {}",
+                                 kMaxMpsRadius, options.radius));
   if (!(options.split_factor >= 1) || !std::isfinite(options.split_factor))
     throw InputError(fmt::format("the split factor must be a number of at least 1 (got {})", options.split_factor));
   if (options.sample_features && !(options.feature_angle > 0 && options.feature_angle < 180))
     throw InputError(fmt::format("the feature angle must be between 0 and 180 degrees (got {})", options.feature_angle));
   if (options.adaptive) {
-    if (!(options.max_radius_ratio >= 1) || !std::isfinite(options.max_radius_ratio))
-      throw InputError(fmt::format("the adaptive radius ratio r_max / r_min must be a number of at least 1 (got {})",
+    if (!(options.max_radius_ratio >= 1) || !(options.max_radius_ratio <= 1e6))
+      throw InputError(fmt::format("the adaptive radius ratio r_max / r_min must be a number from 1 to 1e6 (got {})",
                                    options.max_radius_ratio));
     if (!(options.curvature_fraction > 0) || !std::isfinite(options.curvature_fraction))
       throw InputError(fmt::format("the adaptive curvature fraction must be a positive number (got {})",

@@ -27,8 +27,11 @@ enum class MpsRefinement {
   MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule; split_factor is not used)
 };
 
+//! The largest MpsOptions::radius taken (relative: one disk of it covers any sheet many times over).
+constexpr double kMaxMpsRadius = 10;
+
 struct MpsOptions {
-  double radius = 0.01;                  //!< r (uniform) or r_min (adaptive), relative to the longest bounding-box side
+  double radius = 0.01;                  //!< r (uniform) or r_min (adaptive), relative to the longest bounding-box side, up to kMaxMpsRadius
   bool adaptive = false;                 //!< radius from curvature, never below r_min
   double max_radius_ratio = 2.0;         //!< adaptive: r_max / r_min (flat parts get r_max)
   double curvature_fraction = 0.5;       //!< adaptive: on curved parts r ≈ this fraction of the radius of curvature

@@ -35,6 +35,11 @@ Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p) {
   const double d00 = dot(v0, v0), d01 = dot(v0, v1), d11 = dot(v1, v1), d20 = dot(v2, v0), d21 = dot(v2, v1);
   const double det = d00 * d11 - d01 * d01;
   double u = (d11 * d20 - d01 * d21) / det, v = (d00 * d21 - d01 * d20) / det;
+  // A sliver whose Gram determinant cancels to zero or below (a needle 1e-9 wide, split): its
+  // closest point's coordinates, which a degenerate triangle has too (an audit: NaN coordinates
+  // gave a NaN radius, which reached the exact disk test as SIGFPE).
+  if (!(det > 0) || !std::isfinite(u) || !std::isfinite(v))
+    return closest_point_on_triangle(p, a, mesh.position(tri[1]), mesh.position(tri[2])).barycentric;
   u = std::clamp(u, 0.0, 1.0);
   v = std::clamp(v, 0.0, 1.0);
   if (u + v > 1) {

@@ -282,6 +282,8 @@ PointFile read_xyz(const std::string& path) {
 }
 
 void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights) {
+  if (!weights.empty() && weights.size() != points.size())
+    throw InputError(fmt::format("write_xyz: {} weights for {} points", weights.size(), points.size()));
   fmt::memory_buffer out;
   for (size_t i = 0; i < points.size(); ++i) {
     fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {:.17g}", points[i].x, points[i].y, points[i].z);
