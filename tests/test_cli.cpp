@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -563,6 +564,8 @@ TEST_CASE("remesh_to (the library call) gives the mesh that lrvd remesh writes a
     CHECK(few.err.find("has fewer than 8") != std::string::npos);
   }
   REQUIRE_THROWS_WITH(lrvd::remesh_to(two, 4'000'000), Catch::Contains("use fewer vertices"));  // ~16M triangles
+  // 2 n overflowed an int past 1.07e9 and the refinement looked unneeded: memory ran out instead.
+  REQUIRE_THROWS_WITH(lrvd::remesh_to(two, std::numeric_limits<int>::max()), Catch::Contains("use fewer vertices"));
 }
 
 TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
