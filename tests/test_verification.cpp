@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -14,9 +15,12 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "common/error.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/diagram_geometry.h"
+#include "voronoi/cells_output.h"
+#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
@@ -572,6 +576,28 @@ TEST_CASE("The report has the documented JSON keys", "[verification]") {
   CHECK(j.at("distinct_vertices").get<std::int64_t>() >= mesh.vertex_count());
   CHECK(j.at("distinct_vertices").get<std::int64_t>() == v.distinct_vertices);
   CHECK(j.at("rational_points").get<std::int64_t>() == v.rational_points);
+}
+
+TEST_CASE("The functions that read a diagram refuse one that does not fit the mesh, naming why", "[verification]") {
+  // A library audit crashed integrate_cells, compute_dual, cell_components and the cells output
+  // with such diagrams (a cell, a vertex range or a mesh vertex out of range).
+  const Case valid = valid_lrvd();
+  const std::vector<std::pair<std::string, std::function<void(Diagram&)>>> breaks = {
+      {"cell", [](Diagram& d) { d.polygons[0].cell = 999; }},
+      {"out of range", [](Diagram& d) { d.polygons[0].first_vertex = static_cast<int>(d.vertices.size()); }},
+      {"names mesh vertex", [](Diagram& d) { d.vertices[0] = SymbolicVertex::mesh_vertex(100000); }},
+      {"offsets", [](Diagram& d) { d.triangle_offsets.back() += 1; }}};
+  for (const auto& [what, corrupt] : breaks) {
+    INFO(what);
+    Diagram d = valid.diagram;
+    corrupt(d);
+    CHECK_FALSE(diagram_layout_error(d, valid.mesh).empty());
+    CHECK_THROWS_AS(integrate_cells(d, valid.mesh, valid.samples), InputError);
+    CHECK_THROWS_AS(compute_dual(d, valid.mesh, valid.samples), InputError);
+    CHECK_THROWS_AS(cell_components(d, valid.mesh), InputError);
+    CHECK_THROWS_AS(diagram_polygon_mesh(d, valid.mesh), InputError);
+  }
+  CHECK(diagram_layout_error(valid.diagram, valid.mesh).empty());
 }
 
 TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {

@@ -469,8 +469,10 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
                            const MpsVerifyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   check_mps_samples(mesh, samples);
-  if (!is_power(lrpd.kind) || lrpd.sample_count != samples.size())
+  if (!is_power(lrpd.kind) || lrpd.sample_count != samples.size() || static_cast<int>(lrpd.sites.size()) != samples.size())
     throw InputError("the maximality check needs a power diagram (LRPD) of these samples");
+  if (const std::string error = diagram_layout_error(lrpd, mesh); !error.empty())
+    throw InputError("verify_mps: the LRPD does not fit the mesh: " + error);
   MpsVerification out;
   LocalRegions regions(mesh);
   const SampleDisks disks(samples, regions);

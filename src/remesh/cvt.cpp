@@ -106,21 +106,32 @@ std::vector<Vec3> to_points(const Eigen::VectorXd& x) {
 
 }  // namespace
 
-CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
-                     const std::vector<double>* density) {
-  return cvt_energy(mesh, samples, compute_diagram(mesh, samples, kind), density);
-}
+namespace {
 
-CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, Diagram diagram,
-                     const std::vector<double>* density) {
+// The energy of `diagram`, whose layout is checked unless the caller computed it (`own`).
+CvtEnergy energy_of(const SurfaceMesh& mesh, const Samples& samples, Diagram diagram,
+                    const std::vector<double>* density, bool own) {
   CvtEnergy e;
   e.diagram = std::move(diagram);
-  e.cells = integrate_cells(e.diagram, mesh, samples, density);
+  e.cells = own ? integrate_own_cells(e.diagram, mesh, samples, density)
+                : integrate_cells(e.diagram, mesh, samples, density);
   e.energy = e.cells.total_energy;
   e.gradient.resize(samples.size());
   for (int i = 0; i < samples.size(); ++i)
     e.gradient[i] = 2.0 * e.cells.area[i] * (samples.positions[i] - e.cells.centroid[i]);
   return e;
+}
+
+}  // namespace
+
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, DiagramKind kind,
+                     const std::vector<double>* density) {
+  return energy_of(mesh, samples, compute_diagram(mesh, samples, kind), density, true);
+}
+
+CvtEnergy cvt_energy(const SurfaceMesh& mesh, const Samples& samples, Diagram diagram,
+                     const std::vector<double>* density) {
+  return energy_of(mesh, samples, std::move(diagram), density, false);
 }
 
 std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count) {

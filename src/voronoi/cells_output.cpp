@@ -7,6 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "common/error.h"
 #include "mesh/surface_mesh.h"
 
 namespace lrvd {
@@ -60,6 +61,8 @@ std::vector<int> color_cells(int cell_count, const std::vector<SymbolicVertex>& 
 }
 
 PolygonMesh diagram_polygon_mesh(const Diagram& diagram, const SurfaceMesh& mesh) {
+  if (const std::string error = diagram_layout_error(diagram, mesh); !error.empty())
+    throw InputError("diagram_polygon_mesh: the diagram does not fit the mesh: " + error);
   PolygonMesh out;
   const SymbolicContext ctx = diagram.context(mesh);
   SymbolicVertexIndex index;

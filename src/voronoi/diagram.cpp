@@ -1,6 +1,7 @@
 // Diagram helpers: kinds, sites, cell integrals for CVT and cell connected components.
 #include "voronoi/diagram.h"
 
+#include <cstdint>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -52,16 +53,54 @@ bool same_vertex(const SymbolicVertex& q, const SymbolicVertex& r) {
 
 }  // namespace
 
+std::string diagram_layout_error(const Diagram& d, const SurfaceMesh& mesh) {
+  const int nt = mesh.triangle_count(), nv = mesh.vertex_count(), n = d.sample_count;
+  if (n < 0) return fmt::format("it has {} cells", n);
+  if (d.triangle_offsets.size() != static_cast<std::size_t>(nt) + 1)
+    return fmt::format("it was built on a mesh of {} triangles, not on this one of {}",
+                       d.triangle_offsets.empty() ? 0 : d.triangle_offsets.size() - 1, nt);
+  if (d.triangle_offsets[0] != 0 || d.triangle_offsets[nt] != static_cast<int>(d.polygons.size()))
+    return "its triangle offsets do not span its polygons";
+  const auto in = [](int x, int size) { return x >= 0 && x < size; };
+  for (int t = 0; t < nt; ++t) {
+    if (d.triangle_offsets[t + 1] < d.triangle_offsets[t]) return fmt::format("its offsets decrease at triangle {}", t);
+    for (int p = d.triangle_offsets[t]; p < d.triangle_offsets[t + 1]; ++p) {
+      const CellPolygon& poly = d.polygons[p];
+      if (poly.triangle != t || !in(poly.cell, n) || poly.first_vertex < 0 || poly.vertex_count < 0 ||
+          static_cast<std::int64_t>(poly.first_vertex) + poly.vertex_count > static_cast<std::int64_t>(d.vertices.size()))
+        return fmt::format("polygon {} (triangle {}, cell {}) is out of range", p, poly.triangle, poly.cell);
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const SymbolicVertex& q = d.vertices[poly.first_vertex + k];
+        const int corners = q.type == SymbolicVertex::Type::A ? 1 : q.type == SymbolicVertex::Type::B ? 2 : 3;
+        for (int c = 0; c < corners; ++c)
+          if (!in(q.v[c], nv)) return fmt::format("a vertex of polygon {} names mesh vertex {}", p, q.v[c]);
+        for (int a = 0; a < q.num_labels(); ++a)
+          if (!in(q.label[a], n)) return fmt::format("a vertex of polygon {} names cell {}", p, q.label[a]);
+      }
+    }
+  }
+  return {};
+}
+
 CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
                               const std::vector<double>* triangle_density) {
+  if (const std::string error = diagram_layout_error(diagram, mesh); !error.empty())
+    throw InputError("integrate_cells: the diagram does not fit the mesh: " + error);
+  return integrate_own_cells(diagram, mesh, samples, triangle_density);
+}
+
+CellIntegrals integrate_own_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
+                                  const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
   // Cheap checks that the three belong together (a mismatch would read outside the vectors).
   if (diagram.triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1)
     throw InputError(fmt::format("integrate_cells: the diagram was built on a mesh of {} triangles, not on this one of {}",
                                  diagram.triangle_offsets.empty() ? 0 : diagram.triangle_offsets.size() - 1,
                                  mesh.triangle_count()));
-  if (samples.size() != n || static_cast<int>(diagram.sites.size()) != n)
+  if (samples.size() != n)
     throw InputError(fmt::format("integrate_cells: the diagram has {} cells but {} samples are given", n, samples.size()));
+  if (static_cast<int>(diagram.sites.size()) != n)
+    throw InputError(fmt::format("integrate_cells: the diagram has {} cells but {} sites", n, diagram.sites.size()));
   if (triangle_density && triangle_density->size() != static_cast<std::size_t>(mesh.triangle_count()))
     throw InputError(fmt::format("integrate_cells: {} densities for {} triangles", triangle_density->size(),
                                  mesh.triangle_count()));
@@ -138,6 +177,8 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
 }
 
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh) {
+  if (const std::string error = diagram_layout_error(diagram, mesh); !error.empty())
+    throw InputError("cell_components: the diagram does not fit the mesh: " + error);
   const int np = static_cast<int>(diagram.polygons.size());
   if (diagram.polygon_along.size() == static_cast<size_t>(np)) return cell_components(diagram, mesh, diagram.polygon_along);
   // The edges each polygon runs along (in parallel), then the joins.

@@ -4,9 +4,18 @@
 #include <algorithm>
 #include <map>
 
+#include <fmt/format.h>
+
+#include "common/error.h"
+
 namespace lrvd {
 
 DualMesh compute_dual(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples) {
+  if (const std::string error = diagram_layout_error(diagram, mesh); !error.empty())
+    throw InputError("compute_dual: the diagram does not fit the mesh: " + error);
+  if (samples.size() != diagram.sample_count)
+    throw InputError(fmt::format("compute_dual: the diagram has {} cells but {} samples are given", diagram.sample_count,
+                                 samples.size()));
   DualMesh dual;
   dual.positions = samples.positions;
   std::map<Triangle, int> seen;  // rotated so the smallest index comes first -> triangle index
