@@ -112,6 +112,9 @@ TEST_CASE("MPS refuses a radius beyond 10 times the model's size, whose square w
   MpsOptions options;
   options.radius = 1e160;
   REQUIRE_THROWS_WITH(maximal_poisson_disk_sampling(test::octahedron(), options), Catch::Contains("up to 10"));
+  options.radius = 0.1;
+  options.max_gap_rounds = -1;  // gave a sampling that was not maximal, reported as done (an audit)
+  REQUIRE_THROWS_WITH(maximal_poisson_disk_sampling(test::octahedron(), options), Catch::Contains("max_gap_rounds"));
 }
 
 TEST_CASE("MPS of an icosphere is maximal, keeps the minimum distance and remeshes validly", "[mps]") {

@@ -417,6 +417,8 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   if (options.max_consecutive_rejections < 1)
     throw InputError(fmt::format("max_consecutive_rejections must be at least 1 (got {})",
                                  options.max_consecutive_rejections));
+  if (options.max_gap_rounds < 0)
+    throw InputError(fmt::format("max_gap_rounds may not be negative (got {})", options.max_gap_rounds));
   if (!(options.max_expected_samples > 0))
     throw InputError(fmt::format("max_expected_samples must be a positive number (got {})", options.max_expected_samples));
   if (mesh.triangle_count() == 0) throw InputError("the mesh has no triangles");

@@ -669,6 +669,8 @@ void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool w
 
 Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options) {
   check_diagram_input(mesh, samples, options.weighted);
+  if (options.max_connectivity_rounds < 0)
+    throw InputError(fmt::format("LRVD: max_connectivity_rounds may not be negative (got {})", options.max_connectivity_rounds));
   if (options.shapeless && options.shapeless->size() != static_cast<size_t>(mesh.triangle_count()))
     throw std::logic_error("LRVD: the shapeless mask needs one entry per mesh triangle");
   const auto start = std::chrono::steady_clock::now();
