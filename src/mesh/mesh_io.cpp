@@ -417,92 +417,13 @@ void refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& posi
                          near.distance / diagonal, near.count, weld_advice));
 }
 
-// Faces listed twice with opposite orientations where two solids meet (two welded boxes sharing a
-// face: an internal wall). Keeping one copy leaves the wall inside the union, its edges with three
-// faces, which the orientation step then cuts apart into open sheets. A connected set of such
-// pairs is removed, both copies, when every edge on its outline has exactly two other faces (the
-// two solids' faces that meet there) and no edge inside it has any: what is left is the union's
-// closed surface. Otherwise (a double-sided sheet standing alone, say) one copy is kept, as for
-// any duplicate.
-void remove_internal_walls(std::vector<SoupTriangle>& triangles, RepairReport& report) {
-  using Key = std::array<std::size_t, 3>;
-  const auto sorted = [](const SoupTriangle& t) {
-    Key k{t[0], t[1], t[2]};
-    std::sort(k.begin(), k.end());
-    return k;
-  };
-  // Orientation of a triangle relative to its sorted corners: +1 for an even rotation, -1 odd.
-  const auto parity = [&](const SoupTriangle& t) {
-    const Key k = sorted(t);
-    for (int r = 0; r < 3; ++r)
-      if (t[r] == k[0] && t[(r + 1) % 3] == k[1]) return 1;
-    return -1;
-  };
-  std::map<Key, std::pair<int, int>> faces;  // corners -> (copies turning +1, copies turning -1)
-  for (const SoupTriangle& t : triangles) {
-    auto& count = faces[sorted(t)];
-    (parity(t) > 0 ? count.first : count.second) += 1;
-  }
-  std::map<Key, int> wall;  // the walls' corner sets (exactly one copy each way) -> index
-  for (const auto& [key, count] : faces)
-    if (count.first == 1 && count.second == 1) wall.emplace(key, static_cast<int>(wall.size()));
-  if (wall.empty()) return;
-  using Edge = std::pair<std::size_t, std::size_t>;
-  std::map<Edge, std::vector<int>> wall_edges;  // edge -> walls using it
-  std::map<Edge, int> other_uses;               // edge -> distinct other faces using it
-  for (const auto& [key, count] : faces) {
-    const auto it = wall.find(key);
-    for (int e = 0; e < 3; ++e) {
-      const Edge edge{std::min(key[e], key[(e + 1) % 3]), std::max(key[e], key[(e + 1) % 3])};
-      if (it != wall.end())
-        wall_edges[edge].push_back(it->second);
-      else
-        ++other_uses[edge];
-    }
-  }
-  std::vector<int> parent(wall.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& [edge, users] : wall_edges)
-    for (std::size_t k = 1; k < users.size(); ++k) parent[root(users[k])] = root(users[0]);
-  std::vector<char> removable(wall.size(), 1);
-  for (const auto& [edge, users] : wall_edges) {
-    const auto found = other_uses.find(edge);
-    const int others = found == other_uses.end() ? 0 : found->second;
-    if (users.size() == 1 ? others != 2 : (users.size() != 2 || others != 0)) removable[root(users[0])] = 0;
-  }
-  const std::size_t before = triangles.size();
-  triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
-                                 [&](const SoupTriangle& t) {
-                                   const auto it = wall.find(sorted(t));
-                                   return it != wall.end() && removable[root(it->second)];
-                                 }),
-                  triangles.end());
-  report.removed_internal_faces = static_cast<int>(before - triangles.size());
-  if (report.removed_internal_faces > 0)
-    report.notes.push_back(fmt::format("removed {} faces of internal walls: faces listed twice, once each way, "
-                                       "where two solids meet (both copies, which leaves their union's surface)",
-                                       report.removed_internal_faces));
-}
-
-// The distance within which a boundary corner counts as lying on another face's boundary edge: as
-// near twins, a fraction of the bounding-box diagonal of the vertices the triangles use.
-double t_junction_tolerance(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
-  std::vector<Vec3> used;
-  used.reserve(3 * triangles.size());
-  for (const Triangle& t : triangles)
-    for (int v : t) used.push_back(positions[v]);
-  return kNearTwinFraction * bounding_box(used).diagonal();
-}
-
 // A boundary corner on another face's boundary edge (a T-junction): the seam is open there, a crack
 // the remesh would keep. --repair splits such edges; after it, what is left is refused as well.
-void refuse_t_junctions(const std::string& path, const std::vector<Vec3>& positions,
-                        const std::vector<Triangle>& triangles, const std::vector<int>& original, bool repaired) {
-  const std::vector<TJunction> found = find_t_junctions(positions, triangles, t_junction_tolerance(positions, triangles));
+void refuse_t_junctions(const std::string& path, const SurfaceMesh& mesh, const std::vector<int>& original,
+                        bool repaired) {
+  const std::vector<Triangle>& triangles = mesh.triangles();  // every vertex used: the box is the mesh's
+  const std::vector<TJunction> found =
+      find_t_junctions(mesh.positions(), triangles, kNearTwinFraction * mesh.bounding_box().diagonal());
   if (found.empty()) return;
   const auto first = std::min_element(found.begin(), found.end(), [&](const TJunction& a, const TJunction& b) {
     return std::tie(a.triangle, a.vertex) < std::tie(b.triangle, b.vertex);
@@ -601,6 +522,91 @@ std::string weld_near_points(std::vector<Point>& points, std::vector<Polygon>& p
       fraction, collapsed, collapsed == 1 ? "" : "s", longest_collapsed, shortest / 2 / diagonal);
   report.notes.push_back(damage + ": the surface lost those edges");
   return damage;
+}
+
+// Faces listed twice with opposite orientations where two solids meet (two welded boxes sharing a
+// face: an internal wall). Keeping one copy leaves the wall inside the union, its edges with three
+// faces, which the orientation step then cuts apart into open sheets. A connected set of such
+// pairs is removed, both copies, when every edge on its outline has exactly two other faces (the
+// two solids' faces that meet there) and no edge inside it has any: what is left is the union's
+// closed surface. Otherwise (a double-sided sheet standing alone, say) one copy is kept, as for
+// any duplicate.
+void remove_internal_walls(std::vector<SoupTriangle>& triangles, RepairReport& report) {
+  using Key = std::array<std::size_t, 3>;
+  const auto sorted = [](const SoupTriangle& t) {
+    Key k{t[0], t[1], t[2]};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  // Orientation of a triangle relative to its sorted corners: +1 for an even rotation, -1 odd.
+  const auto parity = [&](const SoupTriangle& t) {
+    const Key k = sorted(t);
+    for (int r = 0; r < 3; ++r)
+      if (t[r] == k[0] && t[(r + 1) % 3] == k[1]) return 1;
+    return -1;
+  };
+  std::map<Key, std::pair<int, int>> faces;  // corners -> (copies turning +1, copies turning -1)
+  for (const SoupTriangle& t : triangles) {
+    auto& count = faces[sorted(t)];
+    (parity(t) > 0 ? count.first : count.second) += 1;
+  }
+  std::map<Key, int> wall;  // the walls' corner sets (exactly one copy each way) -> index
+  for (const auto& [key, count] : faces)
+    if (count.first == 1 && count.second == 1) wall.emplace(key, static_cast<int>(wall.size()));
+  if (wall.empty()) return;
+  using Edge = std::pair<std::size_t, std::size_t>;
+  std::map<Edge, std::vector<int>> wall_edges;  // edge -> walls using it
+  std::map<Edge, int> other_uses;               // edge -> distinct other faces using it
+  for (const auto& [key, count] : faces) {
+    const auto it = wall.find(key);
+    for (int e = 0; e < 3; ++e) {
+      const Edge edge{std::min(key[e], key[(e + 1) % 3]), std::max(key[e], key[(e + 1) % 3])};
+      if (it != wall.end())
+        wall_edges[edge].push_back(it->second);
+      else
+        ++other_uses[edge];
+    }
+  }
+  std::vector<int> parent(wall.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& [edge, users] : wall_edges)
+    for (std::size_t k = 1; k < users.size(); ++k) parent[root(users[k])] = root(users[0]);
+  std::vector<char> removable(wall.size(), 1);
+  for (const auto& [edge, users] : wall_edges) {
+    const auto found = other_uses.find(edge);
+    const int others = found == other_uses.end() ? 0 : found->second;
+    if (users.size() == 1 ? others != 2 : (users.size() != 2 || others != 0)) removable[root(users[0])] = 0;
+  }
+  const std::size_t before = triangles.size();
+  triangles.erase(std::remove_if(triangles.begin(), triangles.end(),
+                                 [&](const SoupTriangle& t) {
+                                   const auto it = wall.find(sorted(t));
+                                   return it != wall.end() && removable[root(it->second)];
+                                 }),
+                  triangles.end());
+  report.removed_internal_faces = static_cast<int>(before - triangles.size());
+  if (report.removed_internal_faces > 0)
+    report.notes.push_back(fmt::format("removed {} faces of internal walls: faces listed twice, once each way, "
+                                       "where two solids meet (both copies, which leaves their union's surface)",
+                                       report.removed_internal_faces));
+}
+
+// The distance within which a boundary corner counts as lying on another face's boundary edge: as
+// near twins, a fraction of the bounding-box diagonal of the vertices the triangles use.
+double t_junction_tolerance(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles) {
+  if (triangles.empty()) return 0;
+  BoundingBox box{positions[triangles[0][0]], positions[triangles[0][0]]};
+  for (const Triangle& t : triangles)
+    for (int v : t)
+      for (int c = 0; c < 3; ++c) {
+        box.min[c] = std::min(box.min[c], positions[v][c]);
+        box.max[c] = std::max(box.max[c], positions[v][c]);
+      }
+  return kNearTwinFraction * box.diagonal();
 }
 
 // Splits the boundary edges that corners of other faces lie on (T-junctions), so that both sides of
@@ -998,7 +1004,7 @@ LoadedMesh read_mesh(const std::string& path, const ReadOptions& options) {
     loaded.mesh = validated_mesh(path, std::move(positions), std::move(triangles), numbering_note, options.repair);
     // A crack is a boundary: a closed mesh has none to look for.
     if (!loaded.mesh.is_closed())
-      refuse_t_junctions(path, loaded.mesh.positions(), loaded.mesh.triangles(), original, options.repair);
+      refuse_t_junctions(path, loaded.mesh, original, options.repair);
   } catch (const InputError& e) {
     if (weld_damage.empty() || std::string(e.what()).find(weld_damage) != std::string::npos) throw;
     const std::string reason = e.what();
