@@ -21,5 +21,6 @@ Action add_verify_command(CLI::App& app);
 Action add_remesh_command(CLI::App& app);
 Action add_quality_command(CLI::App& app);
 Action add_mps_command(CLI::App& app);
+Action add_render_command(CLI::App& app);
 
 }  // namespace lrvd::cli

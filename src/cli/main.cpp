@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
   add(add_remesh_command);
   add(add_quality_command);
   add(add_mps_command);
+  add(add_render_command);
   add(add_stress_command);
   for (CLI::App* command : app.get_subcommands({}))
     command->footer("--threads N, before or after the subcommand, limits the worker threads (default: every core); "
@@ -106,7 +107,7 @@ int main(int argc, char** argv) {
     if (app.get_subcommands().empty())
       for (const std::string& extra : app.remaining())
         if (!extra.empty() && extra[0] != '-') {
-          std::fprintf(stderr, "lrvd: error: unknown subcommand '%s': compute, verify, remesh, quality, mps or stress (see --help)\n",
+          std::fprintf(stderr, "lrvd: error: unknown subcommand '%s': compute, verify, remesh, quality, mps, stress or render (see --help)\n",
                        printable(extra).c_str());
           return kBadInput;
         }

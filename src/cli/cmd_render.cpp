@@ -1,0 +1,123 @@
+// `lrvd render`: a PNG of a mesh, or of the cells of a diagram of samples on it (stray pieces
+// hatched, so an RVD's broken cells show beside the LRVD's whole ones).
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "cli/commands.h"
+#include "cli/common.h"
+#include "common/error.h"
+#include "mesh/surface_mesh.h"
+#include "render/render.h"
+#include "voronoi/lrvd.h"
+
+namespace lrvd::cli {
+
+namespace {
+
+struct RenderCommandOptions {
+  InputOptions input;
+  std::string kind = "lrvd";
+  std::string output;
+  std::string size = "1200x900";
+  std::string view = "30,20";
+  std::string up = "y";
+  bool edges = false;
+  bool no_samples = false;
+};
+
+// "1200x900" -> width and height; "30,20" -> azimuth and elevation.
+void parse_size(const std::string& text, RenderOptions& o) {
+  std::istringstream in(text);
+  char x = 0;
+  std::string rest;
+  if (!(in >> o.width >> x >> o.height) || (x != 'x' && x != 'X') || (in >> rest))
+    throw InputError(fmt::format("--size takes WIDTHxHEIGHT in pixels, such as 1200x900, not '{}'", text));
+}
+
+void parse_view(const std::string& text, RenderOptions& o) {
+  std::istringstream in(text);
+  char comma = 0;
+  std::string rest;
+  if (!(in >> o.azimuth >> comma >> o.elevation) || comma != ',' || (in >> rest) || !std::isfinite(o.azimuth))
+    throw InputError(fmt::format("--view takes AZIMUTH,ELEVATION in degrees, such as 30,20, not '{}'", text));
+}
+
+void parse_up(const std::string& text, RenderOptions& o) {
+  const bool negative = !text.empty() && text[0] == '-';
+  const std::string axis = negative ? text.substr(1) : text;
+  if (axis != "x" && axis != "y" && axis != "z")
+    throw InputError(fmt::format("--up takes x, y, z, -x, -y or -z, not '{}'", text));
+  o.up_axis = axis[0] - 'x';
+  o.up_negative = negative;
+}
+
+int run_render(const RenderCommandOptions& opt) {
+  RenderOptions view;
+  parse_size(opt.size, view);
+  parse_view(opt.view, view);
+  parse_up(opt.up, view);
+  view.edges = opt.edges;
+  const DiagramKind kind = diagram_kind_from_string(opt.kind);
+  check_outputs({{opt.output, "-o", {".png"}}}, read_files(opt.input));
+  const bool cells = opt.input.count > 0 || !opt.input.points_path.empty();
+
+  RenderScene scene;
+  std::string what;
+  if (!cells) {
+    const LoadedMesh loaded = read_mesh(opt.input.mesh_path, opt.input.read);
+    require_workable_model(loaded.mesh, "lrvd");
+    print_repair(loaded.repair, opt.input.read);
+    scene = mesh_scene(loaded.mesh);
+    what = counted(loaded.mesh.triangle_count(), "triangle", "triangles");
+  } else {
+    Input input = load_input(opt.input);
+    if (is_power(kind) && !input.samples.weighted())
+      throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", opt.kind));
+    if (!is_power(kind) && input.samples.weighted())
+      throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", opt.kind));
+    if (input.refined_from >= 0)
+      progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+    progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
+    const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
+    DiagramScene cells_scene = diagram_scene(diagram, input.mesh, input.samples);
+    scene = std::move(cells_scene.scene);
+    if (opt.no_samples) scene.points.clear();
+    what = fmt::format("{} {} cells on {}, {} in several pieces{}", input.samples.size(), opt.kind,
+                       counted(input.mesh.triangle_count(), "triangle", "triangles"),
+                       counted(cells_scene.cells_in_pieces, "cell", "cells"),
+                       cells_scene.stray_polygons > 0
+                           ? fmt::format(" (their {} away from the sample hatched)",
+                                         counted(cells_scene.stray_polygons, "polygon", "polygons"))
+                           : std::string());
+  }
+  progress(fmt::format("drawing {} x {} pixels", view.width, view.height));
+  write_png(opt.output, render(scene, view));
+  std::printf("render: %s, %d x %d -> %s\n", what.c_str(), view.width, view.height, opt.output.c_str());
+  return kOk;
+}
+
+}  // namespace
+
+Action add_render_command(CLI::App& app) {
+  auto opt = std::make_shared<RenderCommandOptions>();
+  CLI::App* cmd = app.add_subcommand("render", "Draw a mesh, or the cells of a diagram on it, as a PNG");
+  add_input_options(cmd, opt->input, true);
+  cmd->add_option("--diagram", opt->kind, "Diagram of the samples: lrvd, rvd, lrpd (power, weighted) or rpd")
+      ->check(CLI::IsMember({"lrvd", "rvd", "lrpd", "rpd"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", opt->output, "The picture (.png)")->required()->check(path_validator());
+  cmd->add_option("--size", opt->size, "WIDTHxHEIGHT in pixels, 16 to 8192 each")->capture_default_str();
+  cmd->add_option("--view", opt->view,
+                  "AZIMUTH,ELEVATION in degrees: about the up axis from the next axis (+z for up y), then "
+                  "towards the up axis")
+      ->capture_default_str();
+  cmd->add_option("--up", opt->up, "The axis drawn upwards: x, y, z, -x, -y or -z")->capture_default_str();
+  cmd->add_flag("--edges", opt->edges, "Draw the mesh's edges too");
+  cmd->add_flag("--no-samples", opt->no_samples, "Leave out the dots of the samples");
+  return [opt]() { return run_render(*opt); };
+}
+
+}  // namespace lrvd::cli
