@@ -694,3 +694,43 @@ TEST_CASE("lrvd works on a tiny model far from the origin and refuses one whose 
   }
   for (const std::string& f : {tiny, coarse, out}) std::remove(f.c_str());
 }
+
+TEST_CASE("lrvd render draws a mesh or a diagram's cells as a PNG, and refuses bad views with one line", "[cli]") {
+  // The PNG's size from its header: the IHDR chunk's width and height, big-endian, at bytes 16-23.
+  auto png_size = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(24, '\0');
+    in.read(head.data(), 24);
+    REQUIRE(in.gcount() == 24);
+    REQUIRE(head.substr(1, 3) == "PNG");
+    auto word = [&](int at) {
+      unsigned value = 0;
+      for (int k = 0; k < 4; ++k) value = value << 8 | static_cast<unsigned char>(head[at + k]);
+      return static_cast<int>(value);
+    };
+    return std::make_pair(word(16), word(20));
+  };
+  const std::string mesh_png = kOut + "render_mesh.png", cells_png = kOut + "render_cells.png";
+  Run r = run("render " + kData + "/elk.off -o " + mesh_png + " --size 320x240 --view 10,30 --up z --edges");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("render: 3290 triangles, 320 x 240") != std::string::npos);
+  REQUIRE(png_size(mesh_png) == std::make_pair(320, 240));
+  r = run("render " + kData + "/elk.off -n 120 --diagram rvd -o " + cells_png + " --size 200x100");
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("120 rvd cells") != std::string::npos);
+  REQUIRE(png_size(cells_png) == std::make_pair(200, 100));
+  std::remove(mesh_png.c_str());
+  std::remove(cells_png.c_str());
+  for (const std::string& args :
+       {"render " + kData + "/elk.off -o " + kOut + "r.png --size 100", "render " + kData + "/elk.off -o " + kOut + "r.png --size 9000x100",
+        "render " + kData + "/elk.off -o " + kOut + "r.png --view 30", "render " + kData + "/elk.off -o " + kOut + "r.png --view 0,95",
+        "render " + kData + "/elk.off -o " + kOut + "r.png --up w", "render " + kData + "/elk.off -o " + kOut + "r.jpg",
+        "render " + kData + "/elk.off -n 10 --diagram lrpd -o " + kOut + "r.png"}) {
+    const Run bad = run(args);
+    INFO(args << "\n" << bad.err);
+    REQUIRE(bad.status == 2);
+    REQUIRE(lines(bad.err) == 1);
+    REQUIRE(!std::filesystem::exists(kOut + "r.png"));
+  }
+}

@@ -35,6 +35,8 @@ void parse_size(const std::string& text, RenderOptions& o) {
   std::string rest;
   if (!(in >> o.width >> x >> o.height) || (x != 'x' && x != 'X') || (in >> rest))
     throw InputError(fmt::format("--size takes WIDTHxHEIGHT in pixels, such as 1200x900, not '{}'", text));
+  if (o.width < 16 || o.width > 8192 || o.height < 16 || o.height > 8192)
+    throw InputError(fmt::format("--size: a picture is 16 to 8192 pixels wide and high, not {}", text));
 }
 
 void parse_view(const std::string& text, RenderOptions& o) {
@@ -43,6 +45,8 @@ void parse_view(const std::string& text, RenderOptions& o) {
   std::string rest;
   if (!(in >> o.azimuth >> comma >> o.elevation) || comma != ',' || (in >> rest) || !std::isfinite(o.azimuth))
     throw InputError(fmt::format("--view takes AZIMUTH,ELEVATION in degrees, such as 30,20, not '{}'", text));
+  if (!(o.elevation >= -90 && o.elevation <= 90))
+    throw InputError(fmt::format("--view: the elevation is -90 to 90 degrees, not {}", o.elevation));
 }
 
 void parse_up(const std::string& text, RenderOptions& o) {

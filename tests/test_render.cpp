@@ -1,0 +1,221 @@
+// The renderer behind `lrvd render`: framing, the side the camera looks from, outlines between
+// regions and none inside one, hatching, hidden samples, the diagrams' stray pieces, PNG output.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <set>
+#include <string>
+
+#include <unistd.h>
+
+#include "common/error.h"
+#include "mesh/stress.h"
+#include "render/render.h"
+#include "test_meshes.h"
+#include "voronoi/lrvd.h"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+#pragma GCC diagnostic pop
+
+using namespace lrvd;
+
+namespace {
+
+bool white(const Image& image, int x, int y) {
+  const Rgb p = image.pixel(x, y);
+  return p[0] == 255 && p[1] == 255 && p[2] == 255;
+}
+
+int brightness(const Image& image, int x, int y) {
+  const Rgb p = image.pixel(x, y);
+  return p[0] + p[1] + p[2];
+}
+
+// Bounding box of the pixels that are not background: x0, y0, x1, y1 (inclusive).
+std::array<int, 4> drawn_box(const Image& image) {
+  std::array<int, 4> box = {image.width, image.height, -1, -1};
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (!white(image, x, y)) {
+        box[0] = std::min(box[0], x), box[1] = std::min(box[1], y);
+        box[2] = std::max(box[2], x), box[3] = std::max(box[3], y);
+      }
+  return box;
+}
+
+// Two triangles making the unit square in the z = 0 plane, split along its diagonal (0,0)-(1,1).
+RenderScene square(bool two_regions) {
+  RenderScene s;
+  s.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  s.triangles = {{0, 1, 2}, {0, 2, 3}};
+  s.region = {0, two_regions ? 1 : 0};
+  return s;
+}
+
+// The view straight down the z axis onto the square (y up, camera on +z).
+RenderOptions front(int size) {
+  RenderOptions o;
+  o.width = o.height = size;
+  o.azimuth = 0;
+  o.elevation = 0;
+  return o;
+}
+
+// The darkest pixel on the square's diagonal, away from its corners and border.
+int darkest_on_diagonal(const Image& image) {
+  int darkest = 3 * 255;
+  for (int k = image.width / 4; k < 3 * image.width / 4; ++k)
+    darkest = std::min(darkest, brightness(image, k, image.height - 1 - k));
+  return darkest;
+}
+
+}  // namespace
+
+TEST_CASE("render frames the scene: it fills the picture but for the margin, and is centred", "[render]") {
+  const RenderScene scene = mesh_scene(test::icosphere(3));
+  RenderOptions o;
+  o.width = 300;
+  o.height = 200;
+  const Image image = render(scene, o);
+  REQUIRE(image.width == 300);
+  REQUIRE(image.height == 200);
+  REQUIRE(!white(image, 150, 100));
+  REQUIRE(white(image, 2, 2));
+  const auto box = drawn_box(image);
+  const int tall = box[3] - box[1] + 1, wide = box[2] - box[0] + 1;
+  // A sphere seen from anywhere is a disc: the height limits it, 92 % of 200 pixels.
+  REQUIRE(std::abs(tall - 184) <= 3);
+  REQUIRE(std::abs(wide - tall) <= 3);
+  REQUIRE(std::abs((box[0] + box[2]) / 2 - 150) <= 2);
+  REQUIRE(std::abs((box[1] + box[3]) / 2 - 100) <= 2);
+}
+
+TEST_CASE("render looks from the azimuth and elevation it is given, about the up axis", "[render]") {
+  // A box 4 long in x, 1 in y and z: from +z (azimuth 0, up y) it is wide; from +x (azimuth 90) square.
+  RenderScene scene;
+  scene.positions = {{0, 0, 0}, {4, 0, 0}, {4, 1, 0}, {0, 1, 0}, {0, 0, 1}, {4, 0, 1}, {4, 1, 1}, {0, 1, 1}};
+  scene.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                     {2, 3, 7}, {2, 7, 6}, {1, 2, 6}, {1, 6, 5}, {0, 4, 7}, {0, 7, 3}};
+  auto aspect = [&](double azimuth, double elevation, int up) {
+    RenderOptions o;
+    o.width = o.height = 200;
+    o.azimuth = azimuth;
+    o.elevation = elevation;
+    o.up_axis = up;
+    const auto box = drawn_box(render(scene, o));
+    return double(box[2] - box[0] + 1) / double(box[3] - box[1] + 1);
+  };
+  REQUIRE(aspect(0, 0, 1) == Approx(4).epsilon(0.05));
+  REQUIRE(aspect(90, 0, 1) == Approx(1).epsilon(0.05));
+  // Looking straight down the y axis (elevation 90) shows x against z: wide again.
+  REQUIRE(aspect(0, 90, 1) == Approx(4).epsilon(0.05));
+  // Up z: azimuth 0 looks from +x, where the box's 1 x 1 end is.
+  REQUIRE(aspect(0, 0, 2) == Approx(1).epsilon(0.05));
+}
+
+TEST_CASE("render draws a dark line between regions and none inside one", "[render]") {
+  const Image one = render(square(false), front(200));
+  const Image two = render(square(true), front(200));
+  REQUIRE(darkest_on_diagonal(two) < 200);
+  REQUIRE(darkest_on_diagonal(one) > 450);
+  // With edges on, the diagonal of one region shows as a lighter line.
+  RenderOptions edges = front(200);
+  edges.edges = true;
+  const int light = darkest_on_diagonal(render(square(false), edges));
+  REQUIRE(light < darkest_on_diagonal(one) - 100);
+  REQUIRE(light > darkest_on_diagonal(two) + 100);
+}
+
+TEST_CASE("render stripes hatched triangles and leaves the others plain", "[render]") {
+  RenderScene scene = square(false);
+  scene.hatched = {1, 0};  // the lower right triangle
+  const Image image = render(scene, front(200));
+  int lo = 3 * 255, hi = 0;
+  for (int x = 120; x < 180; ++x) {  // a row inside the hatched triangle, x > y on the picture
+    lo = std::min(lo, brightness(image, x, 170));
+    hi = std::max(hi, brightness(image, x, 170));
+  }
+  REQUIRE(hi - lo > 150);
+  lo = 3 * 255, hi = 0;
+  for (int x = 20; x < 80; ++x) {  // inside the plain one
+    lo = std::min(lo, brightness(image, x, 30));
+    hi = std::max(hi, brightness(image, x, 30));
+  }
+  REQUIRE(hi - lo < 4);
+}
+
+TEST_CASE("render draws the points the surface does not hide", "[render]") {
+  RenderScene scene = mesh_scene(test::icosphere(3));
+  RenderOptions o = front(200);
+  o.point_radius = 4;
+  const Image bare = render(scene, o);
+  scene.points = {{0, 0, -1}};  // behind the sphere, at the picture's middle
+  REQUIRE(render(scene, o).rgb == bare.rgb);
+  scene.points = {{0, 0, 1}};  // in front
+  const Image dot = render(scene, o);
+  REQUIRE(brightness(dot, 100, 100) < 100);
+  REQUIRE(brightness(bare, 100, 100) > 300);
+}
+
+TEST_CASE("render hatches the RVD's stray cell pieces and finds none in the LRVD", "[render]") {
+  const SurfaceMesh mesh = make_stress_mesh("folded_sheet", 0.5);
+  const Samples samples = sample_uniform(mesh, 60, 4);
+  const DiagramScene rvd = diagram_scene(compute_rvd(mesh, samples), mesh, samples);
+  const DiagramScene lrvd = diagram_scene(compute_lrvd(mesh, samples), mesh, samples);
+  REQUIRE(rvd.cells_in_pieces > 0);
+  REQUIRE(rvd.stray_polygons > 0);
+  REQUIRE(lrvd.cells_in_pieces == 0);
+  REQUIRE(lrvd.stray_polygons == 0);
+  REQUIRE(lrvd.scene.points.size() == 60);
+  REQUIRE(lrvd.scene.region.size() == lrvd.scene.triangles.size());
+  std::set<std::pair<int, Rgb>> cell_colours;
+  for (std::size_t t = 0; t < lrvd.scene.triangles.size(); ++t) cell_colours.insert({lrvd.scene.region[t], lrvd.scene.color[t]});
+  REQUIRE(cell_colours.size() == 60);  // one colour a cell
+}
+
+TEST_CASE("write_png writes a PNG that reads back pixel for pixel", "[render]") {
+  const Image image = render(square(true), front(64));
+  const std::string path = "test_render_" + std::to_string(getpid()) + ".png";
+  write_png(path, image);
+  int w = 0, h = 0, channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 3);
+  REQUIRE(data != nullptr);
+  REQUIRE(w == 64);
+  REQUIRE(h == 64);
+  const bool same = std::equal(image.rgb.begin(), image.rgb.end(), data);
+  stbi_image_free(data);
+  std::remove(path.c_str());
+  REQUIRE(same);
+  REQUIRE_THROWS_AS(write_png("/nonexistent-folder/x.png", image), InputError);
+}
+
+TEST_CASE("render refuses options out of range and scenes that do not hold together", "[render]") {
+  const RenderScene scene = square(false);
+  RenderOptions o;
+  o.width = 8;
+  REQUIRE_THROWS_AS(render(scene, o), InputError);
+  o = RenderOptions{};
+  o.elevation = 91;
+  REQUIRE_THROWS_AS(render(scene, o), InputError);
+  o = RenderOptions{};
+  o.supersample = 0;
+  REQUIRE_THROWS_AS(render(scene, o), InputError);
+  RenderScene bad = scene;
+  bad.triangles.push_back({0, 1, 7});
+  REQUIRE_THROWS_WITH(render(bad), Catch::Contains("triangle 2 has vertex 7"));
+  bad = scene;
+  bad.color = {Rgb{1, 2, 3}};
+  REQUIRE_THROWS_WITH(render(bad), Catch::Contains("1 colours for 2 triangles"));
+  bad = scene;
+  bad.positions[0].x = std::numeric_limits<double>::quiet_NaN();
+  REQUIRE_THROWS_AS(render(bad), InputError);
+  REQUIRE_THROWS_AS(render(RenderScene{}), InputError);
+}
