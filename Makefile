@@ -4,7 +4,7 @@ JOBS ?= 2
 PREFIX ?= /usr/local
 CMAKE_FLAGS ?=
 
-.PHONY: all setup configure build test demo bench install clean
+.PHONY: all setup configure build test demo bench images install clean
 
 all: build
 
@@ -34,6 +34,10 @@ demo: build
 bench: build
 	mkdir -p $(BUILD)/bench
 	$(BUILD)/bench_remesh --lrvd-only --threads 1 --out $(BUILD)/bench/remesh.md --json $(BUILD)/bench/remesh.json
+
+# The pictures of docs/render.md (lrvd render on the elk and the comb stress mesh).
+images: build
+	bash scripts/docs_images.sh $(BUILD)
 
 # The lrvd command, the libraries, their headers and the CMake package (docs/library.md).
 install: build

@@ -35,8 +35,8 @@ void parse_size(const std::string& text, RenderOptions& o) {
   std::string rest;
   if (!(in >> o.width >> x >> o.height) || (x != 'x' && x != 'X') || (in >> rest))
     throw InputError(fmt::format("--size takes WIDTHxHEIGHT in pixels, such as 1200x900, not '{}'", text));
-  if (o.width < 16 || o.width > 8192 || o.height < 16 || o.height > 8192)
-    throw InputError(fmt::format("--size: a picture is 16 to 8192 pixels wide and high, not {}", text));
+  if (o.width < 16 || o.width > 4096 || o.height < 16 || o.height > 4096)
+    throw InputError(fmt::format("--size: a picture is 16 to 4096 pixels wide and high, not {}", text));
 }
 
 void parse_view(const std::string& text, RenderOptions& o) {
@@ -113,7 +113,7 @@ Action add_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"lrvd", "rvd", "lrpd", "rpd"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", opt->output, "The picture (.png)")->required()->check(path_validator());
-  cmd->add_option("--size", opt->size, "WIDTHxHEIGHT in pixels, 16 to 8192 each")->capture_default_str();
+  cmd->add_option("--size", opt->size, "WIDTHxHEIGHT in pixels, 16 to 4096 each")->capture_default_str();
   cmd->add_option("--view", opt->view,
                   "AZIMUTH,ELEVATION in degrees: about the up axis from the next axis (+z for up y), then "
                   "towards the up axis")

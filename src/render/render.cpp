@@ -44,8 +44,8 @@ Vec3 unit(const Vec3& v) {
 
 void check_options(const RenderOptions& o) {
   auto fail = [](const std::string& what) { throw InputError("render: " + what); };
-  if (o.width < 16 || o.width > 8192 || o.height < 16 || o.height > 8192)
-    fail(fmt::format("a picture is 16 to 8192 pixels wide and high, not {} x {}", o.width, o.height));
+  if (o.width < 16 || o.width > 4096 || o.height < 16 || o.height > 4096)
+    fail(fmt::format("a picture is 16 to 4096 pixels wide and high, not {} x {}", o.width, o.height));
   if (!std::isfinite(o.azimuth)) fail("the azimuth is not a finite number");
   if (!(o.elevation >= -90 && o.elevation <= 90))
     fail(fmt::format("the elevation is -90 to 90 degrees, not {}", o.elevation));

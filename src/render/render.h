@@ -35,8 +35,8 @@ struct RenderScene {
 //! up y, +x for up z, +y for up x) and the elevation (towards the up axis); the scene fills the
 //! picture but for a margin.
 struct RenderOptions {
-  int width = 1200;              //!< pixels, 16 to 8192
-  int height = 900;              //!< pixels, 16 to 8192
+  int width = 1200;              //!< pixels, 16 to 4096
+  int height = 900;              //!< pixels, 16 to 4096
   double azimuth = 30;           //!< degrees
   double elevation = 20;         //!< degrees, -90 to 90
   int up_axis = 1;               //!< 0 x, 1 y, 2 z
@@ -44,7 +44,8 @@ struct RenderOptions {
   bool edges = false;            //!< also outline every face (RenderScene::face: a mesh's own edges)
   double point_radius = 0;       //!< dot radius in pixels; 0: from the picture's size
   int supersample = 3;           //!< samples per pixel side (anti-aliasing), 1 to 4; lowered
-                                 //!< for large pictures to keep the buffers under ~200 MB
+                                 //!< for large pictures to keep the buffers (8 bytes a sample)
+                                 //!< at 24 M samples at most
 };
 
 //! An 8-bit RGB picture, rows from the top.
