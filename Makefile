@@ -21,13 +21,15 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
 
 # Remesh CGAL's elk (genus 1, thin legs and antlers) to exactly 516 vertices with a CVT on the
-# LRVD, check the result, and write the LRVD cells of 300 random samples beside it.
+# LRVD, check the result, and write the LRVD cells of 300 random samples beside it; a picture of each.
 demo: build
 	mkdir -p $(BUILD)/demo
 	$(BUILD)/lrvd remesh $(BUILD)/cgal-data/elk.off -n 516 --seed 1 \
 	  -o $(BUILD)/demo/elk_516.off --report $(BUILD)/demo/elk_516_report.json
 	$(BUILD)/lrvd compute $(BUILD)/cgal-data/elk.off -n 300 --seed 1 \
 	  -o $(BUILD)/demo/elk_lrvd_cells.ply --report $(BUILD)/demo/elk_lrvd_report.json
+	$(BUILD)/lrvd render $(BUILD)/demo/elk_516.off --edges -o $(BUILD)/demo/elk_516.png
+	$(BUILD)/lrvd render $(BUILD)/cgal-data/elk.off -n 300 --seed 1 -o $(BUILD)/demo/elk_lrvd_cells.png
 
 # The 20-row CVT remeshing table (four CGAL models, N = 300 ... 4000), LRVD only, one thread:
 # about a minute. docs/results.md and bench/README.md give the full tables and how to read them.
