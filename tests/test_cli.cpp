@@ -720,13 +720,24 @@ TEST_CASE("lrvd render draws a mesh or a diagram's cells as a PNG, and refuses b
   REQUIRE(r.status == 0);
   REQUIRE(r.out.find("120 rvd cells") != std::string::npos);
   REQUIRE(png_size(cells_png) == std::make_pair(200, 100));
+  // A mesh lrvd would not take for a diagram (two tetrahedra sharing an edge: not manifold) is drawn as it is.
+  const std::string pinched = kOut + "render_pinched.off";
+  std::ofstream(pinched) << "OFF\n6 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n1 0 -1\n"
+                            "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 1\n3 0 1 5\n3 0 5 4\n3 1 4 5\n";
+  REQUIRE(run("compute " + pinched + " -n 5").status == 2);
+  r = run("render " + pinched + " --color quality -o " + mesh_png + " --size 64x64");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("8 triangles coloured by quality (worst Q") != std::string::npos);
+  std::remove(pinched.c_str());
   std::remove(mesh_png.c_str());
   std::remove(cells_png.c_str());
   for (const std::string& args :
        {"render " + kData + "/elk.off -o " + kOut + "r.png --size 100", "render " + kData + "/elk.off -o " + kOut + "r.png --size 9000x100",
         "render " + kData + "/elk.off -o " + kOut + "r.png --view 30", "render " + kData + "/elk.off -o " + kOut + "r.png --view 0,95",
         "render " + kData + "/elk.off -o " + kOut + "r.png --up w", "render " + kData + "/elk.off -o " + kOut + "r.jpg",
-        "render " + kData + "/elk.off -n 10 --diagram lrpd -o " + kOut + "r.png"}) {
+        "render " + kData + "/elk.off -n 10 --diagram lrpd -o " + kOut + "r.png",
+        "render " + kData + "/elk.off -n 10 --color quality -o " + kOut + "r.png"}) {
     const Run bad = run(args);
     INFO(args << "\n" << bad.err);
     REQUIRE(bad.status == 2);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <set>
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "metrics/quality.h"
 #include "mesh/stress.h"
 #include "render/render.h"
 #include "test_meshes.h"
@@ -218,4 +220,31 @@ TEST_CASE("render refuses options out of range and scenes that do not hold toget
   bad.positions[0].x = std::numeric_limits<double>::quiet_NaN();
   REQUIRE_THROWS_AS(render(bad), InputError);
   REQUIRE_THROWS_AS(render(RenderScene{}), InputError);
+}
+
+TEST_CASE("render colours triangles by quality: red where they are bad, grey where they are good", "[render]") {
+  REQUIRE(quality_color(1.0) == quality_color(0.95));
+  REQUIRE(quality_color(0.3) == Rgb{215, 48, 39});
+  REQUIRE(quality_color(-1) == quality_color(0));
+  REQUIRE(quality_color(std::numeric_limits<double>::quiet_NaN()) == quality_color(0));
+  // Redder (less green) as Q falls to 0.7.
+  for (double q = 0.05; q <= 0.7; q += 0.05) REQUIRE(quality_color(q)[1] >= quality_color(q - 0.05)[1]);
+  RenderScene scene;
+  scene.positions = {{0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}, {0, 0, 1}, {10, 0, 1}, {5, 0.1, 1}};
+  scene.triangles = {{0, 1, 2}, {3, 4, 5}};
+  const double worst = color_by_quality(scene);
+  REQUIRE(worst < 0.1);
+  REQUIRE(worst == Approx(triangle_quality(scene.positions[3], scene.positions[4], scene.positions[5])));
+  REQUIRE(scene.color[0] == quality_color(1.0));
+  REQUIRE(scene.color[1] == quality_color(worst));
+}
+
+TEST_CASE("render refuses a scene too large or too small to draw in doubles", "[render]") {
+  RenderScene scene = square(false);
+  for (Vec3& p : scene.positions) p = p * 1e308;
+  scene.positions[0] = {-1e308, -1e308, 0};
+  REQUIRE_THROWS_WITH(render(scene), Catch::Contains("too large"));
+  scene = square(false);
+  for (Vec3& p : scene.positions) p = p * 1e-320;
+  REQUIRE_THROWS_WITH(render(scene), Catch::Contains("too small"));
 }

@@ -24,6 +24,7 @@ struct RenderCommandOptions {
   std::string size = "1200x900";
   std::string view = "30,20";
   std::string up = "y";
+  std::string color = "plain";
   bool edges = false;
   bool no_samples = false;
 };
@@ -67,15 +68,25 @@ int run_render(const RenderCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   check_outputs({{opt.output, "-o", {".png"}}}, read_files(opt.input));
   const bool cells = opt.input.count > 0 || !opt.input.points_path.empty();
+  if (cells && opt.color != "plain")
+    throw InputError("--color quality colours a mesh's triangles: it takes no samples (-n, --points), whose cells have colours of their own");
+  const bool repair = opt.input.read.repair || opt.input.read.weld > 0 || opt.input.read.fill_holes > 0;
 
   RenderScene scene;
   std::string what;
   if (!cells) {
-    const LoadedMesh loaded = read_mesh(opt.input.mesh_path, opt.input.read);
-    require_workable_model(loaded.mesh, "lrvd");
-    print_repair(loaded.repair, opt.input.read);
-    scene = mesh_scene(loaded.mesh);
-    what = counted(loaded.mesh.triangle_count(), "triangle", "triangles");
+    if (repair) {
+      const LoadedMesh loaded = read_mesh(opt.input.mesh_path, opt.input.read);
+      require_workable_model(loaded.mesh, "lrvd");
+      print_repair(loaded.repair, opt.input.read);
+      scene = mesh_scene(loaded.mesh);
+    } else {
+      // As read, without the checks a diagram needs: a remesh that failed them is what one wants to see.
+      const PolygonSoup soup = read_polygon_soup(opt.input.mesh_path);
+      scene = mesh_scene(soup.positions, soup.triangles);
+    }
+    what = counted(static_cast<long long>(scene.triangles.size()), "triangle", "triangles");
+    if (opt.color == "quality") what += fmt::format(" coloured by quality (worst Q {:.3f})", color_by_quality(scene));
   } else {
     Input input = load_input(opt.input);
     if (is_power(kind) && !input.samples.weighted())
@@ -119,6 +130,11 @@ Action add_render_command(CLI::App& app) {
                   "towards the up axis")
       ->capture_default_str();
   cmd->add_option("--up", opt->up, "The axis drawn upwards: x, y, z, -x, -y or -z")->capture_default_str();
+  cmd->add_option("--color", opt->color,
+                  "Colour of a mesh drawn without samples: plain, or quality (each triangle's Q: red below 0.3, "
+                  "orange 0.5, yellow 0.7, grey from 0.9)")
+      ->check(CLI::IsMember({"plain", "quality"}))
+      ->capture_default_str();
   cmd->add_flag("--edges", opt->edges, "Draw the mesh's edges too");
   cmd->add_flag("--no-samples", opt->no_samples, "Leave out the dots of the samples");
   return [opt]() { return run_render(*opt); };

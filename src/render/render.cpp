@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include <fmt/format.h>
@@ -14,6 +15,7 @@
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
+#include "metrics/quality.h"
 #include "voronoi/cells_output.h"
 #include "voronoi/diagram.h"
 #include "voronoi/samples.h"
@@ -124,6 +126,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       }
   const Vec3 middle = 0.5 * (lo + hi);
   const double diagonal = distance(lo, hi);
+  if (!std::isfinite(diagonal) || !is_finite(middle))
+    throw InputError("render: the scene is too large to draw in doubles (its bounding box's diagonal overflows)");
 
   struct Projected {
     double x, y, depth;
@@ -140,10 +144,12 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       ymin = std::min(ymin, q.y), ymax = std::max(ymax, q.y);
     }
   const double usable = 1 - 2 * kMargin;
-  double scale = std::numeric_limits<double>::max();
+  double scale = std::numeric_limits<double>::infinity();
   if (xmax > xmin) scale = std::min(scale, usable * W / (xmax - xmin));
   if (ymax > ymin) scale = std::min(scale, usable * H / (ymax - ymin));
-  if (scale == std::numeric_limits<double>::max()) scale = 1;  // every vertex at one point
+  if (!(xmax > xmin) && !(ymax > ymin)) scale = 1;  // every vertex at one point
+  if (!std::isfinite(scale) || scale > 1e300)
+    throw InputError("render: the scene is too small to draw in doubles (its extent underflows)");
   const double cx = 0.5 * (xmin + xmax), cy = 0.5 * (ymin + ymax);
   auto project = [&](const Vec3& p) {
     const Projected q = project_raw(p);
@@ -288,6 +294,43 @@ RenderScene mesh_scene(const SurfaceMesh& mesh) {
   scene.triangles.reserve(mesh.triangle_count());
   for (const auto& t : mesh.triangles()) scene.triangles.push_back({t[0], t[1], t[2]});
   return scene;
+}
+
+RenderScene mesh_scene(const std::vector<Vec3>& positions, const std::vector<std::array<int, 3>>& triangles) {
+  RenderScene scene;
+  scene.positions = positions;
+  scene.triangles = triangles;
+  return scene;
+}
+
+Rgb quality_color(double q) {
+  struct Stop {
+    double q;
+    double rgb[3];
+  };
+  static const Stop stops[] = {{0.0, {150, 0, 30}},   {0.3, {215, 48, 39}},   {0.5, {250, 150, 80}},
+                               {0.7, {254, 230, 150}}, {0.9, {220, 225, 232}}, {1.0, {220, 225, 232}}};
+  q = std::isfinite(q) ? std::clamp(q, 0.0, 1.0) : 0.0;
+  int k = 0;
+  while (k + 2 < static_cast<int>(std::size(stops)) && q > stops[k + 1].q) ++k;
+  const double f = (q - stops[k].q) / (stops[k + 1].q - stops[k].q);
+  Rgb out;
+  for (int c = 0; c < 3; ++c)
+    out[c] = static_cast<unsigned char>(std::lround(stops[k].rgb[c] + f * (stops[k + 1].rgb[c] - stops[k].rgb[c])));
+  return out;
+}
+
+double color_by_quality(RenderScene& scene) {
+  check_scene(scene);
+  double worst = 1;
+  scene.color.resize(scene.triangles.size());
+  for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
+    const auto& tri = scene.triangles[t];
+    const double q = triangle_quality(scene.positions[tri[0]], scene.positions[tri[1]], scene.positions[tri[2]]);
+    scene.color[t] = quality_color(q);
+    worst = std::min(worst, std::isfinite(q) ? q : 0.0);
+  }
+  return worst;
 }
 
 DiagramScene diagram_scene(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples) {

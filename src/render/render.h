@@ -65,6 +65,14 @@ Image render(const RenderScene& scene, const RenderOptions& options = {});
 
 //! A mesh in light grey; with `options.edges` its edges show.
 RenderScene mesh_scene(const SurfaceMesh& mesh);
+//! The same for any triangles (a soup, a non-manifold remesh).
+RenderScene mesh_scene(const std::vector<Vec3>& positions, const std::vector<std::array<int, 3>>& triangles);
+
+//! The colour of a triangle of quality Q (triangle_quality: 1 equilateral, 0 degenerate): dark
+//! red at 0, red at 0.3, orange at 0.5, pale yellow at 0.7, light grey from 0.9 on.
+Rgb quality_color(double q);
+//! Colours every triangle of the scene by its quality; returns the worst Q (1 for no triangle).
+double color_by_quality(RenderScene& scene);
 
 //! The cells of a diagram, each in a colour its neighbours do not have, with dark lines between
 //! cells and the samples as dots. Pieces of a cell that are not the one holding its sample (the
