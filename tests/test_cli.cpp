@@ -737,11 +737,35 @@ TEST_CASE("lrvd render draws a mesh or a diagram's cells as a PNG, and refuses b
         "render " + kData + "/elk.off -o " + kOut + "r.png --view 30", "render " + kData + "/elk.off -o " + kOut + "r.png --view 0,95",
         "render " + kData + "/elk.off -o " + kOut + "r.png --up w", "render " + kData + "/elk.off -o " + kOut + "r.jpg",
         "render " + kData + "/elk.off -n 10 --diagram lrpd -o " + kOut + "r.png",
-        "render " + kData + "/elk.off -n 10 --color quality -o " + kOut + "r.png"}) {
+        "render " + kData + "/elk.off -n 10 --color quality -o " + kOut + "r.png",
+        // Options of a diagram without samples are refused, not dropped.
+        "render " + kData + "/elk.off -n 0 -o " + kOut + "r.png", "render " + kData + "/elk.off --diagram rvd -o " + kOut + "r.png",
+        "render " + kData + "/elk.off --weights " + kOut + "none.txt -o " + kOut + "r.png",
+        // A name the folder takes, but not with the part file's suffix: refused before the work.
+        "render " + kData + "/elk.off -o " + kOut + std::string(240, 'a') + ".png"}) {
     const Run bad = run(args);
     INFO(args << "\n" << bad.err);
     REQUIRE(bad.status == 2);
     REQUIRE(lines(bad.err) == 1);
     REQUIRE(!std::filesystem::exists(kOut + "r.png"));
   }
+}
+
+TEST_CASE("An output is never written through a part file planted as a link to another file", "[cli]") {
+  const std::string victim = kOut + "victim.off", out = kOut + "planted.png";
+  lrvd::write_mesh(victim, lrvd::test::octahedron());
+  const std::string before = [&] { std::ifstream in(victim); std::stringstream t; t << in.rdbuf(); return t.str(); }();
+  std::filesystem::remove(out + ".lrvd-part");
+  std::filesystem::create_symlink(victim, out + ".lrvd-part");
+  const Run r = run("render " + kData + "/elk.off -o " + out + " --size 64x64");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::ifstream in(victim);
+  std::stringstream after;
+  after << in.rdbuf();
+  REQUIRE(after.str() == before);
+  REQUIRE(std::filesystem::is_regular_file(std::filesystem::symlink_status(out)));
+  REQUIRE(!std::filesystem::exists(std::filesystem::symlink_status(out + ".lrvd-part")));
+  std::remove(victim.c_str());
+  std::remove(out.c_str());
 }

@@ -248,3 +248,36 @@ TEST_CASE("render refuses a scene too large or too small to draw in doubles", "[
   for (Vec3& p : scene.positions) p = p * 1e-320;
   REQUIRE_THROWS_WITH(render(scene), Catch::Contains("too small"));
 }
+
+TEST_CASE("render draws a flat sheet seen edge-on as a line, and takes any azimuth", "[render]") {
+  RenderOptions o = front(100);
+  o.up_axis = 2;  // up z, azimuth 0 looks from +x: along the square's plane
+  const auto box = drawn_box(render(square(false), o));
+  REQUIRE(box[2] - box[0] > 80);  // the whole width
+  REQUIRE(box[3] - box[1] <= 3);  // one line
+  o = front(100);
+  o.azimuth = 1e308;  // reduced modulo 360 before it turns into radians
+  REQUIRE(drawn_box(render(square(false), o))[2] > 0);
+}
+
+TEST_CASE("render leaves out dots and region lines that would cover the surface", "[render]") {
+  // 10,000 regions and points on a 100 x 100 picture: a pixel each.
+  RenderScene scene;
+  const int n = 100;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) scene.positions.push_back({double(i) / n, double(j) / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i;
+      scene.triangles.push_back({a, a + 1, a + n + 2});
+      scene.triangles.push_back({a, a + n + 2, a + n + 1});
+      scene.region.push_back(j * n + i);
+      scene.region.push_back(j * n + i);
+      scene.points.push_back({(i + 0.5) / n, (j + 0.5) / n, 0});
+    }
+  const Image image = render(scene, front(100));
+  int dark = 0;
+  for (int y = 10; y < 90; ++y)
+    for (int x = 10; x < 90; ++x) dark += brightness(image, x, y) < 300;
+  REQUIRE(dark == 0);
+}

@@ -59,7 +59,18 @@ void parse_up(const std::string& text, RenderOptions& o) {
   o.up_negative = negative;
 }
 
-int run_render(const RenderCommandOptions& opt) {
+// Options that only mean something for a diagram, refused without samples rather than dropped.
+void refuse_diagram_options_without_samples(const CLI::App& cmd) {
+  if (cmd.count("--samples") > 0)
+    throw InputError("give a sample count -n >= 1, or leave -n out to draw the mesh alone");
+  for (const char* name : {"--diagram", "--weights", "--seed", "--refine"})
+    if (cmd.count(name) > 0)
+      throw InputError(fmt::format("{} is for the cells of samples: give -n N or --points F, or leave it out to draw "
+                                   "the mesh alone",
+                                   name));
+}
+
+int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
   RenderOptions view;
   parse_size(opt.size, view);
   parse_view(opt.view, view);
@@ -68,6 +79,7 @@ int run_render(const RenderCommandOptions& opt) {
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   check_outputs({{opt.output, "-o", {".png"}}}, read_files(opt.input));
   const bool cells = opt.input.count > 0 || !opt.input.points_path.empty();
+  if (!cells) refuse_diagram_options_without_samples(cmd);
   if (cells && opt.color != "plain")
     throw InputError("--color quality colours a mesh's triangles: it takes no samples (-n, --points), whose cells have colours of their own");
   const bool repair = opt.input.read.repair || opt.input.read.weld > 0 || opt.input.read.fill_holes > 0;
@@ -137,7 +149,7 @@ Action add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--edges", opt->edges, "Draw the mesh's edges too");
   cmd->add_flag("--no-samples", opt->no_samples, "Leave out the dots of the samples");
-  return [opt]() { return run_render(*opt); };
+  return [opt, cmd]() { return run_render(*opt, *cmd); };
 }
 
 }  // namespace lrvd::cli

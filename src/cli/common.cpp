@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -412,6 +413,14 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!std::ofstream(out.path, std::ios::app))
       throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
     if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
+    // The writer's part file beside it (mesh_writers.cpp): its longer name may pass the folder's limit.
+    const std::string part = out.path + ".lrvd-part";
+    if (!fs::exists(fs::symlink_status(part, error))) {
+      if (!std::ofstream(part))
+        throw InputError(fmt::format("{} {}: its part file {} (written first, then renamed) cannot be made there ({})",
+                                     out.option, out.path, fs::path(part).filename().string(), std::strerror(errno)));
+      fs::remove(part, error);
+    }
   }
 }
 

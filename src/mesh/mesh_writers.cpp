@@ -32,7 +32,10 @@ class OutputFile {
     const fs::file_status status = fs::symlink_status(path, error);
     in_place_ = fs::exists(status) && !fs::is_regular_file(status);
     part_ = in_place_ ? path : path + ".lrvd-part";
-    file_ = std::fopen(part_.c_str(), "wb");
+    // A part file left by an earlier run goes first; made afresh and exclusively ("x"), the part
+    // file is never a link planted there that would carry the data to another file (an input).
+    if (!in_place_) std::remove(part_.c_str());
+    file_ = std::fopen(part_.c_str(), in_place_ ? "wb" : "wbx");
     if (!file_) fail(path, fmt::format("cannot be opened for writing ({})", std::strerror(errno)));
   }
   ~OutputFile() {

@@ -88,7 +88,8 @@ View make_view(const RenderOptions& o) {
   up_axis[o.up_axis] = o.up_negative ? -1 : 1;
   front[(o.up_axis + 1) % 3] = 1;
   const Vec3 side = cross(up_axis, front);
-  const double az = o.azimuth * kPi / 180, el = o.elevation * kPi / 180;
+  // Reduced first: a huge azimuth (1e308) would overflow in radians.
+  const double az = std::fmod(o.azimuth, 360.0) * kPi / 180, el = o.elevation * kPi / 180;
   const Vec3 horizontal = std::cos(az) * front + std::sin(az) * side;
   View v;
   v.toward = unit(std::cos(el) * horizontal + std::sin(el) * up_axis);
@@ -160,12 +161,38 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   const std::size_t count = static_cast<std::size_t>(W) * H;
   std::vector<float> depth(count, -std::numeric_limits<float>::infinity());
   std::vector<int> owner(count, -1);
+  auto put = [&](int x, int y, float z, int t) {
+    if (x < 0 || y < 0 || x >= W || y >= H) return;
+    const std::size_t k = static_cast<std::size_t>(y) * W + x;
+    if (z > depth[k]) {
+      depth[k] = z;
+      owner[k] = t;
+    }
+  };
+  // A segment one sample wide, its depth interpolated along it.
+  auto line = [&](const Projected& p, const Projected& q, int t) {
+    const int steps = static_cast<int>(std::ceil(std::max(std::abs(q.x - p.x), std::abs(q.y - p.y)))) + 1;
+    for (int k = 0; k <= steps; ++k) {
+      const double f = static_cast<double>(k) / steps;
+      put(static_cast<int>(std::floor(p.x + f * (q.x - p.x))), static_cast<int>(std::floor(p.y + f * (q.y - p.y))),
+          static_cast<float>(p.depth + f * (q.depth - p.depth)), t);
+    }
+  };
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
     const Projected a = project(scene.positions[tri[0]]), b = project(scene.positions[tri[1]]),
                     c = project(scene.positions[tri[2]]);
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-    if (area == 0 || !std::isfinite(area)) continue;  // seen edge-on: its neighbours draw the line
+    // A triangle seen edge-on, or so thin that it may miss every sample's centre, is drawn as its
+    // edges too: a flat sheet seen from its side is a line, not nothing.
+    const double longest = std::max({std::hypot(b.x - a.x, b.y - a.y), std::hypot(c.x - b.x, c.y - b.y),
+                                      std::hypot(a.x - c.x, a.y - c.y)});
+    if (!(std::abs(area) >= 1.5 * longest)) {
+      line(a, b, static_cast<int>(t));
+      line(b, c, static_cast<int>(t));
+      line(c, a, static_cast<int>(t));
+    }
+    if (area == 0 || !std::isfinite(area)) continue;
     const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a.x, b.x, c.x}))));
     const int x1 = std::min(W - 1, static_cast<int>(std::ceil(std::max({a.x, b.x, c.x}))));
     const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a.y, b.y, c.y}))));
@@ -179,12 +206,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
         const double wb = ((c.x - px) * (a.y - py) - (c.y - py) * (a.x - px)) * inv;
         const double wc = 1 - wa - wb;
         if (wa < 0 || wb < 0 || wc < 0) continue;
-        const float z = static_cast<float>(wa * a.depth + wb * b.depth + wc * c.depth);
-        const std::size_t k = static_cast<std::size_t>(y) * W + x;
-        if (z > depth[k]) {
-          depth[k] = z;
-          owner[k] = static_cast<int>(t);
-        }
+        put(x, y, static_cast<float>(wa * a.depth + wb * b.depth + wc * c.depth), static_cast<int>(t));
       }
     }
   }
@@ -205,6 +227,30 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       const double value = back ? 0.5 * base[c] + 0.5 * 150 : base[c];
       shade[t][c] = static_cast<float>(value * intensity);
     }
+  }
+
+  // Mean spacing on the picture, in pixels, of things `count` of which tile the surface.
+  double area = 0;
+  for (const auto& t : scene.triangles)
+    area += 0.5 * norm(cross(scene.positions[t[1]] - scene.positions[t[0]], scene.positions[t[2]] - scene.positions[t[0]]));
+  auto spacing_px = [&](std::size_t things) { return std::sqrt(area / std::max<std::size_t>(things, 1)) * scale / ss; };
+  // Lines between regions (or faces) a few pixels apart would cover them: below 4 (3) pixels
+  // apart on average they are left out, and the colours alone tell the regions apart.
+  bool region_lines = !scene.region.empty();
+  if (region_lines) {
+    std::vector<int> regions = scene.region;
+    std::sort(regions.begin(), regions.end());
+    region_lines = spacing_px(static_cast<std::size_t>(std::unique(regions.begin(), regions.end()) - regions.begin())) >= 4;
+  }
+  bool face_lines = options.edges;
+  if (face_lines) {
+    std::size_t faces = scene.triangles.size();
+    if (!scene.face.empty()) {
+      std::vector<int> f = scene.face;
+      std::sort(f.begin(), f.end());
+      faces = static_cast<std::size_t>(std::unique(f.begin(), f.end()) - f.begin());
+    }
+    face_lines = spacing_px(faces) >= 3;
   }
 
   // Outlines, each checked against the samples up to `reach` away along the rows and columns.
@@ -228,8 +274,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
         const bool nearer = depth[k] >= depth[m];
         if (nearer && depth[k] - depth[m] > occlusion_gap && !share_vertex(scene.triangles[t], scene.triangles[u]))
           return 0.1f;  // a part in front of another
-        if (!scene.region.empty() && scene.region[t] != scene.region[u]) factor = std::min(factor, 0.2f);
-        else if (options.edges && (scene.face.empty() || scene.face[t] != scene.face[u])) factor = std::min(factor, 0.55f);
+        if (region_lines && scene.region[t] != scene.region[u]) factor = std::min(factor, 0.2f);
+        else if (face_lines && (scene.face.empty() || scene.face[t] != scene.face[u])) factor = std::min(factor, 0.55f);
       }
     }
     return factor;
@@ -262,11 +308,16 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   });
 
   // The points as dots, where the surface does not hide them (a point on the surface is as deep
-  // as the surface there, up to the triangles' flatness under a few samples).
-  const double radius = options.point_radius > 0 ? options.point_radius
-                                                  : std::clamp(std::min(options.width, options.height) / 260.0, 1.5, 6.0);
-  const double hidden_gap = 0.004 * diagonal + 3 / scale;
-  for (const Vec3& p : scene.points) {
+  // as the surface there, up to the depth's change over a couple of samples). Unless given, the
+  // radius is a sixth of the points' mean spacing on the picture, at most 1/260 of its size and
+  // at least 0.7 pixels: points any closer are not drawn, they would cover the surface.
+  double radius = options.point_radius;
+  if (radius == 0 && !scene.points.empty()) {
+    radius = std::min(std::clamp(std::min(options.width, options.height) / 260.0, 1.5, 6.0), spacing_px(scene.points.size()) / 6);
+    if (radius < 0.7) radius = 0;
+  }
+  const double hidden_gap = 0.001 * diagonal + 2 / scale;
+  for (const Vec3& p : radius > 0 ? scene.points : std::vector<Vec3>{}) {
     const Projected q = project(p);
     const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
     if (x < 0 || y < 0 || x >= W || y >= H) continue;

@@ -42,7 +42,8 @@ struct RenderOptions {
   int up_axis = 1;               //!< 0 x, 1 y, 2 z
   bool up_negative = false;      //!< up is the axis' negative direction
   bool edges = false;            //!< also outline every face (RenderScene::face: a mesh's own edges)
-  double point_radius = 0;       //!< dot radius in pixels; 0: from the picture's size
+  double point_radius = 0;       //!< dot radius in pixels; 0: from the picture's size and the
+                                 //!< points' spacing (none when they are closer than ~4 pixels)
   int supersample = 3;           //!< samples per pixel side (anti-aliasing), 1 to 4; lowered
                                  //!< for large pictures to keep the buffers (8 bytes a sample)
                                  //!< at 24 M samples at most
