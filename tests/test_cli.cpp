@@ -729,6 +729,9 @@ TEST_CASE("lrvd render draws a mesh or a diagram's cells as a PNG, and refuses b
   INFO(r.err);
   REQUIRE(r.status == 0);
   REQUIRE(r.out.find("8 triangles coloured by quality (worst Q") != std::string::npos);
+  r = run("render " + pinched + " --color defects -o " + mesh_png + " --size 64x64");
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("4 on non-manifold edges") != std::string::npos);
   std::remove(pinched.c_str());
   std::remove(mesh_png.c_str());
   std::remove(cells_png.c_str());

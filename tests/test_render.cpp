@@ -281,3 +281,43 @@ TEST_CASE("render leaves out dots and region lines that would cover the surface"
     for (int x = 10; x < 90; ++x) dark += brightness(image, x, y) < 300;
   REQUIRE(dark == 0);
 }
+
+TEST_CASE("render colours the triangles where a remesh check would fail", "[render]") {
+  // An open grid: the triangles on its border, found here edge by edge against every triangle.
+  RenderScene grid_scene = mesh_scene(test::grid(4, 4));
+  MeshDefectCounts d = color_by_defects(grid_scene);
+  int border = 0;
+  for (const auto& t : grid_scene.triangles) {
+    bool on_border = false;
+    for (int e = 0; e < 3; ++e) {
+      int uses = 0;
+      for (const auto& u : grid_scene.triangles)
+        for (int f = 0; f < 3; ++f)
+          uses += (t[e] == u[f] && t[(e + 1) % 3] == u[(f + 1) % 3]) || (t[e] == u[(f + 1) % 3] && t[(e + 1) % 3] == u[f]);
+      on_border |= uses == 1;
+    }
+    border += on_border;
+  }
+  REQUIRE(border == 14);
+  REQUIRE(d.boundary == border);
+  REQUIRE(d.non_manifold == 0);
+  REQUIRE(d.crossing == 0);
+  REQUIRE(d.degenerate == 0);
+
+  // A closed octahedron with a third triangle on one of its edges, a collinear one, and a square
+  // that cuts through it.
+  RenderScene scene = mesh_scene(test::octahedron());
+  scene.positions.push_back({2, 2, 2});           // 6
+  scene.triangles.push_back({0, 2, 6});           // on edge (0, 2), which two faces have already
+  scene.positions.push_back({0.5, 0, 0});         // 7, between vertices 0 and 1
+  scene.triangles.push_back({0, 1, 7});           // collinear
+  for (const Vec3& p : {Vec3{-2, -2, 0.5}, Vec3{2, -2, 0.5}, Vec3{2, 2, 0.5}}) scene.positions.push_back(p);
+  scene.triangles.push_back({8, 9, 10});          // cuts the octahedron's upper half
+  d = color_by_defects(scene);
+  REQUIRE(d.degenerate == 1);
+  REQUIRE(d.non_manifold >= 3);
+  REQUIRE(d.crossing >= 2);
+  REQUIRE(scene.color[9] == Rgb{120, 0, 20});    // the collinear one
+  REQUIRE(scene.color[8] == Rgb{225, 30, 30});   // on the edge of three
+  REQUIRE(scene.color[10] == Rgb{250, 140, 0});  // crossing (its edges are used once: crossing wins)
+}

@@ -81,7 +81,9 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
   const bool cells = opt.input.count > 0 || !opt.input.points_path.empty();
   if (!cells) refuse_diagram_options_without_samples(cmd);
   if (cells && opt.color != "plain")
-    throw InputError("--color quality colours a mesh's triangles: it takes no samples (-n, --points), whose cells have colours of their own");
+    throw InputError(fmt::format("--color {} colours a mesh's triangles: it takes no samples (-n, --points), whose cells "
+                                 "have colours of their own",
+                                 opt.color));
   const bool repair = opt.input.read.repair || opt.input.read.weld > 0 || opt.input.read.fill_holes > 0;
 
   RenderScene scene;
@@ -99,6 +101,13 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
     }
     what = counted(static_cast<long long>(scene.triangles.size()), "triangle", "triangles");
     if (opt.color == "quality") what += fmt::format(" coloured by quality (worst Q {:.3f})", color_by_quality(scene));
+    if (opt.color == "defects") {
+      progress("looking for the triangles that cross others");
+      const MeshDefectCounts d = color_by_defects(scene);
+      what += fmt::format(", {} degenerate (dark red), {} on non-manifold edges (red), {} crossing others (orange), {} on "
+                          "the boundary (blue)",
+                          d.degenerate, d.non_manifold, d.crossing, d.boundary);
+    }
   } else {
     Input input = load_input(opt.input);
     if (is_power(kind) && !input.samples.weighted())
@@ -143,9 +152,10 @@ Action add_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--up", opt->up, "The axis drawn upwards: x, y, z, -x, -y or -z")->capture_default_str();
   cmd->add_option("--color", opt->color,
-                  "Colour of a mesh drawn without samples: plain, or quality (each triangle's Q: red below 0.3, "
-                  "orange 0.5, yellow 0.7, grey from 0.9)")
-      ->check(CLI::IsMember({"plain", "quality"}))
+                  "Colour of a mesh drawn without samples: plain; quality (each triangle's Q: red below 0.3, "
+                  "orange 0.5, yellow 0.7, grey from 0.9); or defects (degenerate triangles dark red, on non-manifold "
+                  "edges red, crossing others orange, on the boundary blue)")
+      ->check(CLI::IsMember({"plain", "quality", "defects"}))
       ->capture_default_str();
   cmd->add_flag("--edges", opt->edges, "Draw the mesh's edges too");
   cmd->add_flag("--no-samples", opt->no_samples, "Leave out the dots of the samples");

@@ -16,6 +16,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
 #include "metrics/quality.h"
+#include "metrics/self_intersections.h"
 #include "voronoi/cells_output.h"
 #include "voronoi/diagram.h"
 #include "voronoi/samples.h"
@@ -419,6 +420,45 @@ DiagramScene diagram_scene(const Diagram& diagram, const SurfaceMesh& mesh, cons
   }
   scene.points = samples.positions;
   return out;
+}
+
+MeshDefectCounts color_by_defects(RenderScene& scene) {
+  check_scene(scene);
+  const std::size_t nt = scene.triangles.size();
+  std::vector<Triangle> triangles(scene.triangles.begin(), scene.triangles.end());
+  const std::vector<char> proper = proper_triangles(scene.positions, triangles);
+  // Triangles per undirected edge, from the sorted list of (edge, triangle).
+  std::vector<std::pair<std::pair<int, int>, int>> edges;
+  edges.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
+      if (a != b) edges.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
+    }
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> non_manifold(nt, 0), boundary(nt, 0), crossing(nt, 0);
+  for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    for (std::size_t k = i; k < j; ++k) {
+      if (j - i >= 3) non_manifold[edges[k].second] = 1;
+      if (j - i == 1) boundary[edges[k].second] = 1;
+    }
+  }
+  for (const auto& [f, g] : find_self_intersections(scene.positions, triangles, proper)) crossing[f] = crossing[g] = 1;
+
+  MeshDefectCounts counts;
+  scene.color.assign(nt, kLightGrey);
+  for (std::size_t t = 0; t < nt; ++t) {
+    counts.degenerate += !proper[t];
+    counts.non_manifold += non_manifold[t];
+    counts.crossing += crossing[t];
+    counts.boundary += boundary[t];
+    if (!proper[t]) scene.color[t] = {120, 0, 20};
+    else if (non_manifold[t]) scene.color[t] = {225, 30, 30};
+    else if (crossing[t]) scene.color[t] = {250, 140, 0};
+    else if (boundary[t]) scene.color[t] = {60, 110, 230};
+  }
+  return counts;
 }
 
 void write_png(const std::string& path, const Image& image) {

@@ -75,6 +75,18 @@ Rgb quality_color(double q);
 //! Colours every triangle of the scene by its quality; returns the worst Q (1 for no triangle).
 double color_by_quality(RenderScene& scene);
 
+//! What color_by_defects found, in triangles (one triangle may count under several kinds).
+struct MeshDefectCounts {
+  int degenerate = 0;    //!< repeated or collinear corners (exact): dark red
+  int non_manifold = 0;  //!< on an edge of three or more triangles: red
+  int crossing = 0;      //!< cutting through another triangle (exact, find_self_intersections): orange
+  int boundary = 0;      //!< on an edge of one triangle: blue (a hole, or an open input's boundary)
+};
+//! Colours the triangles where a remesh check would fail, the others light grey: degenerate ones,
+//! those on non-manifold edges, those crossing another, and those on the boundary, in that order
+//! of precedence.
+MeshDefectCounts color_by_defects(RenderScene& scene);
+
 //! The cells of a diagram, each in a colour its neighbours do not have, with dark lines between
 //! cells and the samples as dots. Pieces of a cell that are not the one holding its sample (the
 //! RVD's stray pieces; an LRVD has none) are hatched in the cell's colour.
