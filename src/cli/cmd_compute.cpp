@@ -48,12 +48,7 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
                 read_files(opt.input));
   Input input = load_input(opt.input);
   if (!opt.no_verify) require_memory_for_verification(input.samples.size(), write_cells);
-  if (is_power(kind) && !input.samples.weighted())
-    throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", opt.kind));
-  if (!is_power(kind) && input.samples.weighted())
-    throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", opt.kind));
-  if (input.refined_from >= 0)
-    progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+  check_diagram_samples(input, opt.kind);
 
   reset_predicate_stats();
   progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));

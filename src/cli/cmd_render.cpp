@@ -110,12 +110,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
     }
   } else {
     Input input = load_input(opt.input);
-    if (is_power(kind) && !input.samples.weighted())
-      throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", opt.kind));
-    if (!is_power(kind) && input.samples.weighted())
-      throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", opt.kind));
-    if (input.refined_from >= 0)
-      progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+    check_diagram_samples(input, opt.kind);
     progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
     const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
     DiagramScene cells_scene = diagram_scene(diagram, input.mesh, input.samples);

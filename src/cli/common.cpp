@@ -424,6 +424,16 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
   }
 }
 
+void check_diagram_samples(const Input& input, const std::string& kind) {
+  const bool power = is_power(diagram_kind_from_string(kind));
+  if (power && !input.samples.weighted())
+    throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", kind));
+  if (!power && input.samples.weighted())
+    throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", kind));
+  if (input.refined_from >= 0)
+    progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+}
+
 void write_json(const std::string& path, const nlohmann::json& report) { write_text_file(path, report.dump(2) + '\n'); }
 
 void print_quality(const QualityMetrics* quality, bool of_angles) {

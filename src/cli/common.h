@@ -64,6 +64,10 @@ struct Input {
 //! samples. \throw InputError on any bad input.
 Input load_input(const InputOptions& opt);
 
+//! Weights given for a power diagram (--diagram lrpd, rpd) and only then; says on the progress
+//! line when the mesh was refined. \throw InputError otherwise.
+void check_diagram_samples(const Input& input, const std::string& kind);
+
 nlohmann::json input_json(const Input& input);
 nlohmann::json predicates_json();
 //! The `quality` object of a remesh report: the metrics plus closed_manifold, genus_preserved and
