@@ -454,6 +454,18 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   REQUIRE(r.out.find("repair: ") != std::string::npos);
   REQUIRE(r.out.find(left["summary"].get<std::string>()) != std::string::npos);
   REQUIRE(r.out.find("more vertices") != std::string::npos);  // what to try next
+  // And how to see where: the command it names draws the failed remesh with its defects coloured.
+  const std::string picture = kOut + "comb_100_defects.png";
+  const std::string see = "see where: lrvd render " + out + " --color defects -o " + picture + "\n";
+  REQUIRE(r.out.find(see) != std::string::npos);
+  const Run drawn = run("render " + out + " --color defects -o " + picture + " --size 64x64");
+  REQUIRE(drawn.status == 0);
+  // The comb's failure is non-manifold edges (the report's manifold check): they are coloured.
+  const std::size_t at = drawn.out.find(" on non-manifold edges");
+  REQUIRE(at != std::string::npos);
+  const std::size_t from = drawn.out.rfind(", ", at);
+  REQUIRE(std::stoi(drawn.out.substr(from + 2, at - from - 2)) > 0);
+  std::remove(picture.c_str());
 }
 
 TEST_CASE("lrvd remesh with too few vertices for a mesh at all exits 3 with the checks, not a crash", "[cli][remesh]") {

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <string>
 
@@ -250,6 +251,12 @@ int run_remesh(const RemeshCommandOptions& opt) {
                 "diagonal): %s\n",
                 holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
                 advice.c_str());
+  }
+  if (!check.passed) {
+    // A picture shows where at a glance: the triangles each failed check is about, coloured.
+    const std::filesystem::path picture = std::filesystem::path(opt.output).replace_extension().string() + "_defects.png";
+    std::printf("see where: lrvd render %s --color defects -o %s\n", shell_word(opt.output).c_str(),
+                shell_word(picture.string()).c_str());
   }
   return check.passed ? kOk : kCheckFailed;
 }

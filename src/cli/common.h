@@ -33,6 +33,10 @@ struct InputOptions {
 //! "1 vertex", "3 vertices": a count with its noun in the right number.
 std::string counted(long long count, const char* one, const char* many);
 
+//! A path as a shell reads it back as one word: as it is when it holds only letters, digits and
+//! _ . / + - = : , @ %, else in single quotes (a quote inside as '\'').
+std::string shell_word(const std::string& text);
+
 //! The mesh, its repair options, the samples (--points, and with `allow_count` -n and --seed),
 //! --weights when the command takes weighted samples (`allow_weights`), --refine.
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
