@@ -59,6 +59,13 @@ struct Image {
   }
 };
 
+//! The grey of a triangle without a colour of its own.
+constexpr Rgb kRenderGrey = {205, 205, 210};
+
+//! \throw InputError when the scene has no triangles, an index out of range, per-triangle lists of
+//!        another length than the triangles, or a coordinate that is not finite.
+void check_render_scene(const RenderScene& scene);
+
 //! The scene drawn from the options' view on a white background.
 //! \throw InputError on options out of range, a scene without triangles, indices out of range,
 //!        per-triangle lists of another length than the triangles, or a coordinate that is not finite.
