@@ -320,4 +320,35 @@ TEST_CASE("render colours the triangles where a remesh check would fail", "[rend
   REQUIRE(scene.color[9] == Rgb{120, 0, 20});    // the collinear one
   REQUIRE(scene.color[8] == Rgb{225, 30, 30});   // on the edge of three
   REQUIRE(scene.color[10] == Rgb{250, 140, 0});  // crossing (its edges are used once: crossing wins)
+
+  // A triangle that repeats a corner is on its one edge once; a triangle given twice is repeated.
+  RenderScene repeats;
+  repeats.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  repeats.triangles = {{0, 1, 2}, {0, 0, 1}};
+  d = color_by_defects(repeats);
+  REQUIRE(d.degenerate == 1);
+  REQUIRE(d.non_manifold == 0);  // edge (0, 1) has two triangles, not three
+  REQUIRE(d.boundary == 1);      // (0, 1, 2), by its two other edges
+  repeats.triangles = {{0, 1, 3}, {3, 1, 0}};
+  d = color_by_defects(repeats);
+  REQUIRE(d.non_manifold == 2);  // each edge has the two copies only: repeated
+  REQUIRE(repeats.color[0] == Rgb{225, 30, 30});
+}
+
+TEST_CASE("render draws a model of any size the same, and measures its quality the same", "[render]") {
+  RenderScene base = mesh_scene(test::octahedron());
+  base.positions[0].x = 3;  // a less regular shape, so that the worst Q is not 1
+  RenderOptions o = front(64);
+  const Image reference = render(base, o);
+  RenderScene copy = base;
+  const double worst = color_by_quality(copy);
+  REQUIRE(worst < 0.99);
+  for (int e : {-660, -260, 130, 260, 660}) {  // powers of two: the scaled coordinates are exact
+    const double s = std::ldexp(1.0, e);
+    RenderScene scaled = base;
+    for (Vec3& p : scaled.positions) p = p * s;
+    INFO(s);
+    REQUIRE(render(scaled, o).rgb == reference.rgb);
+    REQUIRE(color_by_quality(scaled) == Approx(worst).epsilon(1e-9));
+  }
 }

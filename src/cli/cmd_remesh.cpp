@@ -252,11 +252,18 @@ int run_remesh(const RemeshCommandOptions& opt) {
                 holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
                 advice.c_str());
   }
-  if (!check.passed) {
-    // A picture shows where at a glance: the triangles each failed check is about, coloured.
-    const std::filesystem::path picture = std::filesystem::path(opt.output).replace_extension().string() + "_defects.png";
-    std::printf("see where: lrvd render %s --color defects -o %s\n", shell_word(opt.output).c_str(),
-                shell_word(picture.string()).c_str());
+  if (!check.passed && !dual.triangles.empty()) {
+    // A picture shows where at a glance: the triangles each failed check is about, coloured. It
+    // goes beside the output, named after it, unless that name (with the writer's part suffix)
+    // is longer than a file name can be.
+    namespace fs = std::filesystem;
+    fs::path picture = fs::path(opt.output).replace_extension().string() + "_defects.png";
+    if (picture.filename().string().size() + std::string(".lrvd-part").size() > 255)
+      picture = fs::path(opt.output).parent_path() / "lrvd_defects.png";
+    // A path read as an option when it begins with '-'.
+    auto argument = [](const std::string& path) { return shell_word(path.rfind('-', 0) == 0 ? "./" + path : path); };
+    std::printf("see where: lrvd render %s --color defects -o %s\n", argument(opt.output).c_str(),
+                argument(picture.string()).c_str());
   }
   return check.passed ? kOk : kCheckFailed;
 }

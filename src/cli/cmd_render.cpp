@@ -63,7 +63,7 @@ void parse_up(const std::string& text, RenderOptions& o) {
 void refuse_diagram_options_without_samples(const CLI::App& cmd) {
   if (cmd.count("--samples") > 0)
     throw InputError("give a sample count -n >= 1, or leave -n out to draw the mesh alone");
-  for (const char* name : {"--diagram", "--weights", "--seed", "--refine"})
+  for (const char* name : {"--diagram", "--weights", "--seed", "--refine", "--no-samples"})
     if (cmd.count(name) > 0)
       throw InputError(fmt::format("{} is for the cells of samples: give -n N or --points F, or leave it out to draw "
                                    "the mesh alone",
@@ -104,8 +104,8 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
     if (opt.color == "defects") {
       progress("looking for the triangles that cross others");
       const MeshDefectCounts d = color_by_defects(scene);
-      what += fmt::format(", {} degenerate (dark red), {} on non-manifold edges (red), {} crossing others (orange), {} on "
-                          "the boundary (blue)",
+      what += fmt::format(", {} degenerate (dark red), {} on non-manifold edges or repeated (red), {} crossing others "
+                          "(orange), {} on the boundary (blue)",
                           d.degenerate, d.non_manifold, d.crossing, d.boundary);
     }
   } else {

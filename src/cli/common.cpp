@@ -417,6 +417,10 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
     // The writer's part file beside it (mesh_writers.cpp): its longer name may pass the folder's limit.
     const std::string part = out.path + ".lrvd-part";
+    if (fs::is_directory(fs::symlink_status(part, error)))
+      throw InputError(fmt::format("{} {}: a folder {} is where its part file (written first, then renamed) goes; "
+                                   "remove or rename it",
+                                   out.option, out.path, fs::path(part).filename().string()));
     if (!fs::exists(fs::symlink_status(part, error))) {
       if (!std::ofstream(part))
         throw InputError(fmt::format("{} {}: its part file {} (written first, then renamed) cannot be made there ({})",

@@ -123,21 +123,26 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
         hi[c] = std::max(hi[c], scene.positions[v][c]);
       }
   const Vec3 middle = 0.5 * (lo + hi);
-  const double diagonal = distance(lo, hi);
-  if (!std::isfinite(diagonal) || !is_finite(middle))
-    throw InputError("render: the scene is too large to draw in doubles (its bounding box's diagonal overflows)");
+  const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+  if (!std::isfinite(extent) || !is_finite(middle))
+    throw InputError("render: the scene is too large to draw in doubles (its bounding box's size overflows)");
+  if (extent > 0 && extent < 1e-290)
+    throw InputError("render: the scene is too small to draw in doubles (its bounding box's size underflows)");
+  // Everything below in units of the box's largest side: depths stored as floats and the areas
+  // and normals of a scene 1e200 across neither overflow nor vanish.
+  const double to_unit = extent > 0 ? 1 / extent : 1;
+  auto unit_position = [&](const Vec3& p) { return (p - middle) * to_unit; };
+  std::vector<Vec3> position(scene.positions.size());
+  for (std::size_t v = 0; v < position.size(); ++v) position[v] = unit_position(scene.positions[v]);
 
   struct Projected {
     double x, y, depth;
   };
-  auto project_raw = [&](const Vec3& p) {
-    const Vec3 d = p - middle;
-    return Projected{dot(d, view.right), dot(d, view.up), dot(d, view.toward)};
-  };
+  auto project_raw = [&](const Vec3& d) { return Projected{dot(d, view.right), dot(d, view.up), dot(d, view.toward)}; };
   double xmin = std::numeric_limits<double>::max(), xmax = -xmin, ymin = xmin, ymax = -xmin;
   for (const auto& t : scene.triangles)
     for (int v : t) {
-      const Projected q = project_raw(scene.positions[v]);
+      const Projected q = project_raw(position[v]);
       xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x);
       ymin = std::min(ymin, q.y), ymax = std::max(ymax, q.y);
     }
@@ -146,8 +151,6 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   if (xmax > xmin) scale = std::min(scale, usable * W / (xmax - xmin));
   if (ymax > ymin) scale = std::min(scale, usable * H / (ymax - ymin));
   if (!(xmax > xmin) && !(ymax > ymin)) scale = 1;  // every vertex at one point
-  if (!std::isfinite(scale) || scale > 1e300)
-    throw InputError("render: the scene is too small to draw in doubles (its extent underflows)");
   const double cx = 0.5 * (xmin + xmax), cy = 0.5 * (ymin + ymax);
   auto project = [&](const Vec3& p) {
     const Projected q = project_raw(p);
@@ -166,19 +169,21 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       owner[k] = t;
     }
   };
-  // A segment one sample wide, its depth interpolated along it.
+  // A segment a pixel wide (ss samples), its depth interpolated along it.
   auto line = [&](const Projected& p, const Projected& q, int t) {
     const int steps = static_cast<int>(std::ceil(std::max(std::abs(q.x - p.x), std::abs(q.y - p.y)))) + 1;
     for (int k = 0; k <= steps; ++k) {
       const double f = static_cast<double>(k) / steps;
-      put(static_cast<int>(std::floor(p.x + f * (q.x - p.x))), static_cast<int>(std::floor(p.y + f * (q.y - p.y))),
-          static_cast<float>(p.depth + f * (q.depth - p.depth)), t);
+      const int x = static_cast<int>(std::floor(p.x + f * (q.x - p.x))) - ss / 2;
+      const int y = static_cast<int>(std::floor(p.y + f * (q.y - p.y))) - ss / 2;
+      const float z = static_cast<float>(p.depth + f * (q.depth - p.depth));
+      for (int dy = 0; dy < ss; ++dy)
+        for (int dx = 0; dx < ss; ++dx) put(x + dx, y + dy, z, t);
     }
   };
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
-    const Projected a = project(scene.positions[tri[0]]), b = project(scene.positions[tri[1]]),
-                    c = project(scene.positions[tri[2]]);
+    const Projected a = project(position[tri[0]]), b = project(position[tri[1]]), c = project(position[tri[2]]);
     const double area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
     // A triangle seen edge-on, or so thin that it may miss every sample's centre, is drawn as its
     // edges too: a flat sheet seen from its side is a line, not nothing.
@@ -214,8 +219,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   std::vector<std::array<float, 3>> shade(scene.triangles.size());
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
-    const Vec3& p0 = scene.positions[tri[0]];
-    const Vec3 n = unit(cross(scene.positions[tri[1]] - p0, scene.positions[tri[2]] - p0));
+    const Vec3& p0 = position[tri[0]];
+    const Vec3 n = unit(cross(position[tri[1]] - p0, position[tri[2]] - p0));
     const double lambert = std::abs(dot(n, light));
     const double intensity = 0.38 + 0.62 * lambert;
     const Rgb base = scene.color.empty() ? kRenderGrey : scene.color[t];
@@ -229,7 +234,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   // Mean spacing on the picture, in pixels, of things `count` of which tile the surface.
   double area = 0;
   for (const auto& t : scene.triangles)
-    area += 0.5 * norm(cross(scene.positions[t[1]] - scene.positions[t[0]], scene.positions[t[2]] - scene.positions[t[0]]));
+    area += 0.5 * norm(cross(position[t[1]] - position[t[0]], position[t[2]] - position[t[0]]));
   auto spacing_px = [&](std::size_t things) { return std::sqrt(area / std::max<std::size_t>(things, 1)) * scale / ss; };
   // Lines between regions (or faces) a few pixels apart would cover them: below 4 (3) pixels
   // apart on average they are left out, and the colours alone tell the regions apart.
@@ -252,7 +257,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
 
   // Outlines, each checked against the samples up to `reach` away along the rows and columns.
   const int reach = std::max(1, (ss + 1) / 2);
-  const double occlusion_gap = 0.01 * diagonal;
+  const double occlusion_gap = 0.01;  // of the box's largest side
   const int stripe = std::max(2, 4 * ss);
   auto line_at = [&](int x, int y) -> float {
     // Returns the factor the sample's colour is multiplied by: 1 (no line) down to 0 (black).
@@ -313,11 +318,11 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     radius = std::min(std::clamp(std::min(options.width, options.height) / 260.0, 1.5, 6.0), spacing_px(scene.points.size()) / 6);
     if (radius < 0.7) radius = 0;
   }
-  const double hidden_gap = 0.001 * diagonal + 2 / scale;
+  const double hidden_gap = 0.001 + 2 / scale;
   for (const Vec3& p : radius > 0 ? scene.points : std::vector<Vec3>{}) {
-    const Projected q = project(p);
-    const int x = static_cast<int>(std::floor(q.x)), y = static_cast<int>(std::floor(q.y));
-    if (x < 0 || y < 0 || x >= W || y >= H) continue;
+    const Projected q = project(unit_position(p));
+    if (!(q.x >= 0 && q.y >= 0 && q.x < W && q.y < H)) continue;  // off the picture (or not finite)
+    const int x = static_cast<int>(q.x), y = static_cast<int>(q.y);
     const std::size_t k = static_cast<std::size_t>(y) * W + x;
     if (owner[k] >= 0 && depth[k] - q.depth > hidden_gap) continue;
     const double cxp = q.x / ss, cyp = q.y / ss;  // in pixels

@@ -85,7 +85,7 @@ double color_by_quality(RenderScene& scene);
 //! What color_by_defects found, in triangles (one triangle may count under several kinds).
 struct MeshDefectCounts {
   int degenerate = 0;    //!< repeated or collinear corners (exact): dark red
-  int non_manifold = 0;  //!< on an edge of three or more triangles: red
+  int non_manifold = 0;  //!< on an edge of three or more triangles, or on the corners of another: red
   int crossing = 0;      //!< cutting through another triangle (exact, find_self_intersections): orange
   int boundary = 0;      //!< on an edge of one triangle: blue (a hole, or an open input's boundary)
 };

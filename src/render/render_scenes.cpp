@@ -51,11 +51,19 @@ Rgb quality_color(double q) {
 
 double color_by_quality(RenderScene& scene) {
   check_render_scene(scene);
+  // Q does not depend on the scale; measured on the scene brought to about unit size, so that the
+  // areas and lengths of a model 1e100 or 1e-100 across neither overflow nor vanish.
+  double extent = 0;
+  for (const auto& tri : scene.triangles)
+    for (int v : tri)
+      for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(scene.positions[v][c] - scene.positions[tri[0]][c]));
+  const double to_unit = extent > 0 && std::isfinite(1 / extent) ? 1 / extent : 1;
   double worst = 1;
   scene.color.resize(scene.triangles.size());
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
-    const double q = triangle_quality(scene.positions[tri[0]], scene.positions[tri[1]], scene.positions[tri[2]]);
+    const Vec3& o = scene.positions[tri[0]];
+    const double q = triangle_quality(Vec3{}, (scene.positions[tri[1]] - o) * to_unit, (scene.positions[tri[2]] - o) * to_unit);
     scene.color[t] = quality_color(q);
     worst = std::min(worst, std::isfinite(q) ? q : 0.0);
   }
@@ -107,11 +115,17 @@ MeshDefectCounts color_by_defects(RenderScene& scene) {
   // Triangles per undirected edge, from the sorted list of (edge, triangle).
   std::vector<std::pair<std::pair<int, int>, int>> edges;
   edges.reserve(3 * nt);
-  for (std::size_t t = 0; t < nt; ++t)
+  for (std::size_t t = 0; t < nt; ++t) {
+    const std::size_t first = edges.size();
     for (int e = 0; e < 3; ++e) {
       const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
-      if (a != b) edges.push_back({{std::min(a, b), std::max(a, b)}, static_cast<int>(t)});
+      const std::pair<int, int> edge{std::min(a, b), std::max(a, b)};
+      // A triangle that repeats a corner has one edge twice: it is on that edge once.
+      bool listed = a == b;
+      for (std::size_t k = first; k < edges.size(); ++k) listed |= edges[k].first == edge;
+      if (!listed) edges.push_back({edge, static_cast<int>(t)});
     }
+  }
   std::sort(edges.begin(), edges.end());
   std::vector<char> non_manifold(nt, 0), boundary(nt, 0), crossing(nt, 0);
   for (std::size_t i = 0, j = 0; i < edges.size(); i = j) {
@@ -122,6 +136,16 @@ MeshDefectCounts color_by_defects(RenderScene& scene) {
     }
   }
   for (const auto& [f, g] : find_self_intersections(scene.positions, triangles, proper)) crossing[f] = crossing[g] = 1;
+  // Triangles on the same three corners, which share every edge with each other: repeated.
+  std::vector<std::pair<Triangle, int>> corners(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    corners[t] = {triangles[t], static_cast<int>(t)};
+    std::sort(corners[t].first.begin(), corners[t].first.end());
+  }
+  std::sort(corners.begin(), corners.end());
+  for (std::size_t k = 1; k < nt; ++k)
+    if (corners[k].first == corners[k - 1].first && proper[corners[k].second])
+      non_manifold[corners[k].second] = non_manifold[corners[k - 1].second] = 1;
 
   MeshDefectCounts counts;
   scene.color.assign(nt, kRenderGrey);
