@@ -784,3 +784,29 @@ TEST_CASE("An output is never written through a part file planted as a link to a
   std::remove(victim.c_str());
   std::remove(out.c_str());
 }
+
+TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of each diagram", "[cli]") {
+  const std::string dir = kOut + "stress_report_dir";
+  std::filesystem::remove_all(dir);
+  const Run r = run("stress --report " + dir + " --scale 0.2");
+  INFO(r.err);
+  REQUIRE(r.status == 0);  // every LRVD verified
+  std::ifstream md_file(dir + "/stress_report.md");
+  std::stringstream md;
+  md << md_file.rdbuf();
+  REQUIRE(md.str().find("## Pictures") != std::string::npos);
+  const json j = read_json(dir + "/stress_report.json");
+  REQUIRE(j["rows"].size() >= 8);
+  for (const std::string name : {"thin_plate", "folded_sheet", "open_cup", "flat_ellipsoid", "knot_tube", "comb",
+                                  "interpenetrating_spheres", "thin_tube"})
+    for (const char* kind : {"lrvd", "rvd"}) {
+      const std::string png = name + "_" + kind + ".png";
+      INFO(png);
+      REQUIRE(md.str().find("(" + png + ")") != std::string::npos);
+      std::ifstream in(dir + "/" + png, std::ios::binary);
+      std::string head(8, '\0');
+      in.read(head.data(), 8);
+      REQUIRE(head == std::string("\x89PNG\r\n\x1a\n", 8));
+    }
+  std::filesystem::remove_all(dir);
+}

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
+#include "render/render.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
 
@@ -36,6 +37,8 @@ int write_stress_report(const std::string& dir, double scale, int seeds) {
       "| mesh | triangles | n | RVD disconnected cells | RVD time (s) | LRVD disconnected cells | LRVD verified | "
       "LRVD time (s) |\n|---|---|---|---|---|---|---|---|\n";
   bool all_passed = true;
+  constexpr int kPictureSamples = 100;
+  std::string pictures = "| mesh | LRVD | RVD |\n|---|---|---|\n";
   for (const StressMeshInfo& info : stress_mesh_catalog()) {
     const SurfaceMesh base = make_stress_mesh(info.name, scale);
     for (int n : {10, 30, 100, 300, 1000}) {
@@ -49,6 +52,17 @@ int write_stress_report(const std::string& dir, double scale, int seeds) {
         const Samples samples = sample_uniform(mesh, n, seed);
         const Diagram rvd = compute_rvd(mesh, samples);
         const Diagram lrvd = compute_lrvd(mesh, samples);
+        if (n == kPictureSamples && seed == 1) {
+          // The two diagrams side by side, stray pieces hatched (docs/render.md).
+          RenderOptions view;
+          view.width = 480;
+          view.height = 360;
+          for (const auto& [diagram, kind] : {std::pair<const Diagram&, const char*>{lrvd, "lrvd"}, {rvd, "rvd"}})
+            write_png(fmt::format("{}/{}_{}.png", dir, info.name, kind),
+                      render(diagram_scene(diagram, mesh, samples).scene, view));
+          pictures += fmt::format("| {} | ![{} LRVD]({}_lrvd.png) | ![{} RVD]({}_rvd.png) |\n", info.name, info.name,
+                                  info.name, info.name, info.name);
+        }
         for (int c : cell_components(rvd, mesh).count) rvd_disconnected += c > 1;
         const DiagramVerification check = verify_diagram(mesh, samples, lrvd);
         lrvd_disconnected += check.cells_with_multiple_components;
@@ -69,10 +83,13 @@ int write_stress_report(const std::string& dir, double scale, int seeds) {
   write_json(dir + "/stress_report.json", {{"scale", scale}, {"seeds", seeds}, {"rows", rows}});
   write_text_file(dir + "/stress_report.md",
                   fmt::format("# RVD vs LRVD on the stress meshes\n\nMeans over {} seed(s); meshes refined where n "
-                              "would crowd the triangles.\n\n{}",
-                              seeds, md));
+                              "would crowd the triangles.\n\n{}\n## Pictures\n\nThe cells of {} samples (seed 1), "
+                              "drawn by `lrvd render`: each cell in its own colour, the pieces of a cell away from its "
+                              "sample hatched.\n\n{}",
+                              seeds, md, kPictureSamples, pictures));
   std::printf("%s", md.c_str());
-  std::printf("wrote %s/stress_report.md and %s/stress_report.json\n", dir.c_str(), dir.c_str());
+  std::printf("wrote %s/stress_report.md, %s/stress_report.json and the pictures NAME_lrvd.png, NAME_rvd.png\n",
+              dir.c_str(), dir.c_str());
   return all_passed ? kOk : kCheckFailed;
 }
 
