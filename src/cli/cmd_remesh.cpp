@@ -252,10 +252,11 @@ int run_remesh(const RemeshCommandOptions& opt) {
                 holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
                 advice.c_str());
   }
-  if (!check.passed && !dual.triangles.empty()) {
+  std::error_code not_a_file;
+  if (!check.passed && !dual.triangles.empty() && std::filesystem::is_regular_file(opt.output, not_a_file)) {
     // A picture shows where at a glance: the triangles each failed check is about, coloured. It
-    // goes beside the output, named after it, unless that name (with the writer's part suffix)
-    // is longer than a file name can be.
+    // goes beside the output (a file, not a device such as /dev/null), named after it, unless that
+    // name (with the writer's part suffix) is longer than a file name can be.
     namespace fs = std::filesystem;
     fs::path picture = fs::path(opt.output).replace_extension().string() + "_defects.png";
     if (picture.filename().string().size() + std::string(".lrvd-part").size() > 255)

@@ -231,7 +231,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     }
   }
 
-  // Mean spacing on the picture, in pixels, of things `count` of which tile the surface.
+  // Mean spacing on the picture, in pixels, of `things` that tile the surface.
   double area = 0;
   for (const auto& t : scene.triangles)
     area += 0.5 * norm(cross(position[t[1]] - position[t[0]], position[t[2]] - position[t[0]]));
