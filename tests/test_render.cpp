@@ -352,3 +352,24 @@ TEST_CASE("render draws a model of any size the same, and measures its quality t
     REQUIRE(color_by_quality(scaled) == Approx(worst).epsilon(1e-9));
   }
 }
+
+TEST_CASE("render shows a degenerate triangle in its colour, and unused vertices as dots", "[render]") {
+  RenderScene scene;
+  scene.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  scene.triangles = {{0, 1, 2}, {0, 3, 4}};  // collinear, and a proper one
+  scene.positions.push_back({2, 1, 0});      // 5: in no triangle
+  const MeshDefectCounts d = color_by_defects(scene);
+  REQUIRE(d.degenerate == 1);
+  REQUIRE(d.unused_vertices == 1);
+  REQUIRE(scene.points.size() == 1);
+  const Image image = render(scene, front(120));
+  int dark_red = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const Rgb p = image.pixel(x, y);
+      dark_red += p[0] > 90 && p[1] < 40 && p[2] < 60;  // (120, 0, 20), not greyed
+    }
+  REQUIRE(dark_red > 40);  // a line along the picture's width
+  // The unused vertex's dot, at (2, 1): pixel (115, 32) (x 0..2 over 4.8..115.2, y centred).
+  REQUIRE(brightness(image, 115, 32) < 150);
+}

@@ -252,8 +252,12 @@ int run_remesh(const RemeshCommandOptions& opt) {
                 holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
                 advice.c_str());
   }
+  // The failures a picture shows (render --color defects): non-manifold edges and repeated
+  // triangles, holes, degenerate and crossing triangles, unused vertices; not a wrong genus alone.
+  const bool drawable = !check.manifold.passed || !check.closed.passed || !check.non_degenerate.passed ||
+                        !check.no_self_intersection.passed || !check.vertex_count.passed;
   std::error_code not_a_file;
-  if (!check.passed && !dual.triangles.empty() && std::filesystem::is_regular_file(opt.output, not_a_file)) {
+  if (drawable && !dual.triangles.empty() && std::filesystem::is_regular_file(opt.output, not_a_file)) {
     // A picture shows where at a glance: the triangles each failed check is about, coloured. It
     // goes beside the output (a file, not a device such as /dev/null), named after it, unless that
     // name (with the writer's part suffix) is longer than a file name can be.

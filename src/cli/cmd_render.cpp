@@ -105,8 +105,9 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
       progress("looking for the triangles that cross others");
       const MeshDefectCounts d = color_by_defects(scene);
       what += fmt::format(", {} degenerate (dark red), {} on non-manifold edges or repeated (red), {} crossing others "
-                          "(orange), {} on the boundary (blue)",
-                          d.degenerate, d.non_manifold, d.crossing, d.boundary);
+                          "(orange), {} on the boundary (blue), {} in no triangle (dots)",
+                          d.degenerate, d.non_manifold, d.crossing, d.boundary,
+                          counted(d.unused_vertices, "vertex", "vertices"));
     }
   } else {
     Input input = load_input(opt.input);

@@ -181,6 +181,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
         for (int dx = 0; dx < ss; ++dx) put(x + dx, y + dy, z, t);
     }
   };
+  // Triangles drawn as lines take no outline of their own: the line is the triangle, in its colour.
+  std::vector<char> drawn_as_line(scene.triangles.size(), 0);
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
     const Projected a = project(position[tri[0]]), b = project(position[tri[1]]), c = project(position[tri[2]]);
@@ -190,6 +192,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     const double longest = std::max({std::hypot(b.x - a.x, b.y - a.y), std::hypot(c.x - b.x, c.y - b.y),
                                       std::hypot(a.x - c.x, a.y - c.y)});
     if (!(std::abs(area) >= 1.5 * longest)) {
+      drawn_as_line[t] = 1;
       line(a, b, static_cast<int>(t));
       line(b, c, static_cast<int>(t));
       line(c, a, static_cast<int>(t));
@@ -222,7 +225,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     const Vec3& p0 = position[tri[0]];
     const Vec3 n = unit(cross(position[tri[1]] - p0, position[tri[2]] - p0));
     const double lambert = std::abs(dot(n, light));
-    const double intensity = 0.38 + 0.62 * lambert;
+    // A triangle without a normal (collinear corners) is drawn unshaded, in its full colour.
+    const double intensity = squared_norm(n) > 0 ? 0.38 + 0.62 * lambert : 1.0;
     const Rgb base = scene.color.empty() ? kRenderGrey : scene.color[t];
     const bool back = dot(n, view.toward) < 0;
     for (int c = 0; c < 3; ++c) {
@@ -263,6 +267,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     // Returns the factor the sample's colour is multiplied by: 1 (no line) down to 0 (black).
     const std::size_t k = static_cast<std::size_t>(y) * W + x;
     const int t = owner[k];
+    if (drawn_as_line[t]) return 1.0f;
     float factor = 1;
     for (int r = 1; r <= reach; ++r) {
       const int nx[4] = {x - r, x + r, x, x};

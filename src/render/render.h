@@ -88,10 +88,11 @@ struct MeshDefectCounts {
   int non_manifold = 0;  //!< on an edge of three or more triangles, or on the corners of another: red
   int crossing = 0;      //!< cutting through another triangle (exact, find_self_intersections): orange
   int boundary = 0;      //!< on an edge of one triangle: blue (a hole, or an open input's boundary)
+  int unused_vertices = 0;  //!< vertices in no triangle, drawn as dots (RenderScene::points)
 };
 //! Colours the triangles where a remesh check would fail, the others light grey: degenerate ones,
 //! those on non-manifold edges, those crossing another, and those on the boundary, in that order
-//! of precedence.
+//! of precedence; the vertices no triangle uses become the scene's points (dots).
 MeshDefectCounts color_by_defects(RenderScene& scene);
 
 //! The cells of a diagram, each in a colour its neighbours do not have, with dark lines between

@@ -148,6 +148,14 @@ MeshDefectCounts color_by_defects(RenderScene& scene) {
       non_manifold[corners[k].second] = non_manifold[corners[k - 1].second] = 1;
 
   MeshDefectCounts counts;
+  // Vertices no triangle uses (a remesh's samples whose cells made no triangle) as dots.
+  std::vector<char> used(scene.positions.size(), 0);
+  for (const Triangle& t : triangles)
+    for (int v : t) used[v] = 1;
+  scene.points.clear();
+  for (std::size_t v = 0; v < used.size(); ++v)
+    if (!used[v]) scene.points.push_back(scene.positions[v]);
+  counts.unused_vertices = static_cast<int>(scene.points.size());
   scene.color.assign(nt, kRenderGrey);
   for (std::size_t t = 0; t < nt; ++t) {
     counts.degenerate += !proper[t];
