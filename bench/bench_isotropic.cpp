@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> models = {"elk", "knot", "ellipsoid", "armadillo"};
   std::vector<std::string> stress, files;
   std::vector<int> counts = {300, 516, 1000, 2000, 4000};
-  std::string out_path, json_path;
+  std::string out_path, json_path, save_dir;
   int threads = 1, peer_iterations = 5;
   bool peer_only = false, shape = false;
   for (int a = 1; a < argc; ++a) {
@@ -153,10 +153,12 @@ int main(int argc, char** argv) {
       out_path = argv[++a];
     } else if (!std::strcmp(argv[a], "--json") && a + 1 < argc) {
       json_path = argv[++a];
+    } else if (!std::strcmp(argv[a], "--save") && a + 1 < argc) {
+      save_dir = argv[++a];
     } else {
       std::fprintf(stderr,
                    "usage: %s [--models a,b] [--stress a,b] [--files a.off,b.ply] [--counts n1,n2] [--peer-iterations K] [--peer-only] "
-                   "[--shape] [--threads N] [--out F.md] [--json F]\n",
+                   "[--shape] [--threads N] [--out F.md] [--json F] [--save DIR]\n",
                    argv[0]);
       return 2;
     }
@@ -216,6 +218,13 @@ int main(int argc, char** argv) {
           rows.push_back({{"mesh", name}, {"n", n}, {"method", row.method}, {"error", row.error}});
           std::fprintf(stderr, "%s %d %s: %s\n", name.c_str(), n, row.method.c_str(), row.error.c_str());
           continue;
+        }
+        if (!save_dir.empty()) {
+          // MESH_N_METHOD.off, the method's name cut to its first word (cgal, lrvd) and "shape".
+          const std::string tag = row.method.rfind("CGAL", 0) == 0 ? "cgal_isotropic"
+                                  : row.method == "lrvd"           ? "lrvd"
+                                                                   : "lrvd_shape";
+          write_mesh(fmt::format("{}/{}_{}_{}.off", save_dir, name, n, tag), row.out.positions, row.out.triangles);
         }
         // Every check but the vertex count, which the peer cannot promise; the table gives the count.
         const RemeshVerification check = verify_remesh(input, row.out.positions, row.out.triangles, -1);
