@@ -744,6 +744,13 @@ TEST_CASE("lrvd render draws a mesh or a diagram's cells as a PNG, and refuses b
   r = run("render " + pinched + " --color defects -o " + mesh_png + " --size 64x64");
   REQUIRE(r.status == 0);
   REQUIRE(r.out.find("4 on non-manifold edges") != std::string::npos);
+  // The cells lrvd compute writes are drawn in their colours.
+  const std::string cells_ply = kOut + "render_cells.ply";
+  REQUIRE(run("compute " + kData + "/elk.off -n 50 -o " + cells_ply).status == 0);
+  r = run("render " + cells_ply + " -o " + mesh_png + " --size 64x64");
+  REQUIRE(r.status == 0);
+  REQUIRE(r.out.find("in the file's face colours") != std::string::npos);
+  std::remove(cells_ply.c_str());
   std::remove(pinched.c_str());
   std::remove(mesh_png.c_str());
   std::remove(cells_png.c_str());

@@ -13,9 +13,11 @@
 
 #include "common/error.h"
 #include "metrics/quality.h"
+#include "mesh/mesh_io.h"
 #include "mesh/stress.h"
 #include "render/render.h"
 #include "test_meshes.h"
+#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 #pragma GCC diagnostic push
@@ -372,4 +374,29 @@ TEST_CASE("render shows a degenerate triangle in its colour, and unused vertices
   REQUIRE(dark_red > 40);  // a line along the picture's width
   // The unused vertex's dot, at (2, 1): pixel (115, 32) (x 0..2 over 4.8..115.2, y centred).
   REQUIRE(brightness(image, 115, 32) < 150);
+}
+
+TEST_CASE("A cells PLY reads back with its face colours, one per triangle of each polygon", "[render]") {
+  const SurfaceMesh mesh = test::icosphere(2);
+  const Samples samples = sample_uniform(mesh, 12, 3);
+  const PolygonMesh cells = diagram_polygon_mesh(compute_lrvd(mesh, samples), mesh);
+  const std::string path = "test_render_cells_" + std::to_string(getpid()) + ".ply";
+  write_cells_ply(path, cells);
+  const PolygonSoup soup = read_polygon_soup(path);
+  std::remove(path.c_str());
+  REQUIRE(soup.face_color.size() == soup.triangles.size());
+  // Polygons are fanned in order: a polygon of k corners gives k - 2 triangles in its colour.
+  std::size_t t = 0;
+  for (std::size_t f = 0; f < cells.faces.size(); ++f)
+    for (std::size_t k = 2; k < cells.faces[f].size(); ++k, ++t) {
+      INFO("face " << f << ", triangle " << t);
+      REQUIRE(t < soup.face_color.size());
+      REQUIRE(soup.face_color[t] == cells.face_color[f]);
+    }
+  REQUIRE(t == soup.triangles.size());
+  // An OFF has no face colours.
+  const std::string off = "test_render_cells_" + std::to_string(getpid()) + ".off";
+  write_mesh(off, mesh);
+  REQUIRE(read_polygon_soup(off).face_color.empty());
+  std::remove(off.c_str());
 }

@@ -88,6 +88,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
 
   RenderScene scene;
   std::string what;
+  bool colored = false;
   if (!cells) {
     if (repair) {
       const LoadedMesh loaded = read_mesh(opt.input.mesh_path, opt.input.read);
@@ -98,8 +99,16 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
       // As read, without the checks a diagram needs: a remesh that failed them is what one wants to see.
       const PolygonSoup soup = read_polygon_soup(opt.input.mesh_path);
       scene = mesh_scene(soup.positions, soup.triangles);
+      if (!soup.face_color.empty() && opt.color == "plain") {
+        // A PLY with face colours (lrvd compute's cells): drawn in them, with a line where the
+        // colour changes (neighbouring cells have different colours).
+        scene.color = soup.face_color;
+        for (const Rgb& c : scene.color) scene.region.push_back(c[0] << 16 | c[1] << 8 | c[2]);
+        colored = true;
+      }
     }
     what = counted(static_cast<long long>(scene.triangles.size()), "triangle", "triangles");
+    if (colored) what += " in the file's face colours";
     if (opt.color == "quality") what += fmt::format(" coloured by quality (worst Q {:.3f})", color_by_quality(scene));
     if (opt.color == "defects") {
       progress("looking for the triangles that cross others");

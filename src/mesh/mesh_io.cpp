@@ -82,15 +82,18 @@ void check_readable(const std::string& path) {
 // such list (and `read` tells whether reading them went well).
 template <class Index>
 bool read_ply_faces(std::istream& in, CGAL::IO::internal::PLY_element& element, const char* tag,
-                    std::vector<Polygon>& polygons, bool& read) {
+                    std::vector<Polygon>& polygons, bool& read, std::vector<CGAL::IO::Color>* colors) {
   if (!element.has_property<std::vector<Index>>(tag)) return false;
-  read = CGAL::IO::internal::read_PLY_faces<Index>(in, element, polygons, CGAL::Emptyset_iterator(), tag);
+  read = colors ? CGAL::IO::internal::read_PLY_faces<Index>(in, element, polygons, std::back_inserter(*colors), tag)
+                : CGAL::IO::internal::read_PLY_faces<Index>(in, element, polygons, CGAL::Emptyset_iterator(), tag);
   return true;
 }
 
 // CGAL's read_PLY (5.5), reading face indices of every integer type PLY has: CGAL's own takes
-// int and uint only, and refused the char, uchar, short and ushort that some writers use.
-bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons) {
+// int and uint only, and refused the char, uchar, short and ushort that some writers use. With
+// `colors`, also the faces' uchar red, green, blue (none when the faces have no such properties).
+bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons,
+              std::vector<CGAL::IO::Color>* colors = nullptr) {
   namespace ply = CGAL::IO::internal;
   std::ifstream in(path, std::ios::binary);
   CGAL::IO::set_mode(in, CGAL::IO::BINARY);
@@ -102,14 +105,14 @@ bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<P
     if (element.name() == "face" || element.name() == "faces") {
       bool read = false, found = false;
       for (const char* tag : {"vertex_indices", "vertex_index"}) {
-        found = found || read_ply_faces<std::int32_t>(in, element, tag, polygons, read) ||
-                read_ply_faces<std::uint32_t>(in, element, tag, polygons, read);
+        found = found || read_ply_faces<std::int32_t>(in, element, tag, polygons, read, colors) ||
+                read_ply_faces<std::uint32_t>(in, element, tag, polygons, read, colors);
       }
       for (const char* tag : {"vertex_indices", "vertex_index"}) {
-        found = found || read_ply_faces<std::int8_t>(in, element, tag, polygons, read) ||
-                read_ply_faces<std::uint8_t>(in, element, tag, polygons, read) ||
-                read_ply_faces<std::int16_t>(in, element, tag, polygons, read) ||
-                read_ply_faces<std::uint16_t>(in, element, tag, polygons, read);
+        found = found || read_ply_faces<std::int8_t>(in, element, tag, polygons, read, colors) ||
+                read_ply_faces<std::uint8_t>(in, element, tag, polygons, read, colors) ||
+                read_ply_faces<std::int16_t>(in, element, tag, polygons, read, colors) ||
+                read_ply_faces<std::uint16_t>(in, element, tag, polygons, read, colors);
       }
       if (!found) return false;
       continue;  // CGAL goes on after a face element that failed: the stream's state says it
@@ -240,12 +243,15 @@ bool triangulate_polygon(const std::vector<Point>& points, const Polygon& polygo
 // `strict` (a read without --repair): a polygon that visits a vertex twice, or that no
 // triangulation covers without overlap (a quad crossed into a bow tie), is refused; with --repair
 // it is fanned, and a note says so.
+// With `face_of`, the polygon each triangle comes from.
 std::vector<SoupTriangle> triangulate(const std::string& path, const std::vector<Point>& points,
-                                      const std::vector<Polygon>& polygons, RepairReport& report, bool strict) {
+                                      const std::vector<Polygon>& polygons, RepairReport& report, bool strict,
+                                      std::vector<std::size_t>* face_of = nullptr) {
   std::vector<SoupTriangle> triangles;
   triangles.reserve(polygons.size());
   std::vector<std::size_t> corners;
   for (std::size_t f = 0; f < polygons.size(); ++f) {
+    if (face_of) face_of->resize(triangles.size(), f - 1);  // the triangles of the polygon before
     const Polygon& polygon = polygons[f];
     if (polygon.size() == 3) {
       triangles.push_back({polygon[0], polygon[1], polygon[2]});
@@ -269,6 +275,7 @@ std::vector<SoupTriangle> triangulate(const std::string& path, const std::vector
           fmt::format("face {} ({} vertices) is self-intersecting or degenerate; it was fanned", f, polygon.size()));
     }
   }
+  if (face_of) face_of->resize(triangles.size(), polygons.size() - 1);
   return triangles;
 }
 
@@ -952,10 +959,21 @@ PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces) {
   std::vector<Point> points;
   std::vector<Polygon> polygons;
   read_checked_soup(path, points, polygons, allow_no_faces);
+  // A PLY's face colours (lrvd compute's cells), read again from the file checked above.
+  std::vector<CGAL::IO::Color> colors;
+  if (input_format(path) == Format::Ply) {
+    std::vector<Point> again;
+    std::vector<Polygon> faces;
+    if (!read_ply(path, again, faces, &colors) || faces.size() != polygons.size() || colors.size() != polygons.size())
+      colors.clear();
+  }
   RepairReport ignored;
   PolygonSoup soup;
-  for (const SoupTriangle& t : triangulate(path, points, polygons, ignored, false))
+  std::vector<std::size_t> face_of;
+  for (const SoupTriangle& t : triangulate(path, points, polygons, ignored, false, &face_of))
     soup.triangles.push_back({static_cast<int>(t[0]), static_cast<int>(t[1]), static_cast<int>(t[2])});
+  if (!colors.empty())
+    for (std::size_t f : face_of) soup.face_color.push_back({colors[f].red(), colors[f].green(), colors[f].blue()});
   for (const Point& p : points) soup.positions.push_back({p.x(), p.y(), p.z()});
   return soup;
 }

@@ -79,6 +79,9 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
 struct PolygonSoup {
   std::vector<Vec3> positions;
   std::vector<std::array<int, 3>> triangles;
+  //! Per triangle, its face's colour in a PLY whose faces have uchar red, green, blue (such as
+  //! lrvd compute's cells); empty for other files.
+  std::vector<std::array<unsigned char, 3>> face_color;
 };
 //! With `allow_no_faces`, vertices without a face are read too (a remesh at its topological minimum
 //! can come out so; its checks then fail), except from STL, which has no vertices of its own.
