@@ -97,7 +97,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
       scene = mesh_scene(loaded.mesh);
     } else {
       // As read, without the checks a diagram needs: a remesh that failed them is what one wants to see.
-      const PolygonSoup soup = read_polygon_soup(opt.input.mesh_path);
+      const PolygonSoup soup = read_polygon_soup(opt.input.mesh_path, false, true);
       scene = mesh_scene(soup.positions, soup.triangles);
       if (!soup.face_color.empty() && opt.color == "plain") {
         // A PLY with face colours (lrvd compute's cells): drawn in them, with a line where the

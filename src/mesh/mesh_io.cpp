@@ -955,13 +955,13 @@ void read_checked_soup(const std::string& path, std::vector<Point>& points, std:
 
 }  // namespace
 
-PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces) {
+PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces, bool face_colors) {
   std::vector<Point> points;
   std::vector<Polygon> polygons;
   read_checked_soup(path, points, polygons, allow_no_faces);
   // A PLY's face colours (lrvd compute's cells), read again from the file checked above.
   std::vector<CGAL::IO::Color> colors;
-  if (input_format(path) == Format::Ply) {
+  if (face_colors && input_format(path) == Format::Ply) {
     std::vector<Point> again;
     std::vector<Polygon> faces;
     if (!read_ply(path, again, faces, &colors) || faces.size() != polygons.size() || colors.size() != polygons.size())

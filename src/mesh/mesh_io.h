@@ -79,13 +79,14 @@ SurfaceMesh fill_small_holes(const SurfaceMesh& mesh, double max_length, RepairR
 struct PolygonSoup {
   std::vector<Vec3> positions;
   std::vector<std::array<int, 3>> triangles;
-  //! Per triangle, its face's colour in a PLY whose faces have uchar red, green, blue (such as
-  //! lrvd compute's cells); empty for other files.
+  //! With `face_colors`, per triangle, its face's colour in a PLY whose faces have uchar red,
+  //! green, blue (such as lrvd compute's cells); else, and for other files, empty.
   std::vector<std::array<unsigned char, 3>> face_color;
 };
 //! With `allow_no_faces`, vertices without a face are read too (a remesh at its topological minimum
-//! can come out so; its checks then fail), except from STL, which has no vertices of its own.
-PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces = false);
+//! can come out so; its checks then fail), except from STL, which has no vertices of its own. With
+//! `face_colors`, a PLY's face colours too (the file is parsed a second time for them).
+PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces = false, bool face_colors = false);
 
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
