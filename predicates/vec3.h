@@ -31,5 +31,10 @@ inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline double squared_distance(const Vec3& a, const Vec3& b) { return squared_norm(a - b); }
 inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
 inline bool is_finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+//! a / |a|, or the zero vector for the zero vector.
+inline Vec3 unit(const Vec3& a) {
+  const double n = norm(a);
+  return n > 0 ? a / n : Vec3{};
+}
 
 }  // namespace lrvd

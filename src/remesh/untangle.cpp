@@ -33,11 +33,6 @@ Box box_of(const std::vector<Vec3>& p, const Triangle& f) {
   return b;
 }
 
-Vec3 unit(const Vec3& v) {
-  const double l = norm(v);
-  return l > 0 ? v / l : Vec3{0, 0, 0};
-}
-
 }  // namespace
 
 InputCrossings::InputCrossings(const SurfaceMesh& mesh) : mesh_(&mesh), pairs_(intersecting_component_pairs(mesh)) {}

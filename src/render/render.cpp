@@ -32,11 +32,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxSamples = 24e6;
 constexpr double kMargin = 0.04;  // of the picture's size, on each side
 
-Vec3 unit(const Vec3& v) {
-  const double n = norm(v);
-  return n > 0 ? v / n : v;
-}
-
 void check_options(const RenderOptions& o) {
   auto fail = [](const std::string& what) { throw InputError("render: " + what); };
   if (o.width < 16 || o.width > 4096 || o.height < 16 || o.height > 4096)
@@ -220,10 +215,13 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   // sides lit, the back side greyed (the inside of an open surface).
   const Vec3 light = unit(view.toward + 0.4 * view.up + 0.25 * view.right);
   std::vector<std::array<float, 3>> shade(scene.triangles.size());
+  double area = 0;  // of the surface, for the spacings below
   for (std::size_t t = 0; t < scene.triangles.size(); ++t) {
     const auto& tri = scene.triangles[t];
     const Vec3& p0 = position[tri[0]];
-    const Vec3 n = unit(cross(position[tri[1]] - p0, position[tri[2]] - p0));
+    const Vec3 normal = cross(position[tri[1]] - p0, position[tri[2]] - p0);
+    area += 0.5 * norm(normal);
+    const Vec3 n = unit(normal);
     const double lambert = std::abs(dot(n, light));
     // A triangle without a normal (collinear corners) is drawn unshaded, in its full colour.
     const double intensity = squared_norm(n) > 0 ? 0.38 + 0.62 * lambert : 1.0;
@@ -236,9 +234,6 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
   }
 
   // Mean spacing on the picture, in pixels, of `things` that tile the surface.
-  double area = 0;
-  for (const auto& t : scene.triangles)
-    area += 0.5 * norm(cross(position[t[1]] - position[t[0]], position[t[2]] - position[t[0]]));
   auto spacing_px = [&](std::size_t things) { return std::sqrt(area / std::max<std::size_t>(things, 1)) * scale / ss; };
   // Lines between regions (or faces) a few pixels apart would cover them: below 4 (3) pixels
   // apart on average they are left out, and the colours alone tell the regions apart.
