@@ -91,10 +91,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
   bool colored = false;
   if (!cells) {
     if (repair) {
-      const LoadedMesh loaded = read_mesh(opt.input.mesh_path, opt.input.read);
-      require_workable_model(loaded.mesh, "lrvd");
-      print_repair(loaded.repair, opt.input.read);
-      scene = mesh_scene(loaded.mesh);
+      scene = mesh_scene(load_mesh(opt.input).mesh);
     } else {
       // As read, without the checks a diagram needs: a remesh that failed them is what one wants to see.
       const PolygonSoup soup = read_polygon_soup(opt.input.mesh_path, false, true);

@@ -213,13 +213,18 @@ std::vector<double> read_weights(const std::string& path) {
 
 }  // namespace
 
+LoadedMesh load_mesh(const InputOptions& opt) {
+  LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
+  // Before any point is located on it: distances of a model outside this range overflow or vanish.
+  require_workable_model(loaded.mesh, "lrvd");
+  print_repair(loaded.repair, opt.read);
+  return loaded;
+}
+
 Input load_input(const InputOptions& opt) {
   Input input;
-  input.loaded = read_mesh(opt.mesh_path, opt.read);
+  input.loaded = load_mesh(opt);
   input.repair_requested = opt.read.repair;
-  // Before any point is located on it: distances of a model outside this range overflow or vanish.
-  require_workable_model(input.loaded.mesh, "lrvd");
-  print_repair(input.loaded.repair, opt.read);
   PointFile points;
   if (!opt.points_path.empty()) points = read_xyz(opt.points_path);
   if (!opt.weights_path.empty()) {

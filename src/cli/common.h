@@ -64,6 +64,10 @@ struct Input {
   double points_max_move = 0;
 };
 
+//! Reads (and with the repair options repairs) the mesh, checks that doubles can measure it and
+//! prints what the repair changed. \throw InputError on any bad input.
+LoadedMesh load_mesh(const InputOptions& opt);
+
 //! Reads the mesh, refines it when the samples would crowd its triangles, and makes or reads the
 //! samples. \throw InputError on any bad input.
 Input load_input(const InputOptions& opt);
