@@ -9,7 +9,6 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
-#include "mesh/surface_mesh.h"
 #include "render/render.h"
 #include "voronoi/lrvd.h"
 
