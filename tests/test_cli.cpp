@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -790,6 +791,41 @@ TEST_CASE("An output is never written through a part file planted as a link to a
   REQUIRE(!std::filesystem::exists(std::filesystem::symlink_status(out + ".lrvd-part")));
   std::remove(victim.c_str());
   std::remove(out.c_str());
+}
+
+TEST_CASE("An output through a symbolic link replaces the file it leads to whole, and the link stays", "[cli]") {
+  namespace fs = std::filesystem;
+  const std::string folder = kOut + "link_target_dir", target = folder + "/target.png", link = kOut + "link_out.png";
+  fs::remove_all(folder);
+  fs::create_directory(folder);
+  fs::remove(link);
+  { std::ofstream(target) << "old picture"; }
+  fs::create_symlink(fs::path(folder).filename() / "target.png", link);  // relative to the link's folder
+  struct stat before {};
+  REQUIRE(::stat(target.c_str(), &before) == 0);
+  const Run r = run("render " + kData + "/elk.off -o " + link + " --size 64x64");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  REQUIRE(fs::is_symlink(link));
+  struct stat after {};
+  REQUIRE(::stat(target.c_str(), &after) == 0);
+  CHECK(after.st_ino != before.st_ino);  // replaced by its part file, not rewritten in place
+  std::ifstream in(target, std::ios::binary);
+  std::string head(8, '\0');
+  in.read(head.data(), 8);
+  CHECK(head == "\x89PNG\r\n\x1a\n");
+  CHECK_FALSE(fs::exists(fs::symlink_status(target + ".lrvd-part")));
+  CHECK_FALSE(fs::exists(fs::symlink_status(link + ".lrvd-part")));
+  // A link to a file not made yet: the file is made there, by the library's writers too.
+  const std::string dangling = kOut + "link_dangling.off", made = folder + "/made.off";
+  fs::remove(dangling);
+  fs::create_symlink(fs::path(folder).filename() / "made.off", dangling);
+  lrvd::write_mesh(dangling, lrvd::test::octahedron());
+  REQUIRE(fs::is_symlink(dangling));
+  CHECK(lrvd::read_mesh(made).mesh.triangle_count() == 8);
+  fs::remove(link);
+  fs::remove(dangling);
+  fs::remove_all(folder);
 }
 
 TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of each diagram", "[cli]") {

@@ -420,8 +420,9 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!std::ofstream(out.path, std::ios::app))
       throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
     if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
-    // The writer's part file beside it (mesh_writers.cpp): its longer name may pass the folder's limit.
-    const std::string part = out.path + ".lrvd-part";
+    // The writer's part file beside it, or beside the file a link there leads to (mesh_writers.cpp):
+    // its longer name may pass the folder's limit.
+    const std::string part = written_file(out.path) + ".lrvd-part";
     if (fs::is_directory(fs::symlink_status(part, error)))
       throw InputError(fmt::format("{} {}: a folder {} is where its part file (written first, then renamed) goes; "
                                    "remove or rename it",

@@ -116,8 +116,14 @@ struct PolygonMesh {
 void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
 
 //! Writes `text` to `path` whole or not at all (as every writer here: into a file beside it that
-//! replaces it when complete; a device or a pipe is written in place).
+//! replaces it when complete; a device or a pipe is written in place; through a symbolic link, the
+//! file the link leads to is replaced so, and the link stays).
 //! \throw InputError when the path cannot be written.
 void write_text_file(const std::string& path, std::string_view text);
+
+//! The file a writer replaces for `path`: `path` itself, or, when it is a symbolic link, the end
+//! of its chain of links (at most 40; relative targets taken from their link's folder), whether
+//! or not a file is there yet.
+std::string written_file(const std::string& path);
 
 }  // namespace lrvd

@@ -20,18 +20,18 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path + ": " + reason); }
 
-// A file written whole or not at all: the data go to `path`.lrvd-part beside it, which replaces
-// `path` when closed, so a run stopped while writing (or a full disk) leaves the old file or none,
-// never a truncated one. A device, a pipe or a symbolic link that is there already (-o /dev/null)
-// is written in place.
+// A file written whole or not at all: the data go to `file`.lrvd-part beside it, which replaces
+// `file` when closed, so a run stopped while writing (or a full disk) leaves the old file or none,
+// never a truncated one. `file` is `path`, or the file a symbolic link there leads to (the link
+// stays). A device or a pipe that is there already (-o /dev/null) is written in place.
 class OutputFile {
  public:
-  explicit OutputFile(const std::string& path) : path_(path) {
+  explicit OutputFile(const std::string& path) : path_(path), file_path_(written_file(path)) {
     namespace fs = std::filesystem;
     std::error_code error;
-    const fs::file_status status = fs::symlink_status(path, error);
+    const fs::file_status status = fs::symlink_status(file_path_, error);
     in_place_ = fs::exists(status) && !fs::is_regular_file(status);
-    part_ = in_place_ ? path : path + ".lrvd-part";
+    part_ = in_place_ ? path : file_path_ + ".lrvd-part";
     // A part file left by an earlier run goes first; made afresh and exclusively ("x"), the part
     // file is never a link planted there that would carry the data to another file (an input).
     if (!in_place_) std::remove(part_.c_str());
@@ -50,14 +50,14 @@ class OutputFile {
   void close() {
     const bool ok = std::fclose(file_) == 0;
     file_ = nullptr;
-    if (ok && (in_place_ || std::rename(part_.c_str(), path_.c_str()) == 0)) return;
+    if (ok && (in_place_ || std::rename(part_.c_str(), file_path_.c_str()) == 0)) return;
     const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
     if (!in_place_) std::remove(part_.c_str());
     fail(path_, reason);
   }
 
  private:
-  std::string path_, part_;
+  std::string path_, file_path_, part_;
   bool in_place_ = false;
   std::FILE* file_ = nullptr;
 };
@@ -80,6 +80,18 @@ void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
 }
 
 }  // namespace
+
+std::string written_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  fs::path p(path);
+  std::error_code error;
+  for (int hops = 0; hops < 40 && fs::is_symlink(p, error); ++hops) {
+    const fs::path target = fs::read_symlink(p, error);
+    if (error) break;
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  return p.string();
+}
 
 void write_text_file(const std::string& path, std::string_view text) {
   OutputFile file(path);
