@@ -828,6 +828,48 @@ TEST_CASE("An output through a symbolic link replaces the file it leads to whole
   fs::remove_all(folder);
 }
 
+TEST_CASE("Outputs: one new file under two spellings is refused, links that lead nowhere are named, permissions stay", "[cli]") {
+  namespace fs = std::filesystem;
+  const std::string dir = kOut + "spellings";
+  fs::remove_all(dir);
+  fs::create_directories(dir + "/s");
+  // Run from inside `dir`, so that a bare name is relative to it.
+  auto run_in = [&](const std::string& args) {
+    const std::string err_path = dir + "/stderr.txt";
+    const int raw = std::system(("cd " + dir + " && " + kCli + " " + args + " > /dev/null 2> " + err_path).c_str());
+    return Run{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, take_file(err_path), ""};
+  };
+  const std::string mps = "mps " + kData + "/elk.off --radius 0.05 -o n.xyz --report ";
+  for (const std::string& report : {std::string("./n.xyz"), dir + "/n.xyz", std::string("s/../n.xyz")}) {
+    const Run r = run_in(mps + report);
+    INFO(report << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("is also another output of this command") != std::string::npos);
+  }
+  fs::create_symlink("../n.xyz", dir + "/s/rep.json");  // the report through a link to the samples' file
+  const Run linked = run_in(mps + "s/rep.json");
+  CHECK(linked.status == 2);
+  CHECK(linked.err.find("is also another output of this command") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir + "/n.xyz"));
+  // A loop of links, and a link into a folder that is not there.
+  fs::create_symlink("b.png", dir + "/a.png");
+  fs::create_symlink("a.png", dir + "/b.png");
+  const Run loop = run_in("render " + kData + "/elk.off --size 32x32 -o a.png");
+  CHECK(loop.status == 2);
+  CHECK(loop.err.find("-o a.png is a loop of symbolic links") != std::string::npos);
+  fs::create_symlink("nowhere/x.png", dir + "/far.png");
+  const Run far = run_in("render " + kData + "/elk.off --size 32x32 -o far.png");
+  CHECK(far.status == 2);
+  CHECK(far.err.find("-o far.png is a symbolic link to nowhere/x.png, whose folder does not exist") != std::string::npos);
+  // A file replaced keeps its permissions.
+  { std::ofstream(dir + "/private.png") << "old"; }
+  fs::permissions(dir + "/private.png", fs::perms::owner_read | fs::perms::owner_write);
+  const Run kept = run_in("render " + kData + "/elk.off --size 32x32 -o private.png");
+  CHECK(kept.status == 0);
+  CHECK(fs::status(dir + "/private.png").permissions() == (fs::perms::owner_read | fs::perms::owner_write));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of each diagram", "[cli]") {
   const std::string dir = kOut + "stress_report_dir";
   std::filesystem::remove_all(dir);

@@ -363,8 +363,11 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
       if (error) break;
       p = target.is_absolute() ? target : p.parent_path() / target;
     }
-    const fs::path canonical = fs::weakly_canonical(p, error);
-    return error ? fs::absolute(p, error).lexically_normal() : canonical;
+    // Absolute first: weakly_canonical leaves a relative path to a file not made yet relative, and
+    // `n.xyz` would not equal `./n.xyz` or its absolute spelling.
+    const fs::path absolute = fs::absolute(p, error).lexically_normal();
+    const fs::path canonical = fs::weakly_canonical(absolute, error);
+    return error ? absolute : canonical;
   };
   const auto same_file = [&](const fs::path& a, const fs::path& b) {
     std::error_code error;
@@ -393,6 +396,15 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(folder, error))
       throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
+    // Through a symbolic link: the file the link leads to is the one written (mesh_writers.cpp).
+    const fs::path file(written_file(out.path));
+    if (fs::is_symlink(file, error))
+      throw InputError(fmt::format("{} {} is a loop of symbolic links, or a chain of more than 40", out.option,
+                                   out.path));
+    const fs::path file_folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    if (file != path && !fs::is_directory(file_folder, error))
+      throw InputError(fmt::format("{} {} is a symbolic link to {}, whose folder does not exist", out.option,
+                                   out.path, file.string()));
     for (const ReadFile& in : inputs)
       if (!in.path.empty() && same_file(path, in.path))
         throw InputError(fmt::format("{} {} is {}, which it would overwrite: write to another file", out.option,
@@ -422,7 +434,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
     // The writer's part file beside it, or beside the file a link there leads to (mesh_writers.cpp):
     // its longer name may pass the folder's limit.
-    const std::string part = written_file(out.path) + ".lrvd-part";
+    const std::string part = file.string() + ".lrvd-part";
     if (fs::is_directory(fs::symlink_status(part, error)))
       throw InputError(fmt::format("{} {}: a folder {} is where its part file (written first, then renamed) goes; "
                                    "remove or rename it",

@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "common/error.h"
+#include "mesh/mesh_io.h"
 
 namespace {
 
@@ -64,6 +65,7 @@ std::string printable(const std::string& message) {
 
 int main(int argc, char** argv) {
   using namespace lrvd::cli;
+  lrvd::remove_part_files_on_signals();  // an interrupted write leaves no part file beside the old one
   CLI::App app{"lrvd: exact localized restricted Voronoi diagrams (LRVD) of points on triangle meshes"};
   app.set_version_flag("--version", std::string("lrvd ") + LRVD_VERSION);
   app.require_subcommand(1);

@@ -116,10 +116,16 @@ struct PolygonMesh {
 void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
 
 //! Writes `text` to `path` whole or not at all (as every writer here: into a file beside it that
-//! replaces it when complete; a device or a pipe is written in place; through a symbolic link, the
-//! file the link leads to is replaced so, and the link stays).
+//! replaces it when complete, with the permissions of the file it replaces; a device or a pipe is
+//! written in place; through a symbolic link, the file the link leads to is replaced so, and the
+//! link stays).
 //! \throw InputError when the path cannot be written.
 void write_text_file(const std::string& path, std::string_view text);
+
+//! Installs handlers for SIGINT, SIGTERM and SIGHUP (unless the process ignores them) that remove
+//! the part files being written, then end the process as the signal would have: an interrupted
+//! write leaves the old file and nothing beside it. For programs (the CLI calls it first).
+void remove_part_files_on_signals();
 
 //! The file a writer replaces for `path`: `path` itself, or, when it is a symbolic link, the end
 //! of its chain of links (at most 40; relative targets taken from their link's folder), whether

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -17,6 +21,34 @@
 namespace lrvd {
 
 namespace {
+
+// The part files being written, in a table a signal handler can read (remove_part_files_on_signals).
+constexpr int kPartSlots = 4;
+constexpr std::size_t kPartPathMax = 4096;
+char part_paths[kPartSlots][kPartPathMax];
+volatile std::sig_atomic_t part_in_use[kPartSlots];
+
+int register_part(const std::string& path) {
+  if (path.size() >= kPartPathMax) return -1;
+  for (int k = 0; k < kPartSlots; ++k)
+    if (!part_in_use[k]) {
+      std::memcpy(part_paths[k], path.c_str(), path.size() + 1);
+      part_in_use[k] = 1;
+      return k;
+    }
+  return -1;
+}
+
+void unregister_part(int slot) {
+  if (slot >= 0) part_in_use[slot] = 0;
+}
+
+extern "C" void remove_parts_and_reraise(int signal_number) {
+  for (int k = 0; k < kPartSlots; ++k)
+    if (part_in_use[k]) ::unlink(part_paths[k]);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
 
 [[noreturn]] void fail(const std::string& path, const std::string& reason) { throw InputError(path + ": " + reason); }
 
@@ -37,11 +69,17 @@ class OutputFile {
     if (!in_place_) std::remove(part_.c_str());
     file_ = std::fopen(part_.c_str(), in_place_ ? "wb" : "wbx");
     if (!file_) fail(path, fmt::format("cannot be opened for writing ({})", std::strerror(errno)));
+    if (in_place_) return;
+    slot_ = register_part(part_);
+    // The file it replaces keeps its permissions (a private 0600 file does not become 0644).
+    struct stat old {};
+    if (::stat(file_path_.c_str(), &old) == 0 && S_ISREG(old.st_mode)) ::fchmod(::fileno(file_), old.st_mode & 07777);
   }
   ~OutputFile() {
     if (!file_) return;
     std::fclose(file_);
     if (!in_place_) std::remove(part_.c_str());
+    unregister_part(slot_);
   }
   void write(const char* data, std::size_t size) {
     if (std::fwrite(data, 1, size, file_) != size) fail(path_, "write failed");
@@ -50,14 +88,16 @@ class OutputFile {
   void close() {
     const bool ok = std::fclose(file_) == 0;
     file_ = nullptr;
-    if (ok && (in_place_ || std::rename(part_.c_str(), file_path_.c_str()) == 0)) return;
+    const bool replaced = ok && (in_place_ || std::rename(part_.c_str(), file_path_.c_str()) == 0);
     const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
-    if (!in_place_) std::remove(part_.c_str());
-    fail(path_, reason);
+    if (!replaced && !in_place_) std::remove(part_.c_str());
+    unregister_part(slot_);
+    if (!replaced) fail(path_, reason);
   }
 
  private:
   std::string path_, file_path_, part_;
+  int slot_ = -1;  // in the table of part files being written
   bool in_place_ = false;
   std::FILE* file_ = nullptr;
 };
@@ -80,6 +120,18 @@ void check_indices(const Face& face, std::size_t vertex_count, std::size_t f) {
 }
 
 }  // namespace
+
+void remove_part_files_on_signals() {
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    // A signal the process was started to ignore (a job under nohup) stays ignored.
+    if (::sigaction(signal_number, nullptr, &current) != 0 || current.sa_handler == SIG_IGN) continue;
+    struct sigaction action {};
+    action.sa_handler = remove_parts_and_reraise;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(signal_number, &action, nullptr);
+  }
+}
 
 std::string written_file(const std::string& path) {
   namespace fs = std::filesystem;
