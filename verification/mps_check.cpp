@@ -294,12 +294,25 @@ std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::u
   return pairs;
 }
 
-// Whether corner q (at p) of a polygon lies outside the ball of `site`: doubles unless the power
-// distance pd is within 1e-6·r² of zero (or `exact`), then rationals.
+// Whether corner q (at p) of a polygon lies outside the ball of `site`: decided on the interval
+// enclosure of q's exact position when its power distance's sign is certain there (unless
+// `exact`), else with rationals. pd (from the doubles) is for messages only: a corner computed
+// from nearly parallel bisectors (many samples on feature lines) can be far from its exact place,
+// and a test on the doubles alone called such samplings not maximal.
 bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, const SymbolicContext& ctx, bool exact,
                   std::int64_t& exact_tests, double& pd) {
   pd = squared_distance(p, site.p) - site.w;
-  if (!exact && std::abs(pd) > 1e-6 * site.w) return pd > 0;
+  if (!exact)
+    if (const std::optional<PositionEnclosure> e = enclose_position(q, ctx)) {
+      CGAL::Protect_FPU_rounding<true> upward;
+      verify_detail::Interval power = -verify_detail::Interval(site.w);
+      for (int c = 0; c < 3; ++c) {
+        const verify_detail::Interval d = e->box[c] - verify_detail::Interval(site.p[c]);
+        power += CGAL::square(d);
+      }
+      if (power.inf() > 0) return true;
+      if (power.sup() <= 0) return false;
+    }
   ++exact_tests;
   return CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) == CGAL::POSITIVE;
 }

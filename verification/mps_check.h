@@ -17,7 +17,7 @@ namespace lrvd {
 
 struct MpsVerifyOptions {
   //! Decide every polygon vertex of the maximality check with rational arithmetic; otherwise only
-  //! those whose double power distance lies within 1e-6·r² of zero (the rest by doubles).
+  //! those whose power distance's sign the interval enclosure of their position leaves open.
   bool exact_maximality = false;
 };
 
