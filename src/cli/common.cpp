@@ -358,11 +358,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
   const auto resolved = [](fs::path p) {
     std::error_code error;
     // A link to a file not made yet is followed too (weakly_canonical stops at it).
-    for (int hops = 0; hops < 40 && fs::is_symlink(p, error); ++hops) {
-      const fs::path target = fs::read_symlink(p, error);
-      if (error) break;
-      p = target.is_absolute() ? target : p.parent_path() / target;
-    }
+    p = written_file(p.string());
     // Absolute first: weakly_canonical leaves a relative path to a file not made yet relative, and
     // `n.xyz` would not equal `./n.xyz` or its absolute spelling.
     const fs::path absolute = fs::absolute(p, error).lexically_normal();

@@ -1,6 +1,7 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cerrno>
 #include <csignal>
@@ -23,6 +24,8 @@ namespace lrvd {
 namespace {
 
 // The part files being written, in a table a signal handler can read (remove_part_files_on_signals).
+// Files are written one at a time (by one thread); more than four at once, or paths too long for a
+// slot, are written as well, only not removed on a signal.
 constexpr int kPartSlots = 4;
 constexpr std::size_t kPartPathMax = 4096;
 char part_paths[kPartSlots][kPartPathMax];
@@ -33,6 +36,7 @@ int register_part(const std::string& path) {
   for (int k = 0; k < kPartSlots; ++k)
     if (!part_in_use[k]) {
       std::memcpy(part_paths[k], path.c_str(), path.size() + 1);
+      std::atomic_signal_fence(std::memory_order_seq_cst);  // the path is in place before the flag
       part_in_use[k] = 1;
       return k;
     }
