@@ -180,7 +180,7 @@ int run_mps(const MpsCommandOptions& opt) {
   // Closer pairs the disk condition does not cover (docs/mps.md, "Conflict rule"): said, not hidden.
   if (check.close_pairs_not_local > 0)
     std::printf("  %s of samples closer than their radius %s not local to each other (another component, "
-                "the other side of a sheet, or past a turn of the surface of more than 90 degrees): allowed\n",
+                "the other side of a sheet, or past a turn of the surface of 90 degrees or more): allowed\n",
                 counted(check.close_pairs_not_local, "pair", "pairs").c_str(),
                 check.close_pairs_not_local == 1 ? "is" : "are");
   if (check.polygons_outside_own_ball > 0)
