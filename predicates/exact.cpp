@@ -149,7 +149,23 @@ std::optional<PositionEnclosure> enclose_upward(const SymbolicVertex& q, const S
   return e;
 }
 
+// Encloses the squared distance from an enclosed position to c, the rounding mode upward.
+Interval squared_distance_upward(const PositionEnclosure& e, const V3<Interval>& c) {
+  return CGAL::square(e.box[0] - c.x) + CGAL::square(e.box[1] - c.y) + CGAL::square(e.box[2] - c.z);
+}
+
 }  // namespace
+
+std::optional<CGAL::Sign> enclosed_power_sign(const SymbolicVertex& q, const Site& s, const SymbolicContext& ctx) {
+  CGAL::Protect_FPU_rounding<true> upward;
+  const std::optional<PositionEnclosure> e = enclose_upward(q, ctx);
+  if (!e) return std::nullopt;
+  const Interval power = squared_distance_upward(*e, lift<Interval>(s.p)) - Interval(s.w);
+  if (power.inf() > 0) return CGAL::POSITIVE;
+  if (power.sup() < 0) return CGAL::NEGATIVE;
+  if (power.inf() == 0 && power.sup() == 0) return CGAL::ZERO;
+  return std::nullopt;
+}
 
 std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const SymbolicContext& ctx) {
   CGAL::Protect_FPU_rounding<true> upward;
@@ -163,7 +179,7 @@ void distance_bounds2(const SymbolicVertex* v, int count, const Vec3& center, co
     bound2[k] = std::numeric_limits<double>::infinity();
     const std::optional<PositionEnclosure> e = enclose_upward(v[k], ctx);
     if (!e) continue;
-    const Interval d2 = CGAL::square(e->box[0] - c.x) + CGAL::square(e->box[1] - c.y) + CGAL::square(e->box[2] - c.z);
+    const Interval d2 = squared_distance_upward(*e, c);
     if (std::isfinite(d2.sup())) bound2[k] = d2.sup();
   }
 }

@@ -40,6 +40,10 @@ std::optional<PositionEnclosure> enclose_position(const SymbolicVertex& q, const
 //! Exact power distance |q - p|^2 - w.
 CGAL::Gmpq exact_power_distance(const ExactPoint& q, const Site& s);
 
+//! The sign of the power distance of q's exact position to s, from q's interval enclosure; nullopt
+//! when the enclosure cannot tell it, and exact_power_distance(exact_position(q, ctx), s) decides.
+std::optional<CGAL::Sign> enclosed_power_sign(const SymbolicVertex& q, const Site& s, const SymbolicContext& ctx);
+
 //! Exact point from doubles.
 ExactPoint to_exact(const Vec3& p);
 

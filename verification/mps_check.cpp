@@ -303,16 +303,7 @@ bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, cons
                   std::int64_t& exact_tests, double& pd) {
   pd = squared_distance(p, site.p) - site.w;
   if (!exact)
-    if (const std::optional<PositionEnclosure> e = enclose_position(q, ctx)) {
-      CGAL::Protect_FPU_rounding<true> upward;
-      verify_detail::Interval power = -verify_detail::Interval(site.w);
-      for (int c = 0; c < 3; ++c) {
-        const verify_detail::Interval d = e->box[c] - verify_detail::Interval(site.p[c]);
-        power += CGAL::square(d);
-      }
-      if (power.inf() > 0) return true;
-      if (power.sup() <= 0) return false;
-    }
+    if (const std::optional<CGAL::Sign> sign = enclosed_power_sign(q, site, ctx)) return *sign == CGAL::POSITIVE;
   ++exact_tests;
   return CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) == CGAL::POSITIVE;
 }

@@ -427,7 +427,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     const bool existed = fs::exists(path, error);
     if (!std::ofstream(out.path, std::ios::app))
       throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
-    if (!existed) fs::remove(fs::is_symlink(path, error) ? resolved(path) : path, error);
+    if (!existed) fs::remove(file, error);
     // The writer's part file beside it, or beside the file a link there leads to (mesh_writers.cpp):
     // its longer name may pass the folder's limit.
     const std::string part = file.string() + ".lrvd-part";

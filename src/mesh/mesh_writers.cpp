@@ -93,10 +93,14 @@ class OutputFile {
     const bool ok = std::fclose(file_) == 0;
     file_ = nullptr;
     const bool replaced = ok && (in_place_ || std::rename(part_.c_str(), file_path_.c_str()) == 0);
-    const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
-    if (!replaced && !in_place_) std::remove(part_.c_str());
+    if (!replaced) {
+      // errno is the rename's, read before the removal sets its own.
+      const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
+      if (!in_place_) std::remove(part_.c_str());
+      unregister_part(slot_);
+      fail(path_, reason);
+    }
     unregister_part(slot_);
-    if (!replaced) fail(path_, reason);
   }
 
  private:
