@@ -3,7 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <map>
+#include <random>
 #include <string>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -11,6 +13,7 @@
 #include <CGAL/Surface_mesh.h>
 
 #include "mesh/mesh_io.h"
+#include "metrics/self_intersections.h"
 #include "test_meshes.h"
 #include "verification/remesh_check.h"
 
@@ -271,6 +274,50 @@ TEST_CASE("Self-intersections through a shared edge or a shared vertex are found
     q[6] = {0.25, 0.25, 0};  // lies inside triangle (0, 1, 2)
     REQUIRE(verify_remesh(input, q, {{0, 1, 2}, {6, 4, 7}}, -1).self_intersecting_pairs == 1);
   }
+}
+
+TEST_CASE("The crossing search round hubs finds what the search of every box pair finds") {
+  // Fans round a few vertices, in space and folded flat in one plane (shared edges, coplanar
+  // overlaps), and triangles without a hub among them: with every vertex of 2, 3, 4 or 8 tested
+  // triangles a hub, the pairs are those of the search that meets every pair of boxes.
+  std::mt19937 rng(7);
+  for (int round = 0; round < 30; ++round) {
+    const bool flat = round % 3 == 0;
+    std::uniform_int_distribution<int> coordinate(-6, 6);
+    std::vector<Vec3> p;
+    for (int i = 0; i < 40; ++i)
+      p.push_back({double(coordinate(rng)), double(coordinate(rng)), flat ? 0.0 : double(coordinate(rng))});
+    std::uniform_int_distribution<int> any(0, 39), hub(0, 2);
+    std::vector<Triangle> t;
+    for (int i = 0; i < 120; ++i) {
+      Triangle f = {i % 2 ? hub(rng) : any(rng), any(rng), any(rng)};
+      if (i % 5 == 0) f[1] = hub(rng);  // now and then a triangle with two hubs
+      t.push_back(f);
+    }
+    const std::vector<char> proper = proper_triangles(p, t);
+    const auto every_pair = find_self_intersections(p, t, proper, std::numeric_limits<int>::max());
+    REQUIRE_FALSE(every_pair.empty());
+    for (int valence : {2, 3, 4, 8}) {
+      INFO("round " << round << ", hubs of " << valence << " triangles");
+      REQUIRE(find_self_intersections(p, t, proper, valence) == every_pair);
+    }
+  }
+}
+
+TEST_CASE("A fan of 4000 triangles is searched for crossings round its hub and not pair by pair") {
+  // A disk of 4,000 wedges round its centre and one wedge folded back over its neighbours: the
+  // folded wedge crosses the wedges it lies on, and the search finds exactly those.
+  const int n = 4000;
+  std::vector<Vec3> p = {{0, 0, 0}};
+  for (int i = 0; i < n; ++i) p.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+  std::vector<Triangle> t;
+  for (int i = 0; i < n; ++i) t.push_back({0, 1 + i, 1 + (i + 1) % n});
+  REQUIRE(find_self_intersections(p, t).empty());
+  p.push_back({std::cos(2 * M_PI * 2.5 / n), std::sin(2 * M_PI * 2.5 / n), 0});  // over wedges 1-2
+  t.push_back({0, 1 + 1, n + 1});
+  const auto pairs = find_self_intersections(p, t);
+  REQUIRE(pairs == find_self_intersections(p, t, {}, std::numeric_limits<int>::max()));
+  REQUIRE(pairs == std::vector<std::pair<int, int>>{{1, n}, {2, n}});
 }
 
 TEST_CASE("Out-of-range indices and repeated vertices are reported, not thrown") {

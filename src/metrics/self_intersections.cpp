@@ -17,17 +17,20 @@ namespace {
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Point = Kernel::Point_3;
 
-//! A triangle's box; its id (the triangle index) orders the reported pairs.
+//! The box of a triangle, or of an edge of it; its id, which the box searches use to break ties,
+//! is the triangle's index for a triangle's box and one past the triangles for an edge's.
 class TriangleBox : public CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE> {
  public:
   using Base = CGAL::Box_intersection_d::Box_d<double, 3, CGAL::Box_intersection_d::ID_NONE>;
   using ID = std::size_t;
-  TriangleBox(const CGAL::Bbox_3& box, int triangle) : Base(box), triangle_(triangle) {}
-  ID id() const { return static_cast<ID>(triangle_); }
+  TriangleBox(const CGAL::Bbox_3& box, int triangle) : Base(box), triangle_(triangle), id_(triangle) {}
+  TriangleBox(const CGAL::Bbox_3& box, int triangle, ID id) : Base(box), triangle_(triangle), id_(id) {}
+  ID id() const { return id_; }
   int triangle() const { return triangle_; }
 
  private:
   int triangle_;
+  ID id_;
 };
 
 //! Whether two non-degenerate triangles meet anywhere but in the vertices / edge they share.
@@ -96,27 +99,108 @@ std::vector<char> proper_triangles(const std::vector<Vec3>& positions, const std
   return proper;
 }
 
+namespace {
+
+using Boxes = std::vector<TriangleBox>;
+
+CGAL::Bbox_3 triangle_bbox(const std::vector<Point>& points, const Triangle& f) {
+  return points[f[0]].bbox() + points[f[1]].bbox() + points[f[2]].bbox();
+}
+
+// Decides each candidate pair as a box search meets it and keeps the crossing ones: only those are
+// stored (round a vertex of high valence the candidates number in the hundreds of millions).
+struct PairTest {
+  const std::vector<Triangle>& triangles;
+  const std::vector<Point>& points;
+  std::vector<std::pair<int, int>>& pairs;
+  void operator()(const TriangleBox& a, const TriangleBox& b) const {
+    if (a.triangle() == b.triangle()) return;  // an edge's box and its own triangle's
+    const int s = std::min(a.triangle(), b.triangle()), t = std::max(a.triangle(), b.triangle());
+    if (intersect_illegitimately(triangles[s], triangles[t], points)) pairs.emplace_back(s, t);
+  }
+};
+
+// The crossing pairs among the triangles round hubs (vertices of at least `hub_valence` tested
+// triangles) without meeting every pair of a hub's fan, whose boxes all hold the hub:
+// - a pair of one fan shares its hub, and crosses only if the edge of one opposite the hub meets
+//   the other (sharing the hub alone), or the two share that edge's end (an edge from the hub,
+//   folded over in one plane): either way that edge's box, which does not hold the hub, meets the
+//   other's box, so candidates come from those edges against the fan's triangles;
+// - a triangle with a hub is put in one fan (its first hub's); pairs of triangles in different fans
+//   are met by one bipartite search per bit of the fan numbers (two fans differ in some bit), and a
+//   triangle without a hub meets the fans' triangles in one more bipartite search;
+// - triangles without a hub meet each other in the usual search.
+// Each candidate gets the pair test; a pair met more than once is reported once.
+void find_round_hubs(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
+                     const std::vector<char>& testable, const std::vector<int>& valence, int hub_valence,
+                     const PairTest& test) {
+  // The fan of each triangle with a hub: the number (from 0) of its first hub by index.
+  std::vector<int> fan_of_vertex(points.size(), -1);
+  int fans = 0;
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (valence[v] >= hub_valence) fan_of_vertex[v] = fans++;
+  Boxes plain;
+  std::vector<Boxes> fan(fans);
+  std::vector<int> hub(fans);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (fan_of_vertex[v] >= 0) hub[fan_of_vertex[v]] = static_cast<int>(v);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    if (!testable.empty() && !testable[t]) continue;
+    const Triangle& f = triangles[t];
+    int first = -1;
+    for (int v : f)
+      if (fan_of_vertex[v] >= 0 && (first < 0 || v < hub[first])) first = fan_of_vertex[v];
+    (first < 0 ? plain : fan[first]).emplace_back(triangle_bbox(points, f), static_cast<int>(t));
+  }
+  CGAL::box_self_intersection_d(plain.begin(), plain.end(), test);
+  Boxes with_hub;  // the searches reorder their ranges: the fans' boxes are copied
+  for (const Boxes& b : fan) with_hub.insert(with_hub.end(), b.begin(), b.end());
+  CGAL::box_intersection_d(with_hub.begin(), with_hub.end(), plain.begin(), plain.end(), test);
+  for (int bit = 1; bit < fans; bit <<= 1) {
+    Boxes zero, one;
+    for (int k = 0; k < fans; ++k) (k & bit ? one : zero).insert((k & bit ? one : zero).end(), fan[k].begin(), fan[k].end());
+    CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), test);
+  }
+  for (int k = 0; k < fans; ++k) {
+    // The edges of each triangle that do not end at the hub, as boxes named by their triangle.
+    Boxes edges;
+    for (const TriangleBox& box : fan[k]) {
+      const Triangle& f = triangles[box.triangle()];
+      for (int e = 0; e < 3; ++e) {
+        const int a = f[e], b = f[(e + 1) % 3];
+        if (a != hub[k] && b != hub[k])
+          edges.emplace_back(points[a].bbox() + points[b].bbox(), box.triangle(), triangles.size() + edges.size());
+      }
+    }
+    Boxes own = fan[k];
+    CGAL::box_intersection_d(edges.begin(), edges.end(), own.begin(), own.end(), test);
+  }
+}
+
+}  // namespace
+
 std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
                                                          const std::vector<Triangle>& triangles,
-                                                         const std::vector<char>& testable) {
+                                                         const std::vector<char>& testable, int hub_valence) {
   std::vector<Point> points;
   points.reserve(positions.size());
   for (const Vec3& v : positions) points.emplace_back(v.x, v.y, v.z);
-  std::vector<TriangleBox> boxes;
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    if (testable.empty() || testable[t]) {
-      const Triangle& f = triangles[t];
-      boxes.emplace_back(points[f[0]].bbox() + points[f[1]].bbox() + points[f[2]].bbox(), static_cast<int>(t));
-    }
-  // Each candidate is decided as the box search meets it, and only the crossing pairs are kept: the
-  // triangles around a vertex of high valence all have overlapping boxes (a fan of 20,000 gives
-  // 2 * 10^8 candidates; stored and sorted, `lrvd quality` of it took 2.1 GB and 110 s, now 39 MB
-  // and 81 s). The search is still quadratic there.
   std::vector<std::pair<int, int>> pairs;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
-    const int s = std::min(a.triangle(), b.triangle()), t = std::max(a.triangle(), b.triangle());
-    if (intersect_illegitimately(triangles[s], triangles[t], points)) pairs.emplace_back(s, t);
-  });
+  const PairTest test{triangles, points, pairs};
+  std::vector<int> valence(points.size(), 0);
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable.empty() || testable[t])
+      for (int v : triangles[t]) ++valence[v];
+  if (std::any_of(valence.begin(), valence.end(), [&](int k) { return k >= hub_valence; })) {
+    find_round_hubs(points, triangles, testable, valence, hub_valence, test);
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    return pairs;
+  }
+  Boxes boxes;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (testable.empty() || testable[t]) boxes.emplace_back(triangle_bbox(points, triangles[t]), static_cast<int>(t));
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), test);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }

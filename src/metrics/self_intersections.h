@@ -8,12 +8,19 @@
 
 namespace lrvd {
 
+//! Vertices of at least this many tested triangles are hubs to find_self_intersections.
+inline constexpr int kCrossingHubValence = 64;
+
 //! Pairs (s, t), s < t, of triangles that meet anywhere but in the vertices or the edge they share,
 //! in increasing order. Only triangles with testable[t] != 0 take part (all when it is empty);
 //! \pre the tested triangles have three distinct, non-collinear corners.
+//! Round a vertex of `hub_valence` or more tested triangles (a hub: a fan's centre), whose boxes all
+//! hold it, the search meets only the pairs whose edges away from the hub come near each other;
+//! the answer does not depend on `hub_valence`, which tests vary.
 std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
                                                          const std::vector<Triangle>& triangles,
-                                                         const std::vector<char>& testable = {});
+                                                         const std::vector<char>& testable = {},
+                                                         int hub_valence = kCrossingHubValence);
 
 //! Whether triangles f and g meet anywhere but in the vertices or the edge they share: the pair
 //! test of find_self_intersections (exact). \pre f and g have three distinct, non-collinear corners.

@@ -200,7 +200,24 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
     const double inv = 1 / area;
     for (int y = y0; y <= y1; ++y) {
       const double py = y + 0.5;
-      for (int x = x0; x <= x1; ++x) {
+      // The row's samples inside the triangle form one run: each barycentric weight is linear in
+      // px, A + B px, and the run is where all three are non-negative. The run is widened by a
+      // sample each way and the samples in it are tested as before, so a sliver costs its height
+      // and its area, not its bounding box.
+      const double a_a = (b.x * (c.y - py) - (b.y - py) * c.x) * inv, b_a = (b.y - c.y) * inv;
+      const double a_b = (c.x * (a.y - py) - (c.y - py) * a.x) * inv, b_b = (c.y - a.y) * inv;
+      double lo = x0, hi = x1 + 1.0;  // in px
+      for (const auto& [offset, slope] : {std::pair{a_a, b_a}, std::pair{a_b, b_b}, std::pair{1 - a_a - a_b, -b_a - b_b}}) {
+        if (slope > 0) lo = std::max(lo, -offset / slope);
+        if (slope < 0) hi = std::min(hi, -offset / slope);
+      }
+      int from = x0, to = x1;
+      if (std::isfinite(lo) && std::isfinite(hi)) {  // else every sample of the box's row is tested
+        if (lo > hi + 2) continue;
+        from = std::max(x0, static_cast<int>(std::floor(std::max(lo, static_cast<double>(x0)) - 0.5)) - 1);
+        to = std::min(x1, static_cast<int>(std::ceil(std::min(hi, x1 + 1.0) - 0.5)) + 1);
+      }
+      for (int x = from; x <= to; ++x) {
         const double px = x + 0.5;
         const double wa = ((b.x - px) * (c.y - py) - (b.y - py) * (c.x - px)) * inv;
         const double wb = ((c.x - px) * (a.y - py) - (c.y - py) * (a.x - px)) * inv;
