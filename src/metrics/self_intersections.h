@@ -15,8 +15,9 @@ inline constexpr int kCrossingHubValence = 64;
 //! in increasing order. Only triangles with testable[t] != 0 take part (all when it is empty);
 //! \pre the tested triangles have three distinct, non-collinear corners.
 //! Round a vertex of `hub_valence` or more tested triangles (a hub: a fan's centre), whose boxes all
-//! hold it, the search meets only the pairs whose edges away from the hub come near each other;
-//! the answer does not depend on `hub_valence`, which tests vary.
+//! hold it, the search meets a pair of its triangles only when the edge of one away from the hub
+//! comes near the other (not every pair); the answer does not depend on `hub_valence`, which tests
+//! vary.
 std::vector<std::pair<int, int>> find_self_intersections(const std::vector<Vec3>& positions,
                                                          const std::vector<Triangle>& triangles,
                                                          const std::vector<char>& testable = {},
