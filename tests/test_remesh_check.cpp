@@ -280,18 +280,25 @@ TEST_CASE("The crossing search round hubs finds what the search of every box pai
   // Fans round a few vertices, in space and folded flat in one plane (shared edges, coplanar
   // overlaps), and triangles without a hub among them: with every vertex of 2, 3, 4 or 8 tested
   // triangles a hub, the pairs are those of the search that meets every pair of boxes.
+  // Every other round the points are in four clusters far apart, each triangle in one: few fans
+  // meet, and the fans are searched two by two; otherwise most do, and the search goes by bits.
   std::mt19937 rng(7);
-  for (int round = 0; round < 30; ++round) {
-    const bool flat = round % 3 == 0;
+  for (int round = 0; round < 40; ++round) {
+    const bool flat = round % 3 == 0, clusters = round % 2 == 1;
     std::uniform_int_distribution<int> coordinate(-6, 6);
     std::vector<Vec3> p;
     for (int i = 0; i < 40; ++i)
-      p.push_back({double(coordinate(rng)), double(coordinate(rng)), flat ? 0.0 : double(coordinate(rng))});
-    std::uniform_int_distribution<int> any(0, 39), hub(0, 2);
+      p.push_back({double(coordinate(rng)) + (clusters ? 100.0 * (i % 4) : 0.0), double(coordinate(rng)),
+                   flat ? 0.0 : double(coordinate(rng))});
+    // A point of cluster c (all points when there are no clusters); points 0-7 are the hubs.
+    std::uniform_int_distribution<int> cluster(0, 3), member(0, 9), hub(0, 1);
+    auto any = [&](int c) { return clusters ? 4 * member(rng) + c : 4 * member(rng) + cluster(rng); };
+    auto centre = [&](int c) { return clusters ? 4 * hub(rng) + c : 4 * hub(rng) + cluster(rng); };
     std::vector<Triangle> t;
-    for (int i = 0; i < 120; ++i) {
-      Triangle f = {i % 2 ? hub(rng) : any(rng), any(rng), any(rng)};
-      if (i % 5 == 0) f[1] = hub(rng);  // now and then a triangle with two hubs
+    for (int i = 0; i < 160; ++i) {
+      const int c = cluster(rng);
+      Triangle f = {i % 2 ? centre(c) : any(c), any(c), any(c)};
+      if (i % 5 == 0) f[1] = centre(c);  // now and then a triangle with two hubs
       t.push_back(f);
     }
     const std::vector<char> proper = proper_triangles(p, t);

@@ -127,8 +127,9 @@ struct PairTest {
 //   folded over in one plane): either way that edge's box, which does not hold the hub, meets the
 //   other's box, so candidates come from those edges against the fan's triangles;
 // - a triangle with a hub is put in one fan (its first hub's); pairs of triangles in different fans
-//   are met by one bipartite search per bit of the fan numbers (two fans differ in some bit), and a
-//   triangle without a hub meets the fans' triangles in one more bipartite search;
+//   are met by a bipartite search for each two fans whose boxes meet or, when those are many, one
+//   per bit of the fan numbers (two fans differ in some bit); a triangle without a hub meets the
+//   fans' triangles in one more bipartite search;
 // - triangles without a hub meet each other in the usual search.
 // Each candidate gets the pair test; a pair met more than once is reported once.
 void find_round_hubs(const std::vector<Point>& points, const std::vector<Triangle>& triangles,
@@ -156,10 +157,30 @@ void find_round_hubs(const std::vector<Point>& points, const std::vector<Triangl
   Boxes with_hub;  // the searches reorder their ranges: the fans' boxes are copied
   for (const Boxes& b : fan) with_hub.insert(with_hub.end(), b.begin(), b.end());
   CGAL::box_intersection_d(with_hub.begin(), with_hub.end(), plain.begin(), plain.end(), test);
-  for (int bit = 1; bit < fans; bit <<= 1) {
-    Boxes zero, one;
-    for (int k = 0; k < fans; ++k) (k & bit ? one : zero).insert((k & bit ? one : zero).end(), fan[k].begin(), fan[k].end());
-    CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), test);
+  // Fans whose boxes meet: each such pair's triangles are searched against each other; when most
+  // fans meet most others, one search per bit of the fan numbers instead.
+  Boxes fan_boxes;
+  for (int k = 0; k < fans; ++k) {
+    if (fan[k].empty()) continue;  // a hub whose triangles all have a hub of lower index
+    CGAL::Bbox_3 box = fan[k].front().bbox();
+    for (const TriangleBox& t : fan[k]) box += t.bbox();
+    fan_boxes.emplace_back(box, k);
+  }
+  std::vector<std::pair<int, int>> meeting;
+  CGAL::box_self_intersection_d(fan_boxes.begin(), fan_boxes.end(), [&](const TriangleBox& a, const TriangleBox& b) {
+    meeting.emplace_back(a.triangle(), b.triangle());
+  });
+  if (meeting.size() <= 4 * static_cast<std::size_t>(fans)) {
+    for (const auto& [k, l] : meeting) {
+      Boxes one = fan[k], other = fan[l];
+      CGAL::box_intersection_d(one.begin(), one.end(), other.begin(), other.end(), test);
+    }
+  } else {
+    for (int bit = 1; bit < fans; bit <<= 1) {
+      Boxes zero, one;
+      for (int k = 0; k < fans; ++k) (k & bit ? one : zero).insert((k & bit ? one : zero).end(), fan[k].begin(), fan[k].end());
+      CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), test);
+    }
   }
   for (int k = 0; k < fans; ++k) {
     // The edges of each triangle that do not end at the hub, as boxes named by their triangle.
