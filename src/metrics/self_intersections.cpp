@@ -176,10 +176,17 @@ void find_round_hubs(const std::vector<Point>& points, const std::vector<Triangl
       CGAL::box_intersection_d(one.begin(), one.end(), other.begin(), other.end(), test);
     }
   } else {
+    // Two fans differ in several bits: their pairs are tested at the lowest only (tested once).
+    std::vector<int> fan_of_triangle(triangles.size(), -1);
+    for (int k = 0; k < fans; ++k)
+      for (const TriangleBox& t : fan[k]) fan_of_triangle[t.triangle()] = k;
     for (int bit = 1; bit < fans; bit <<= 1) {
       Boxes zero, one;
       for (int k = 0; k < fans; ++k) (k & bit ? one : zero).insert((k & bit ? one : zero).end(), fan[k].begin(), fan[k].end());
-      CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), test);
+      CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), [&](const TriangleBox& a, const TriangleBox& b) {
+        const int differ = fan_of_triangle[a.triangle()] ^ fan_of_triangle[b.triangle()];
+        if ((differ & -differ) == bit) test(a, b);
+      });
     }
   }
   for (int k = 0; k < fans; ++k) {
