@@ -312,8 +312,9 @@ TEST_CASE("The crossing search round hubs finds what the search of every box pai
 }
 
 TEST_CASE("A fan of 4000 triangles is searched for crossings round its hub and not pair by pair") {
-  // A disk of 4,000 wedges round its centre and one wedge folded back over its neighbours: the
-  // folded wedge crosses the wedges it lies on, and the search finds exactly those.
+  // A disk of 4,000 wedges round its centre, then one more wedge laid over one and a half of them
+  // (sharing an edge with the first): it crosses the two it lies on, and the search finds exactly
+  // those.
   const int n = 4000;
   std::vector<Vec3> p = {{0, 0, 0}};
   for (int i = 0; i < n; ++i) p.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
