@@ -182,7 +182,10 @@ void find_round_hubs(const std::vector<Point>& points, const std::vector<Triangl
       for (const TriangleBox& t : fan[k]) fan_of_triangle[t.triangle()] = k;
     for (int bit = 1; bit < fans; bit <<= 1) {
       Boxes zero, one;
-      for (int k = 0; k < fans; ++k) (k & bit ? one : zero).insert((k & bit ? one : zero).end(), fan[k].begin(), fan[k].end());
+      for (int k = 0; k < fans; ++k) {
+        Boxes& side = k & bit ? one : zero;
+        side.insert(side.end(), fan[k].begin(), fan[k].end());
+      }
       CGAL::box_intersection_d(zero.begin(), zero.end(), one.begin(), one.end(), [&](const TriangleBox& a, const TriangleBox& b) {
         const int differ = fan_of_triangle[a.triangle()] ^ fan_of_triangle[b.triangle()];
         if ((differ & -differ) == bit) test(a, b);

@@ -206,7 +206,7 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       // and its area, not its bounding box.
       const double a_a = (b.x * (c.y - py) - (b.y - py) * c.x) * inv, b_a = (b.y - c.y) * inv;
       const double a_b = (c.x * (a.y - py) - (c.y - py) * a.x) * inv, b_b = (c.y - a.y) * inv;
-      double lo = x0, hi = x1 + 1.0;  // in px
+      double lo = x0, hi = x1 + 1.0;  // in px, within the box's row
       for (const auto& [offset, slope] : {std::pair{a_a, b_a}, std::pair{a_b, b_b}, std::pair{1 - a_a - a_b, -b_a - b_b}}) {
         if (slope > 0) lo = std::max(lo, -offset / slope);
         if (slope < 0) hi = std::min(hi, -offset / slope);
@@ -214,8 +214,8 @@ Image render(const RenderScene& scene, const RenderOptions& options) {
       int from = x0, to = x1;
       if (std::isfinite(lo) && std::isfinite(hi)) {  // else every sample of the box's row is tested
         if (lo > hi + 2) continue;
-        from = std::max(x0, static_cast<int>(std::floor(std::max(lo, static_cast<double>(x0)) - 0.5)) - 1);
-        to = std::min(x1, static_cast<int>(std::ceil(std::min(hi, x1 + 1.0) - 0.5)) + 1);
+        from = std::max(x0, static_cast<int>(std::floor(lo - 0.5)) - 1);
+        to = std::min(x1, static_cast<int>(std::ceil(hi - 0.5)) + 1);
       }
       for (int x = from; x <= to; ++x) {
         const double px = x + 0.5;
