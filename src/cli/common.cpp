@@ -405,8 +405,12 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
       if (!in.path.empty() && same_file(path, in.path))
         throw InputError(fmt::format("{} {} is {}, which it would overwrite: write to another file", out.option,
                                      out.path, in.what));
+    // A character device (/dev/null, a terminal) takes each write as it comes, at no offset: two
+    // outputs there, or an output and the console lines, cannot overwrite each other
+    // (`-o /dev/null --report /dev/null > /dev/null` keeps nothing, as asked).
+    const bool device = fs::is_character_file(path, error);
     for (const fs::path& other : seen)
-      if (same_file(path, other))
+      if (!device && same_file(path, other))
         throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
     seen.push_back(path);
     // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
@@ -414,7 +418,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
     // The console's own file (--report /dev/stdout with stdout sent to a file): the report and
     // the console lines would overwrite each other.
     struct stat target {}, console {};
-    if (::stat(out.path.c_str(), &target) == 0)
+    if (!device && ::stat(out.path.c_str(), &target) == 0)
       for (int fd : {STDOUT_FILENO, STDERR_FILENO})
         if (::fstat(fd, &console) == 0 && console.st_dev == target.st_dev && console.st_ino == target.st_ino)
           throw InputError(fmt::format("{} {} is where lrvd's console lines go too; write it to a file of its own",
