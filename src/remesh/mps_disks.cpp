@@ -15,13 +15,6 @@ bool inside_disk_exact(const Vec3& p, const Vec3& c, double w) {
   return CGAL::sign(exact_power_distance(to_exact(p), Site{c, w, 0})) == CGAL::NEGATIVE;
 }
 
-bool ball_meets_triangle(const SurfaceMesh& mesh, int t, const Vec3& p, double w) {
-  const Triangle& tri = mesh.triangle(t);
-  for (int c = 0; c < 3; ++c)
-    if (squared_distance(p, mesh.position(tri[c])) < w) return true;  // a corner inside decides
-  return triangle_squared_distance(mesh, t, p) < w;
-}
-
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p) {
   const Triangle& tri = mesh.triangle(t);
   const ClosestPoint c = closest_point_on_triangle(p, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
@@ -106,7 +99,7 @@ inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   const TriangleInfo& info = triangles_info_[t];
   const double reach = r + info.radius;
   if (squared_distance(p, Vec3{info.center[0], info.center[1], info.center[2]}) > reach * reach * (1 + 1e-9)) return false;
-  // ball_meets_triangle, its corner test inlined (it decides most calls).
+  // The ball meets t: a corner inside decides at once (most calls), else t's closest point.
   const Triangle& tri = mesh_.triangle(t);
   for (int c = 0; c < 3; ++c)
     if (squared_distance(p, mesh_.position(tri[c])) < w) return true;

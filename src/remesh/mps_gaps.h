@@ -122,7 +122,8 @@ class DiskIndex {
   }
   template <class F>
   bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
-  //! ball_meets_triangle(t, p, w), r = √w, rejecting balls far from t's bounding sphere at once.
+  //! The ball (p, w), r = √w, meets triangle t (triangle_squared_distance < w), balls far from t's
+  //! bounding sphere rejected at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
   //! A disk's centre and weight together: the disk tests read both.
@@ -148,9 +149,6 @@ class DiskIndex {
 
 //! Squared distance from p to triangle t of the mesh.
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
-//! The ball (p, w) meets triangle t: triangle_squared_distance(mesh, t, p) < w, with a corner
-//! inside the ball deciding at once.
-bool ball_meets_triangle(const SurfaceMesh& mesh, int t, const Vec3& p, double w);
 
 //! Barycentric coordinates of p (a point of the plane of triangle t) in t, clamped to the triangle.
 Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
