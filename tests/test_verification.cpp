@@ -645,3 +645,288 @@ TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {
     CHECK(names(v.disjoint, "names no point"));
   }
 }
+
+namespace {
+
+// The sample whose triangle also holds another cell's polygon, after swapping the cells of its own
+// polygon and that one (the break of "Mutation: swapped cells in a sample's triangle ..."); -1 if none.
+int swap_cells_in_a_sample_triangle(Case& c) {
+  for (int i = 0; i < c.samples.size(); ++i) {
+    int own = -1, other = -1;
+    for (int p : polygons_of(c.diagram, c.samples.triangles[i]))
+      (c.diagram.polygons[p].cell == i ? own : other) = p;
+    if (own < 0 || other < 0) continue;
+    std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
+    return i;
+  }
+  return -1;
+}
+
+// A triangle holding one polygon relabelled to a cell absent from it and from its three
+// neighbours (the break of "Mutation: a far-away polygon relabelled ..."): {triangle, cell}, or
+// {-1, -1} if there is none.
+std::pair<int, int> relabel_a_far_polygon(Case& c) {
+  const Diagram& d = c.diagram;
+  for (int t = 0; t < c.mesh.triangle_count(); ++t) {
+    if (polygons_of(d, t).size() != 1) continue;
+    for (int k = 0; k < d.sample_count; ++k) {
+      bool absent = !cell_in_triangle(d, t, k);
+      for (int e = 0; e < 3; ++e) absent = absent && !cell_in_triangle(d, c.mesh.neighbor(t, e), k);
+      if (!absent) continue;
+      c.diagram.polygons[d.triangle_offsets[t]].cell = k;
+      return {t, k};
+    }
+  }
+  return {-1, -1};
+}
+
+}  // namespace
+
+TEST_CASE("Without exact geometry a valid LRVD passes and a sample outside its cell or a stray piece still fails",
+          "[verification][mutation]") {
+  // VerifyOptions::exact_geometry = false runs (1), (2) and (6) only; the triangle pass still
+  // decides which polygons are flat, which (1) and (2) read.
+  VerifyOptions fast;
+  fast.exact_geometry = false;
+  {
+    const Case c = valid_lrvd();
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram, fast);
+    INFO(v.summary());
+    CHECK(v.passed);
+    for (const PropertyResult* p : {&v.sample_in_cell, &v.connected, &v.equidistant, &v.disjoint, &v.coverage,
+                                    &v.conforming})
+      CHECK(p->passed);
+    CHECK(v.sample_in_cell.checked == c.samples.size());
+    CHECK(v.connected.checked == c.samples.size());
+    CHECK(v.conforming.checked == c.mesh.triangle_count() * 3 / 2);  // a closed mesh: every edge is shared
+    CHECK(v.equidistant.checked == 0);  // (3) does not run
+    CHECK(v.cells_with_multiple_components == 0);
+    CHECK(verify_diagram(c.mesh, c.samples, c.diagram).equidistant.checked > 0);  // it does by default
+  }
+  {
+    Case c = valid_lrvd();
+    const int sample = swap_cells_in_a_sample_triangle(c);
+    REQUIRE(sample >= 0);
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram, fast);
+    require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: outside its cell's polygon", sample));
+  }
+  {
+    Case c = valid_lrvd();
+    const auto [target, cell] = relabel_a_far_polygon(c);
+    REQUIRE(target >= 0);
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram, fast);
+    require_only_broken(v, v.connected, fmt::format("cell {}: 2 pieces, stray piece in triangle {}", cell, target));
+    CHECK(v.cells_with_multiple_components == 1);
+  }
+}
+
+TEST_CASE("A sample on a mesh edge whose power bisector runs along that edge lies in its zero-area polygon",
+          "[verification][degenerate]") {
+  // Unit square, t0 = (0, 1, 3) below the diagonal y = x and t1 = (0, 3, 2) above it. Sample a on
+  // the diagonal at (1/2, 1/2) with weight 0; sample b at (3/4, 1/4) or (1/4, 3/4) with weight 1/8:
+  // their power bisector is the diagonal itself, through x_a, and b's side holds a whole triangle.
+  // There the perturbation leaves cell a a sliver of zero area along the diagonal (when a is
+  // sample 0), or nothing.
+  const SurfaceMesh mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {{0, 1, 3}, {0, 3, 2}});
+  int flat_cases = 0;
+  for (const Vec3 b : {Vec3{0.75, 0.25, 0}, Vec3{0.25, 0.75, 0}})
+    for (const bool a_first : {true, false})
+      for (const DiagramKind kind : {DiagramKind::Rpd, DiagramKind::Lrpd}) {
+        const int a = a_first ? 0 : 1;
+        const std::vector<Vec3> points = a_first ? std::vector<Vec3>{{0.5, 0.5, 0}, b} : std::vector<Vec3>{b, {0.5, 0.5, 0}};
+        std::vector<double> weights(2, 0.125);
+        weights[a] = 0;
+        Samples samples = locate_points(mesh, points, weights);
+        const Diagram d = compute_diagram(mesh, samples, kind);
+        const int far = b.x > b.y ? 0 : 1;  // the triangle on b's side
+        INFO(to_string(kind) << " b = (" << b.x << ", " << b.y << "), a = sample " << a);
+        REQUIRE(verify_diagram(mesh, samples, d).passed);
+        int flat = -1;
+        for (int p : polygons_of(d, far)) {
+          if (d.polygons[p].cell != a) continue;
+          // b's side: cell a has no area there, its vertices all on the diagonal in the exact geometry
+          // (the perturbed sliver's B vertices on edges 0-1 and 1-3, or 2-3 and 0-2, are at corners 0 and 3).
+          for (int k = 0; k < d.polygons[p].vertex_count; ++k) {
+            const ExactPoint e = exact_position(d.polygon_vertices(d.polygons[p])[k], d.context(mesh));
+            CHECK(verify_detail::coordinate(e, 0) == verify_detail::coordinate(e, 1));
+          }
+          flat = p;
+        }
+        // The sample, at (1/2, 1/2) on the diagonal, located in that triangle instead.
+        samples.triangles[a] = far;
+        Vec3 at{0, 0, 0};  // halfway between mesh vertices 0 and 3
+        for (int k = 0; k < 3; ++k)
+          if (mesh.triangle(far)[k] == 0 || mesh.triangle(far)[k] == 3) at[k] = 0.5;
+        samples.barycentric[a] = at;
+        const DiagramVerification v = verify_diagram(mesh, samples, d);
+        INFO(v.summary() << offenders(v.sample_in_cell));
+        if (flat < 0) {
+          CHECK(names(v.sample_in_cell, fmt::format("sample {}: cell {} has no polygon in the sample's triangle {}", a, a, far)));
+          continue;
+        }
+        ++flat_cases;
+        CHECK(v.sample_in_cell.passed);
+        CHECK(v.passed);
+        // Shrunk to corner 0 (its two vertices there, the first repeated: a segment of zero length),
+        // the sliver is still on the sample's line but no longer reaches the sample.
+        Diagram shrunk = d;
+        std::vector<SymbolicVertex> at_corner;
+        for (int k = 0; k < d.polygons[flat].vertex_count; ++k) {
+          const SymbolicVertex& q = d.polygon_vertices(d.polygons[flat])[k];
+          const ExactPoint e = exact_position(q, d.context(mesh));
+          if (CGAL::is_zero(verify_detail::coordinate(e, 0)) && CGAL::is_zero(verify_detail::coordinate(e, 1)))
+            at_corner.push_back(q);
+        }
+        REQUIRE(at_corner.size() == 2);
+        at_corner.push_back(at_corner[0]);
+        shrunk.polygons[flat].first_vertex = static_cast<int>(shrunk.vertices.size());
+        shrunk.polygons[flat].vertex_count = 3;
+        shrunk.vertices.insert(shrunk.vertices.end(), at_corner.begin(), at_corner.end());
+        const DiagramVerification u = verify_diagram(mesh, samples, shrunk);
+        INFO(u.summary() << offenders(u.sample_in_cell));
+        CHECK(names(u.sample_in_cell, fmt::format("sample {}: outside its cell's polygon in triangle {} (it lies in cell {}'s)",
+                                                  a, far, 1 - a)));
+        // Relabelled to b, the sliver no longer makes the sample's cell hold it.
+        Diagram broken = d;
+        broken.polygons[flat].cell = 1 - a;
+        const DiagramVerification w = verify_diagram(mesh, samples, broken);
+        INFO(w.summary() << offenders(w.sample_in_cell));
+        CHECK(names(w.sample_in_cell, fmt::format("sample {}: cell {} has no polygon in the sample's triangle {}", a, a, far)));
+      }
+  CHECK(flat_cases > 0);
+}
+
+TEST_CASE("Mutation: a triangle left without polygons breaks coverage naming it", "[verification][mutation]") {
+  Case c = valid_lrvd();
+  const int t = triangle_with_polygons(c.diagram, 1);
+  REQUIRE(t >= 0);
+  while (c.diagram.triangle_offsets[t + 1] > c.diagram.triangle_offsets[t])
+    erase_polygon(c.diagram, c.diagram.triangle_offsets[t]);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+  require_only_broken(v, v.coverage, fmt::format("triangle {}: no polygon", t));
+  CHECK(v.disjoint.passed);  // the other triangles' polygons are untouched
+}
+
+TEST_CASE("Mutation: two vertices of a polygon swapped make it non-convex and break disjointness",
+          "[verification][mutation]") {
+  Case c = valid_lrvd();
+  Diagram& d = c.diagram;
+  // A polygon of four or more vertices: a, b, c, d read as a, c, b, d is a bow tie, b right of a -> c.
+  int target = -1;
+  for (int p = 0; p < static_cast<int>(d.polygons.size()) && target < 0; ++p)
+    if (d.polygons[p].vertex_count >= 4) target = p;
+  REQUIRE(target >= 0);
+  const CellPolygon poly = d.polygons[target];
+  std::swap(d.vertices[poly.first_vertex + 1], d.vertices[poly.first_vertex + 2]);
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
+  require_only_broken(v, v.disjoint,
+                      fmt::format("triangle {}: polygon of cell {} is not convex and counterclockwise", poly.triangle, poly.cell));
+  CHECK(v.equidistant.passed);  // the same vertices
+}
+
+TEST_CASE("Mutation: a sample on no triangle or outside its triangle breaks sample_in_cell", "[verification][mutation]") {
+  const int sample = 4;
+  SECTION("no triangle") {
+    Case c = valid_lrvd();
+    c.samples.triangles[sample] = -1;
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: not located on a triangle", sample));
+    CHECK(v.sample_in_cell.violations == 1);
+  }
+  SECTION("a triangle past the mesh's") {
+    Case c = valid_lrvd();
+    c.samples.triangles[sample] = c.mesh.triangle_count();
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: not located on a triangle", sample));
+  }
+  SECTION("a negative barycentric coordinate") {
+    Case c = valid_lrvd();
+    const int t = c.samples.triangles[sample];
+    c.samples.barycentric[sample] = {-0.25, 0.75, 0.5};
+    const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+    require_only_broken(v, v.sample_in_cell,
+                        fmt::format("sample {}: barycentric (-0.25, 0.75, 0.5) is outside its triangle {}", sample, t));
+    CHECK(v.sample_in_cell.violations == 1);
+  }
+  SECTION("barycentric coordinates all zero or not finite") {
+    for (const Vec3 b : {Vec3{0, 0, 0}, Vec3{std::nan(""), 0.5, 0.5}}) {
+      Case c = valid_lrvd();
+      c.samples.barycentric[sample] = b;
+      const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
+      require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: barycentric", sample));
+    }
+  }
+}
+
+TEST_CASE("Mutation: a type B vertex moved to another bisector on one side of a mesh edge breaks conformity",
+          "[verification][mutation]") {
+  Case c = valid_lrvd();
+  Diagram& d = c.diagram;
+  // A type B vertex of triangle t, and a cell with no polygon in t: in t's polygons the vertex
+  // becomes the point where that cell's bisector with the vertex's first cell crosses the edge.
+  // Both triangles still see the same cells along the edge, split at different points.
+  int t = -1;
+  SymbolicVertex q, wrong;
+  for (const CellPolygon& poly : d.polygons) {
+    for (int k = 0; k < poly.vertex_count && t < 0; ++k) {
+      const SymbolicVertex& x = d.polygon_vertices(poly)[k];
+      if (x.type != SymbolicVertex::Type::B) continue;
+      for (int third = 0; third < d.sample_count; ++third)
+        if (!cell_in_triangle(d, poly.triangle, third)) {
+          q = x;
+          wrong = SymbolicVertex::on_edge(x.v[0], x.v[1], x.label[0], third);
+          t = poly.triangle;
+          break;
+        }
+    }
+    if (t >= 0) break;
+  }
+  REQUIRE(t >= 0);
+  int replaced = 0;
+  for (int p : polygons_of(d, t))
+    for (int k = 0; k < d.polygons[p].vertex_count; ++k)
+      if (d.vertices[d.polygons[p].first_vertex + k] == q) {
+        d.vertices[d.polygons[p].first_vertex + k] = wrong;
+        ++replaced;
+      }
+  CHECK(replaced == 2);  // the two polygons the bisector separates
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
+  const int lo = std::min(q.v[0], q.v[1]), hi = std::max(q.v[0], q.v[1]);
+  require_only_broken(v, v.conforming, fmt::format("edge ({}, {}): triangles", lo, hi));
+  CHECK(names(v.conforming, "but split it at different points"));
+  // Both lists of split points are shown: the moved vertex on one side, the original on the other.
+  CHECK(names(v.conforming, verify_detail::describe(wrong)));
+  CHECK(names(v.conforming, verify_detail::describe(q)));
+}
+
+TEST_CASE("Cell components recomputed without polygon_along are those the builder recorded", "[verification]") {
+  // cell_components reads Diagram::polygon_along when it is there and recomputes the edges each
+  // polygon runs along otherwise (a diagram built by hand); away from ties the two agree.
+  const std::vector<std::pair<std::string, SurfaceMesh>> meshes = {
+      {"icosphere(2)", test::icosphere(2)},
+      {"grid(8, 8)", test::grid(8, 8)},
+      {"nearby sheets", test::merge(test::grid(6, 6), test::grid(6, 6), {0, 0, 0.05})}};
+  int split_cells = 0, joined = 0;
+  for (const auto& [name, mesh] : meshes)
+    for (std::uint64_t seed : {1u, 2u, 3u})
+      for (DiagramKind kind : {DiagramKind::Lrvd, DiagramKind::Rvd}) {
+        const Samples samples = sample_uniform(mesh, 6 + 4 * static_cast<int>(seed), seed);
+        const Diagram d = compute_diagram(mesh, samples, kind);
+        INFO(name << " seed " << seed << " " << to_string(kind));
+        REQUIRE(d.polygon_along.size() == d.polygons.size());
+        const CellComponents recorded = cell_components(d, mesh);
+        Diagram bare = d;
+        bare.polygon_along.clear();
+        const CellComponents recomputed = cell_components(bare, mesh);
+        CHECK(recomputed.polygon_component == recorded.polygon_component);
+        CHECK(recomputed.count == recorded.count);
+        for (int c : recorded.count) split_cells += c > 1;
+        for (int i = 0; i < d.sample_count; ++i) {
+          int polygons = 0;
+          for (const CellPolygon& poly : d.polygons) polygons += poly.cell == i;
+          joined += polygons > 1 && recorded.count[i] == 1;  // a cell of several polygons, joined into one
+        }
+      }
+  CHECK(split_cells > 0);  // the RVD on nearby sheets splits cells
+  CHECK(joined > 0);
+}
