@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "mesh/closest_point.h"
 #include "mesh/mesh_io.h"
 #include "remesh/remesh.h"
 #include "test_meshes.h"
@@ -124,11 +125,6 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   std::ofstream(huge) << "OFF\n4 4 0\n0 0 0\n1e77 0 0\n0 1e77 0\n0 0 1e77\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   std::ofstream(huge_points) << "2e76 2e76 6e76\n";
   std::ofstream(a_file) << "x\n";
-  const std::string weights = kOut + "weights20.txt";
-  {
-    std::ofstream w(weights);
-    for (int i = 0; i < 20; ++i) w << "0\n";
-  }
   for (const std::string& args :
        {std::string("compute ") + kData + "/missing.off -n 10", "compute " + kData + "/elk.off -n 0",
         "compute " + kData + "/elk.off --points " + points, "compute " + kData + "/elk.off -n 10 --diagram lrpd",
@@ -146,8 +142,7 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
         "remesh " + kData + "/elk.off -n 200 -o " + kOut + "elk.stl",
         "remesh " + kData + "/elk.off -n 200 -o " + kOut + "no_such_folder/elk.off",
         "compute " + kData + "/elk.off -n 20 -o " + kOut + "cells.off",
-        "mps " + kData + "/elk.off --radius 0.05 -o " + kOut + "same.json --report " + kOut + "same.json",
-        "remesh " + kData + "/ellipsoid.off -n 20 --weights " + weights + " -o " + kOut + "weighted.off"}) {
+        "mps " + kData + "/elk.off --radius 0.05 -o " + kOut + "same.json --report " + kOut + "same.json"}) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);
     REQUIRE(r.status == 2);
@@ -284,6 +279,19 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
   const std::string empty_weights = kOut + "empty_weights.txt", corners = kOut + "corners.xyz";
   std::ofstream(empty_weights) << "";
   std::ofstream(corners) << "0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  // Weights: a word for one, the weights given twice, a weight that is no number, a line of two values.
+  const std::string word_weights = kOut + "word_weights.txt", four_weights = kOut + "four_weights.txt";
+  const std::string weighted_corners = kOut + "weighted_corners.xyz", nan_corners = kOut + "nan_corners.xyz";
+  const std::string two_values = kOut + "two_values.xyz";
+  std::ofstream(word_weights) << "0.1\nabc\n0.1\n0.1\n";
+  std::ofstream(four_weights) << "0.1\n0.1\n0.1\n0.1\n";
+  std::ofstream(weighted_corners) << "0 0 0 0.1\n1 0 0 0.1\n0 1 0 0.1\n0 0 1 0.1\n";
+  std::ofstream(nan_corners) << "0 0 0 0.1\n1 0 0 nan\n0 1 0 0.1\n0 0 1 0.1\n";
+  std::ofstream(two_values) << "0 0 0\n1 0\n";
+  // Outputs: a folder, a report named as a mesh, a folder where the part file would go.
+  const std::string folder = kOut + "output_folder", blocked = kOut + "blocked.ply";
+  std::filesystem::create_directories(folder);
+  std::filesystem::create_directories(blocked + ".lrvd-part");
   const std::vector<std::pair<std::string, std::string>> refused = {
       {"compute " + short_header + " -n 10", "more than its 1 declared faces"},
       {"compute " + word + " -n 10", "'extra' after its 3 vertex indices"},
@@ -294,7 +302,24 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
       {"compute " + coloured + " --points " + corners + " --weights " + empty_weights + " --diagram lrpd",
        "holds no weights"},
       {"stress --report " + kOut + "no_such_folder/report", "does not exist"},
-      {"compute " + truncated_stl + " -n 5", "no complete facet"}};
+      {"compute " + truncated_stl + " -n 5", "no complete facet"},
+      {"compute " + coloured + " --points " + corners + " --weights " + word_weights + " --diagram lrpd",
+       "word_weights.txt:2: 'abc' is not a finite number"},
+      {"compute " + coloured + " --points " + weighted_corners + " --weights " + four_weights + " --diagram lrpd",
+       "the weights are given twice: in the 4th column of " + weighted_corners + " and in --weights " + four_weights},
+      {"compute " + coloured + " --points " + nan_corners + " --diagram lrpd",
+       "nan_corners.xyz: point 1 (line 2) has a non-finite weight"},
+      {"compute " + coloured + " --points " + two_values, "two_values.xyz:2: expected 'x y z' or 'x y z w', got 2 values"},
+      {"compute " + coloured + " --points " + weighted_corners + " --diagram rvd",
+       "weights were given but --diagram rvd is not a power diagram (use lrpd or rpd)"},
+      {"compute " + coloured + " -n 4 --weights " + four_weights,
+       "weights were given but --diagram lrvd is not a power diagram"},
+      {"mps " + coloured + " --radius 0.2 -o " + folder, "-o " + folder + " is a folder, not a file"},
+      {"compute " + coloured + " -n 4 --report " + kOut + "report.off",
+       "--report " + kOut + "report.off: this output is not a mesh, and a '.off' file would pass for one"},
+      {"compute " + coloured + " -n 4 -o " + blocked,
+       "a folder " + std::filesystem::path(blocked).filename().string() +
+           ".lrvd-part is where its part file (written first, then renamed) goes; remove or rename it"}};
   for (const auto& [args, reason] : refused) {
     const Run r = run(args);
     INFO(args << "\n" << r.err);
@@ -303,6 +328,10 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
     CHECK(r.err.find(reason) != std::string::npos);
   }
   CHECK(run("compute " + coloured + " -n 10").status == 0);  // colours after the indices, comments after the faces
+  CHECK(run("compute " + coloured + " --points " + weighted_corners + " --diagram lrpd").status == 0);  // the weighted corners --diagram rvd refuses above, as a power diagram
+  CHECK_FALSE(std::filesystem::exists(kOut + "report.off"));
+  std::filesystem::remove_all(folder);
+  std::filesystem::remove_all(blocked + ".lrvd-part");
   // A vertex no face uses is left out with a line that says so (it would otherwise widen the
   // bounding box, the unit of mps --radius, without a word).
   const std::string stray = kOut + "stray_vertex.off";
@@ -877,7 +906,7 @@ TEST_CASE("Outputs: one new file under two spellings is refused, links that lead
 TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of each diagram", "[cli]") {
   const std::string dir = kOut + "stress_report_dir";
   std::filesystem::remove_all(dir);
-  const Run r = run("stress --report " + dir + " --scale 0.2");
+  const Run r = run("stress --report " + dir + " --scale 0.2 --seeds 2");
   INFO(r.err);
   REQUIRE(r.status == 0);  // every LRVD verified
   std::ifstream md_file(dir + "/stress_report.md");
@@ -886,6 +915,11 @@ TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of e
   REQUIRE(md.str().find("## Pictures") != std::string::npos);
   const json j = read_json(dir + "/stress_report.json");
   REQUIRE(j["rows"].size() >= 8);
+  REQUIRE(j["seeds"] == 2);
+  for (const json& row : j["rows"]) {
+    REQUIRE(row["seeds"] == 2);
+    REQUIRE(row["lrvd_verified"] == 2);  // each of the two diagrams verified
+  }
   for (const std::string name : {"thin_plate", "folded_sheet", "open_cup", "flat_ellipsoid", "knot_tube", "comb",
                                   "interpenetrating_spheres", "thin_tube"})
     for (const char* kind : {"lrvd", "rvd"}) {
@@ -898,4 +932,197 @@ TEST_CASE("lrvd stress --report writes the RVD-vs-LRVD tables and a picture of e
       REQUIRE(head == std::string("\x89PNG\r\n\x1a\n", 8));
     }
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("lrvd compute takes --weights for random samples and names both counts when they differ", "[cli]") {
+  const std::string twenty = kOut + "weights_20.txt", nineteen = kOut + "weights_19.txt", report = kOut + "weights_n.json";
+  {
+    std::ofstream a(twenty), b(nineteen);
+    for (int i = 0; i < 20; ++i) a << 0.001 * (i % 3) << "\n";
+    for (int i = 0; i < 19; ++i) b << "0\n";
+  }
+  const Run ok = run("compute " + kData + "/elk.off -n 20 --weights " + twenty + " --diagram lrpd --report " + report);
+  INFO(ok.err);
+  REQUIRE(ok.status == 0);
+  REQUIRE(ok.out.find("verification: passed") != std::string::npos);
+  const json j = read_json(report);
+  REQUIRE(j["diagram"]["kind"] == "lrpd");
+  REQUIRE(j["diagram"]["samples"] == 20);
+  REQUIRE(j["verification"]["passed"] == true);
+  const Run few = run("compute " + kData + "/elk.off -n 20 --weights " + nineteen + " --diagram lrpd");
+  REQUIRE(few.status == 2);
+  REQUIRE(few.err == "lrvd: error: " + nineteen + ": 19 weights were given for 20 samples\n");
+  for (const std::string& f : {twenty, nineteen, report}) std::remove(f.c_str());
+}
+
+TEST_CASE("lrvd remesh refuses weighted samples from a 4th column and takes no --weights option", "[cli][remesh]") {
+  // 30 of the ellipsoid's vertices, more than the fewest a sphere's remesh needs (4), each with a
+  // weight: loaded and located, then refused, since a CVT's samples have none.
+  const lrvd::SurfaceMesh ellipsoid = lrvd::read_mesh(kData + "/ellipsoid.off").mesh;
+  const std::string weighted = kOut + "weighted30.xyz", plain = kOut + "plain30.xyz", out = kOut + "weighted30.off";
+  {
+    std::ofstream w(weighted), p(plain);
+    for (int v = 0; v < 30; ++v) {
+      const lrvd::Vec3& q = ellipsoid.position(v);
+      w << fmt::format("{:.17g} {:.17g} {:.17g} 0.001\n", q.x, q.y, q.z);
+      p << fmt::format("{:.17g} {:.17g} {:.17g}\n", q.x, q.y, q.z);
+    }
+  }
+  std::remove(out.c_str());
+  const Run refused = run("remesh " + kData + "/ellipsoid.off --points " + weighted + " -o " + out);
+  REQUIRE(refused.status == 2);
+  REQUIRE(refused.err ==
+          "lrvd: error: remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) "
+          "do not apply\n");
+  REQUIRE_FALSE(std::filesystem::exists(out));
+  // The same points without the column remesh (30 vertices, as many as the points).
+  const Run ok = run("remesh " + kData + "/ellipsoid.off --points " + plain + " -o " + out);
+  INFO(ok.err);
+  REQUIRE(ok.status == 0);
+  REQUIRE(lrvd::read_mesh(out).mesh.vertex_count() == 30);
+  // --weights is not a remesh option at all: the parser refuses it before anything is read.
+  const Run option = run("remesh " + kData + "/ellipsoid.off --points " + plain + " --weights " + plain + " -o " + out);
+  REQUIRE(option.status == 2);
+  REQUIRE(lines(option.err) == 1);
+  REQUIRE(option.err.find("unexpected arguments: --weights") != std::string::npos);
+  for (const std::string& f : {weighted, plain, out}) std::remove(f.c_str());
+}
+
+TEST_CASE("lrvd remesh uses and reports --optimizer lloyd and --density curvature and --iterations and --no-fit", "[cli][remesh]") {
+  const std::string ellipsoid = kData + "/ellipsoid.off", out = kOut + "options.off";
+  const lrvd::SurfaceMesh input = lrvd::read_mesh(ellipsoid).mesh;
+  const lrvd::ClosestPointIndex surface(input);
+  const double diagonal = input.bounding_box().diagonal();
+  // The output's vertices and its farthest vertex from the input surface, from one run of 150.
+  auto remesh = [&](const std::string& options) {
+    const std::string report = kOut + "options.json";
+    const Run r = run("remesh " + ellipsoid + " -n 150 " + options + " -o " + out + " --report " + report);
+    INFO(options << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    const lrvd::SurfaceMesh written = lrvd::read_mesh(out).mesh;
+    REQUIRE(written.vertex_count() == 150);
+    double farthest = 0;
+    for (const lrvd::Vec3& p : written.positions()) farthest = std::max(farthest, surface.query(p).distance);
+    json j = read_json(report);
+    j["test_farthest"] = farthest / diagonal;
+    REQUIRE(j["output"]["vertices"] == 150);
+    REQUIRE(j["verification"]["passed"] == true);
+    return j;
+  };
+  const json base = remesh("");
+  REQUIRE(base["optimizer"] == "lbfgs");
+  REQUIRE(base["density"] == "uniform");
+  REQUIRE(base["polished"] == true);  // L-BFGS ends with a Lloyd step
+  REQUIRE(base["iterations"].get<int>() > 10);
+  REQUIRE(base["fit"]["enabled"] == true);
+  REQUIRE(base["fit"]["moved"].get<int>() > 0);
+  REQUIRE(base["test_farthest"].get<double>() > 1e-4);  // fitted off the surface, to the cells' planes
+  // Lloyd: no L-BFGS, so no Lloyd step after it, and another CVT.
+  const json lloyd = remesh("--optimizer lloyd");
+  CHECK(lloyd["optimizer"] == "lloyd");
+  CHECK(lloyd["polished"] == false);
+  CHECK(lloyd["energy"] != base["energy"]);
+  // Curvature: the energy is under another density, from the same initial samples.
+  const json curvature = remesh("--density curvature");
+  CHECK(curvature["density"] == "curvature");
+  CHECK(curvature["initial_energy"] != base["initial_energy"]);
+  // An iteration cap of 3: 3 L-BFGS iterations and the Lloyd step (no repair rounds here).
+  const json capped = remesh("--iterations 3");
+  CHECK(capped["repair_rounds"] == 0);
+  CHECK(capped["iterations"].get<int>() <= 4);
+  // No fitting: the same CVT, its vertices the samples, on the input surface.
+  const json unfitted = remesh("--no-fit");
+  CHECK(unfitted["fit"]["enabled"] == false);
+  CHECK(unfitted["fit"]["moved"] == 0);
+  CHECK(unfitted["fit"]["max_displacement_pct"] == 0.0);
+  CHECK(unfitted["energy"] == base["energy"]);
+  CHECK(unfitted["test_farthest"].get<double>() < 1e-9);
+  std::remove(out.c_str());
+  std::remove((kOut + "options.json").c_str());
+}
+
+TEST_CASE("lrvd mps uses and reports --gap-update lrpd and --exact and --max-radius-ratio", "[cli]") {
+  const std::string samples = kOut + "mps_options.xyz", report = kOut + "mps_options.json";
+  auto mps = [&](const std::string& options) {
+    const Run r = run("mps " + kData + "/elk.off " + options + " -o " + samples + " --report " + report);
+    INFO(options << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    const json j = read_json(report);
+    REQUIRE(j["maximal"] == true);
+    REQUIRE(j["min_distance_ok"] == true);
+    return j;
+  };
+  const json base = mps("--radius 0.1");
+  REQUIRE(base["gap_update"] == "local");
+  REQUIRE(base["lrpd_evaluations"] == 1);  // local updates: one LRPD
+  // The paper's loop: a new LRPD after every round of darts.
+  const json paper = mps("--radius 0.1 --gap-update lrpd");
+  CHECK(paper["gap_update"] == "lrpd");
+  CHECK(paper["lrpd_evaluations"].get<int>() > 1);
+  // The same samples, every vertex of the maximality check decided with rationals.
+  const json exact = mps("--radius 0.1 --exact");
+  CHECK(exact["samples"] == base["samples"]);
+  CHECK(exact["mps_verification"]["exact_vertex_tests"].get<long long>() >
+        base["mps_verification"]["exact_vertex_tests"].get<long long>());
+  // Adaptive radii up to 1.2 times r_min (the default, 2, gives 1.69 times here).
+  const json capped = mps("--radius 0.05 --adaptive --max-radius-ratio 1.2");
+  const double r_min = capped["radius"]["absolute"].get<double>(), r_max = capped["radius"]["max_absolute"].get<double>();
+  CHECK(capped["radius"]["adaptive"] == true);
+  CHECK(r_max > r_min);
+  CHECK(r_max <= 1.2 * r_min * (1 + 1e-12));
+  std::remove(samples.c_str());
+  std::remove(report.c_str());
+}
+
+TEST_CASE("lrvd render --no-samples draws the same cells without the samples' dots", "[cli]") {
+  const std::string with = kOut + "dots.png", again = kOut + "dots_again.png", without = kOut + "no_dots.png";
+  const std::string cells = "render " + kData + "/elk.off -n 30 --size 96x96 -o ";
+  for (const std::string& args : {cells + with, cells + again, cells + without + " --no-samples"}) {
+    const Run r = run(args);
+    INFO(args << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    REQUIRE(r.out.find("30 lrvd cells") != std::string::npos);
+  }
+  const std::string a = take_file(with), b = take_file(again), c = take_file(without);
+  REQUIRE(a.size() > 8);
+  const bool repeated = a == b, dotted = a != c;  // (not the PNGs' bytes in a failure's message)
+  REQUIRE(repeated);  // the picture is the same from run to run
+  REQUIRE(dotted);
+}
+
+TEST_CASE("An output that cannot be written whole fails with one line and leaves no part file", "[cli]") {
+  // /dev/full takes the file and fails the write: a big one (the samples) at a write, a small one
+  // (a report, in the buffer until closed) at the close.
+  const Run samples = run("mps " + kData + "/elk.off --radius 0.1 -o /dev/full");
+  CHECK(samples.status == 2);
+  CHECK(samples.err == "lrvd: error: /dev/full: write failed\n");
+  const Run report = run("compute " + kData + "/elk.off -n 20 --report /dev/full");
+  CHECK(report.status == 2);
+  CHECK(report.err == "lrvd: error: /dev/full: write failed\n");
+  // A regular file past the size limit (ulimit -f, in kB, with SIGXFSZ ignored so that the write
+  // fails rather than the process): the part file goes, and no file is left under either name.
+  auto limited = [](const std::string& args, int kilobytes) {
+    const std::string err_path = kOut + "limited_stderr_" + std::to_string(getpid()) + ".txt";
+    const int raw = std::system(("(trap '' XFSZ; ulimit -f " + std::to_string(kilobytes) + "; exec " + kCli + " " +
+                                 args + ") > /dev/null 2> " + err_path)
+                                    .c_str());
+    return Run{WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, take_file(err_path), ""};
+  };
+  const std::string mesh = kOut + "limited.off", json_report = kOut + "limited.json";
+  for (const std::string& f : {mesh, json_report}) {
+    std::filesystem::remove(f);
+    std::filesystem::remove(f + ".lrvd-part");
+  }
+  // The remesh (about 8 kB) fails at a write, past 4 kB.
+  const Run big = limited("remesh " + kData + "/ellipsoid.off -n 100 -o " + mesh, 4);
+  CHECK(big.status == 2);
+  CHECK(big.err == "lrvd: error: " + mesh + ": write failed\n");
+  CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(mesh)));
+  CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(mesh + ".lrvd-part")));
+  // The report (about 2 kB) fails at the close, past 1 kB.
+  const Run small = limited("compute " + kData + "/elk.off -n 20 --report " + json_report, 1);
+  CHECK(small.status == 2);
+  CHECK(small.err == "lrvd: error: " + json_report + ": write failed\n");
+  CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(json_report)));
+  CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(json_report + ".lrvd-part")));
 }
