@@ -371,17 +371,45 @@ TEST_CASE("Power diagrams do not promise that a sample lies in its cell", "[veri
   CHECK(v.passed);
 }
 
+namespace {
+
+// Breaks c: in the triangle of the first sample whose triangle holds another cell's polygon too,
+// the two polygons swap cells. Returns that sample, or -1 if there is none.
+int swap_cells_in_a_sample_triangle(Case& c) {
+  for (int i = 0; i < c.samples.size(); ++i) {
+    int own = -1, other = -1;
+    for (int p : polygons_of(c.diagram, c.samples.triangles[i]))
+      (c.diagram.polygons[p].cell == i ? own : other) = p;
+    if (own < 0 || other < 0) continue;
+    std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
+    return i;
+  }
+  return -1;
+}
+
+// Breaks c: the one polygon of a triangle goes to a cell absent from that triangle and from its
+// three neighbours. Returns {triangle, cell}, or {-1, -1} if there is none.
+std::pair<int, int> relabel_a_far_polygon(Case& c) {
+  const Diagram& d = c.diagram;
+  for (int t = 0; t < c.mesh.triangle_count(); ++t) {
+    if (polygons_of(d, t).size() != 1) continue;
+    for (int k = 0; k < d.sample_count; ++k) {
+      bool absent = !cell_in_triangle(d, t, k);
+      for (int e = 0; e < 3; ++e) absent = absent && !cell_in_triangle(d, c.mesh.neighbor(t, e), k);
+      if (!absent) continue;
+      c.diagram.polygons[d.triangle_offsets[t]].cell = k;
+      return {t, k};
+    }
+  }
+  return {-1, -1};
+}
+
+}  // namespace
+
 TEST_CASE("Mutation: swapped cells in a sample's triangle break sample_in_cell", "[verification][mutation]") {
   Case c = valid_lrvd();
-  int sample = -1, other = -1, own = -1;
-  for (int i = 0; i < c.samples.size() && sample < 0; ++i)
-    for (int p : polygons_of(c.diagram, c.samples.triangles[i])) {
-      if (c.diagram.polygons[p].cell == i) own = p;
-      else other = p;
-      if (own >= 0 && other >= 0) sample = i;
-    }
+  const int sample = swap_cells_in_a_sample_triangle(c);
   REQUIRE(sample >= 0);
-  std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
   require_only_broken(v, v.sample_in_cell, fmt::format("sample {}: outside its cell's polygon", sample));
   CHECK(v.disjoint.passed);  // the same pieces, differently named: geometry is untouched
@@ -390,22 +418,8 @@ TEST_CASE("Mutation: swapped cells in a sample's triangle break sample_in_cell",
 
 TEST_CASE("Mutation: a far-away polygon relabelled to a cell breaks connectedness", "[verification][mutation]") {
   Case c = valid_lrvd();
-  const Diagram& d = c.diagram;
-  // A triangle holding one polygon, and a cell absent from it and from its three neighbours.
-  int target = -1, cell = -1;
-  for (int t = 0; t < c.mesh.triangle_count() && target < 0; ++t) {
-    if (polygons_of(d, t).size() != 1) continue;
-    for (int k = 0; k < d.sample_count && target < 0; ++k) {
-      bool absent = !cell_in_triangle(d, t, k);
-      for (int e = 0; e < 3; ++e) absent = absent && !cell_in_triangle(d, c.mesh.neighbor(t, e), k);
-      if (absent) {
-        target = t;
-        cell = k;
-      }
-    }
-  }
+  const auto [target, cell] = relabel_a_far_polygon(c);
   REQUIRE(target >= 0);
-  c.diagram.polygons[d.triangle_offsets[target]].cell = cell;
   const DiagramVerification v = verify_diagram(c.mesh, c.samples, c.diagram);
   require_only_broken(v, v.connected, fmt::format("cell {}: 2 pieces, stray piece in triangle {}", cell, target));
   CHECK(v.cells_with_multiple_components >= 1);
@@ -645,42 +659,6 @@ TEST_CASE("Malformed diagrams are reported, not crashed on", "[verification]") {
     CHECK(names(v.disjoint, "names no point"));
   }
 }
-
-namespace {
-
-// The sample whose triangle also holds another cell's polygon, after swapping the cells of its own
-// polygon and that one (the break of "Mutation: swapped cells in a sample's triangle ..."); -1 if none.
-int swap_cells_in_a_sample_triangle(Case& c) {
-  for (int i = 0; i < c.samples.size(); ++i) {
-    int own = -1, other = -1;
-    for (int p : polygons_of(c.diagram, c.samples.triangles[i]))
-      (c.diagram.polygons[p].cell == i ? own : other) = p;
-    if (own < 0 || other < 0) continue;
-    std::swap(c.diagram.polygons[own].cell, c.diagram.polygons[other].cell);
-    return i;
-  }
-  return -1;
-}
-
-// A triangle holding one polygon relabelled to a cell absent from it and from its three
-// neighbours (the break of "Mutation: a far-away polygon relabelled ..."): {triangle, cell}, or
-// {-1, -1} if there is none.
-std::pair<int, int> relabel_a_far_polygon(Case& c) {
-  const Diagram& d = c.diagram;
-  for (int t = 0; t < c.mesh.triangle_count(); ++t) {
-    if (polygons_of(d, t).size() != 1) continue;
-    for (int k = 0; k < d.sample_count; ++k) {
-      bool absent = !cell_in_triangle(d, t, k);
-      for (int e = 0; e < 3; ++e) absent = absent && !cell_in_triangle(d, c.mesh.neighbor(t, e), k);
-      if (!absent) continue;
-      c.diagram.polygons[d.triangle_offsets[t]].cell = k;
-      return {t, k};
-    }
-  }
-  return {-1, -1};
-}
-
-}  // namespace
 
 TEST_CASE("Without exact geometry a valid LRVD passes and a sample outside its cell or a stray piece still fails",
           "[verification][mutation]") {
