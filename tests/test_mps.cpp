@@ -6,6 +6,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -106,6 +107,43 @@ TEST_CASE("Adaptive MPS on a needle 1e-9 wide: no NaN radius from its slivers, m
   const MpsVerification v = verify_mps(r.mesh, r.samples);
   INFO(v.summary());
   CHECK(v.passed);
+}
+
+TEST_CASE("MPS gives a sample to every component the darts missed: two tiny spheres beside a large one", "[mps]") {
+  // Spheres of radius 0.01 and 0.001, 3 units from the unit sphere: by area a dart lands on them
+  // once in 10^4 and 10^6 darts, and with one rejection allowed the darts stop after a dozen. Each
+  // gets its first sample after the darts, before the LRPD (and the gap filling then gives it more:
+  // samples on its far side face away from the first, so they are not local to it).
+  auto scaled = [](const SurfaceMesh& m, double s) {
+    std::vector<Vec3> p = m.positions();
+    for (Vec3& q : p) q = s * q;
+    return SurfaceMesh(p, m.triangles());
+  };
+  const SurfaceMesh mesh = test::merge(test::merge(test::icosphere(2), scaled(test::icosphere(1), 0.01), {3, 0, 0}),
+                                       scaled(test::icosphere(1), 0.001), {0, 3, 0});
+  REQUIRE(mesh.component_count() == 3);
+  MpsOptions options;
+  options.radius = 0.05;
+  options.max_consecutive_rejections = 1;
+  const MpsResult r = maximal_poisson_disk_sampling(mesh, options);
+  REQUIRE(r.mesh.component_count() == 3);
+  std::vector<int> first(3, -1), count(3, 0);
+  for (int i = 0; i < r.samples.size(); ++i) {
+    const int c = r.mesh.triangle_components()[r.samples.triangles[i]];
+    if (first[c] < 0) first[c] = i;
+    ++count[c];
+  }
+  INFO("dart samples " << r.dart_samples << ", first per component " << first[0] << " " << first[1] << " " << first[2]);
+  const int large = static_cast<int>(std::max_element(count.begin(), count.end()) - count.begin());
+  CHECK(count[large] > 100);
+  for (int c = 0; c < 3; ++c) {
+    if (c == large) continue;
+    CHECK(count[c] >= 1);
+    // Placed after the darts, before the gaps were looked for.
+    CHECK(first[c] >= r.dart_samples - 2);
+    CHECK(first[c] < r.dart_samples);
+  }
+  check_sampling(mesh, r, false);
 }
 
 TEST_CASE("MPS refuses a radius beyond 10 times the model's size, whose square would overflow", "[mps]") {
