@@ -1126,3 +1126,44 @@ TEST_CASE("An output that cannot be written whole fails with one line and leaves
   CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(json_report)));
   CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(json_report + ".lrvd-part")));
 }
+
+TEST_CASE("lrvd refuses a --weld that leaves no faces in one line with exit 2", "[cli]") {
+  const std::string tetra = kOut + "weld_all.off";
+  std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const Run r = run("mps " + tetra + " --radius 0.2 --weld 10 -o " + kOut + "weld_all.xyz");
+  REQUIRE(r.status == 2);
+  REQUIRE(lines(r.err) == 1);
+  REQUIRE(r.err.find("weld_all.off: has no faces left after --weld 10 joined their corners: --weld 10 collapsed") !=
+          std::string::npos);
+}
+
+TEST_CASE("mps and quality with --repair list each change in the report and on the console", "[cli]") {
+  // A unit cube of five quads (the x = 1 one turned inwards) and a top of two triangles, one of them
+  // twice, and a zero-area triangle on the bottom's front edge through a vertex no other face uses.
+  const std::string messy = kOut + "messy_cube.off", clean = kOut + "clean_cube.off";
+  std::ofstream(messy) << "OFF\n9 9 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 0 0\n"
+                          "4 0 3 2 1\n3 4 5 6\n3 4 6 7\n4 0 1 5 4\n4 5 6 2 1\n4 2 3 7 6\n4 3 0 4 7\n"
+                          "3 4 5 6\n3 0 8 1\n";
+  std::ofstream(clean) << "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                          "3 0 3 2\n3 0 2 1\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n"
+                          "3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+  const json expected = json::array({"removed 1 degenerate face", "removed 1 duplicate face",
+                                     "removed 1 unreferenced vertex", "reoriented 2 faces",
+                                     "triangulated 5 polygons"});
+  const std::string console = "repair: removed 1 degenerate face, removed 1 duplicate face, removed 1 unreferenced "
+                              "vertex, reoriented 2 faces, triangulated 5 polygons\n";
+  const std::string mps_report = kOut + "messy_mps.json", quality_report = kOut + "messy_quality.json";
+  const Run mps = run("mps " + messy + " --radius 0.2 --repair -o " + kOut + "messy.xyz --report " + mps_report);
+  INFO(mps.err);
+  REQUIRE(mps.status == 0);
+  REQUIRE(mps.out.find(console) != std::string::npos);
+  REQUIRE(read_json(mps_report)["input"]["repair_changes"] == expected);
+  const Run quality = run("quality " + messy + " " + clean + " --repair --report " + quality_report);
+  INFO(quality.err);
+  REQUIRE(quality.status == 0);
+  REQUIRE(quality.out.find(console) != std::string::npos);
+  REQUIRE(read_json(quality_report)["reference_repair_changes"] == expected);
+  // The clean cube, repaired, has nothing to change: an empty list.
+  REQUIRE(run("quality " + clean + " " + clean + " --repair --report " + quality_report).status == 0);
+  REQUIRE(read_json(quality_report)["reference_repair_changes"] == json::array());
+}

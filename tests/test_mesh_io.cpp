@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <set>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -940,4 +941,129 @@ TEST_CASE("A polygon face that crosses itself or visits a vertex twice is refuse
   const LoadedMesh dart = read_mesh(scratch("dart.off"));
   CHECK(dart.mesh.triangle_count() == 2);
   CHECK(dart.mesh.area() == Approx(1.25));  // the shoelace area of the dart
+}
+
+TEST_CASE("A --weld that joins every corner leaves no faces and names the weld not the file") {
+  // A tetrahedron 1 across welded at 10: every corner goes to the first, every face collapses.
+  std::string tetra = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  write_file(scratch("weld_all.off"), tetra);
+  ReadOptions options;
+  options.repair = true;
+  options.weld = 10;
+  REQUIRE_THROWS_WITH(read_mesh(scratch("weld_all.off"), options),
+                      Contains("weld_all.off: has no faces left after --weld 10 joined their corners: --weld 10 "
+                               "collapsed 12 face sides of the file"));
+  // A weld that joins only corners of separate faces collapses no face side, but can still flatten
+  // every face: (0 0.0007 0) and (2 0.0007 0) go to (0 0 0) and (2 0 0), (1 0.001 0) to (1 0 0).
+  write_file(scratch("weld_flat.off"), "OFF\n6 2 0\n1 0 0\n0 0 0\n2 0 0\n1 0.001 0\n0 0.0007 0\n2 0.0007 0\n"
+                                       "3 1 2 3\n3 0 4 5\n");
+  options.weld = 1e-3;
+  REQUIRE_THROWS_WITH(read_mesh(scratch("weld_flat.off"), options),
+                      Contains("weld_flat.off: has no faces left after --weld 0.001 joined their corners: use a "
+                               "smaller value"));
+  // Without --weld, faces all degenerate in the file: --repair says it removed them.
+  write_file(scratch("flat_only.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
+  REQUIRE_THROWS_WITH(read_mesh(scratch("flat_only.off"), {true}),
+                      Contains("flat_only.off: has no faces left after --repair removed the degenerate ones"));
+}
+
+TEST_CASE("Filling holes of a closed mesh fills nothing and notes that it is closed") {
+  std::string tetra = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  write_file(scratch("closed_fill.off"), tetra);
+  const LoadedMesh loaded = read_mesh(scratch("closed_fill.off"), ReadOptions{false, 0.5});
+  REQUIRE(loaded.mesh.triangle_count() == 4);
+  REQUIRE(loaded.repair.filled_holes == 0);
+  REQUIRE(loaded.repair.notes == std::vector<std::string>{"no hole to fill: the mesh is closed"});
+}
+
+TEST_CASE("Filling holes of an open mesh too large to measure is refused naming the file") {
+  // A square sheet 2e30 across with a hole: read as it is, refused by the hole filling.
+  std::string off = "OFF\n16 16 0\n";
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) off += fmt::format("{} {} 0\n", i * 1e30 / 1.5, j * 1e30 / 1.5);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      if (i == 1 && j == 1) continue;
+      const int a = j * 4 + i, b = a + 1, c = a + 4, d = c + 1;
+      off += fmt::format("3 {} {} {}\n3 {} {} {}\n", a, b, d, a, d, c);
+    }
+  write_file(scratch("huge_sheet.off"), off);
+  REQUIRE(read_mesh(scratch("huge_sheet.off")).mesh.boundary_loops().size() == 2);
+  REQUIRE_THROWS_WITH(read_mesh(scratch("huge_sheet.off"), ReadOptions{false, 0.5}),
+                      Contains("huge_sheet.off: ") && Contains("hole filling works with sizes from 1e-30 to 1e+30"));
+}
+
+TEST_CASE("fill_small_holes leaves open a hole every triangulation of which repeats an edge") {
+  // The 7-vertex torus (faces i i+1 i+3 and i i+3 i+2 mod 7), every pair of vertices an edge,
+  // without the six triangles round vertex 0, which becomes a vertex inside triangle 1 2 4 instead.
+  // The hexagon 1..6 left open has all its chords as edges already: no triangulation is valid.
+  std::vector<Vec3> p(7);
+  for (int k = 1; k <= 6; ++k) p[k] = {double(k), double(k * k), double(k * k * k)};
+  p[0] = (p[1] + p[2] + p[4]) / 3.0;
+  const std::vector<Triangle> t = {{1, 2, 0}, {2, 4, 0}, {4, 1, 0}, {2, 3, 5}, {3, 4, 6},
+                                   {5, 6, 1}, {1, 4, 3}, {2, 5, 4}, {3, 6, 5}, {6, 2, 1}};
+  const SurfaceMesh holed(p, t);
+  REQUIRE(holed.boundary_loops().size() == 1);
+  REQUIRE(holed.boundary_loops()[0].size() == 6);
+  RepairReport report;
+  const SurfaceMesh same = fill_small_holes(holed, 1e6, &report);
+  REQUIRE(same.triangle_count() == holed.triangle_count());
+  REQUIRE(report.filled_holes == 0);
+  REQUIRE(report.notes == std::vector<std::string>{"left 1 hole open: CGAL found no valid triangulation of it"});
+}
+
+TEST_CASE("fill_small_holes leaves open two holes whose patches cut each other but not the surface") {
+  // Two open square pyramids sharing the points (-1, 0, 0) and (1, 0, 0) of their rims: one's rim in
+  // z = 0 (apex below), the other's in y = 0 (apex at +y). Each rim is a rhombus whose short
+  // diagonal crosses the long one at the origin: both patches hold the segment between the shared
+  // points, and each meets the other pyramid at those points only.
+  const std::vector<Vec3> p = {{-1, 0, 0}, {0, 0.5, 0}, {1, 0, 0}, {0, -0.5, 0}, {0, 0, -2},
+                               {-1, 0, 0}, {0, 0, 0.5}, {1, 0, 0}, {0, 0, -0.5}, {0, 2, 0}};
+  const std::vector<Triangle> t = {{1, 0, 4}, {2, 1, 4}, {3, 2, 4}, {0, 3, 4},
+                                   {6, 5, 9}, {7, 6, 9}, {8, 7, 9}, {5, 8, 9}};
+  const SurfaceMesh pyramids(p, t);
+  REQUIRE(pyramids.boundary_loops().size() == 2);
+  // Each alone is filled.
+  for (int k = 0; k < 2; ++k) {
+    const std::vector<Vec3> one(p.begin() + 5 * k, p.begin() + 5 * k + 5);
+    std::vector<Triangle> sides(t.begin() + 4 * k, t.begin() + 4 * k + 4);
+    for (Triangle& s : sides)
+      for (int& v : s) v -= 5 * k;
+    REQUIRE(fill_small_holes(SurfaceMesh(one, sides), 100).is_closed());
+  }
+  RepairReport report;
+  const SurfaceMesh same = fill_small_holes(pyramids, 100, &report);
+  REQUIRE(same.triangle_count() == 8);
+  REQUIRE(report.filled_holes == 0);
+  REQUIRE(report.notes == std::vector<std::string>{"left 2 holes open: filling them would cut through the surface or "
+                                                   "make a degenerate triangle"});
+}
+
+TEST_CASE("The repair keeps one copy of a face that splitting a T-junction makes again") {
+  // Beside the octahedron, triangle 7 8 10 with corner 9 of triangle 7 9 10 at the middle of its
+  // edge 7 8: splitting that T-junction makes 7 9 10 a second time. The repair once refused its own
+  // result then ("is still invalid after --repair: triangles ... are duplicates"); one copy stays.
+  std::string off = "OFF\n11 12 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n0.999 0 0.001\n";
+  off += "10 0 0\n12 0 0\n11 0 0\n11 1 0\n";
+  off += "3 0 2 6\n3 6 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 6\n3 3 6 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
+  off += "3 7 8 10\n3 7 9 10\n";
+  const std::string path = scratch("split_duplicate.off");
+  write_file(path, off);
+  const LoadedMesh loaded = read_mesh(path, {true});
+  CHECK(loaded.repair.split_edges == 1);
+  CHECK(loaded.repair.removed_duplicate_faces == 1);
+  const SurfaceMesh& mesh = loaded.mesh;
+  REQUIRE(mesh.triangle_count() == 12);  // the octahedron's 10 and the halves 7 9 10, 9 8 10
+  auto count = [&](std::set<std::array<double, 3>> corners) {
+    int n = 0;
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      std::set<std::array<double, 3>> at;
+      for (int v : mesh.triangle(t)) at.insert({mesh.position(v).x, mesh.position(v).y, mesh.position(v).z});
+      n += at == corners;
+    }
+    return n;
+  };
+  CHECK(count({{10, 0, 0}, {11, 0, 0}, {11, 1, 0}}) == 1);
+  CHECK(count({{11, 0, 0}, {12, 0, 0}, {11, 1, 0}}) == 1);
+  CHECK(count({{10, 0, 0}, {12, 0, 0}, {11, 1, 0}}) == 0);  // the unsplit triangle is gone
 }

@@ -619,7 +619,8 @@ double t_junction_tolerance(const std::vector<Vec3>& positions, const std::vecto
 // Splits the boundary edges that corners of other faces lie on (T-junctions), so that both sides of
 // the crack share those corners: each split triangle becomes a fan from its opposite corner. A
 // triangle with such corners on several edges is split edge by edge (at most three passes).
-void split_t_junctions(const std::vector<Point>& points, std::vector<SoupTriangle>& soup, RepairReport& report) {
+// Returns whether it split any.
+bool split_t_junctions(const std::vector<Point>& points, std::vector<SoupTriangle>& soup, RepairReport& report) {
   std::vector<Vec3> positions;
   positions.reserve(points.size());
   for (const Point& p : points) positions.push_back({p.x(), p.y(), p.z()});
@@ -635,7 +636,7 @@ void split_t_junctions(const std::vector<Point>& points, std::vector<SoupTriangl
     if (pass == 0) corners = static_cast<int>(junctions.size());
     report.split_edges += split_at_t_junctions(triangles, junctions);
   }
-  if (report.split_edges == 0) return;
+  if (report.split_edges == 0) return false;
   report.notes.push_back(fmt::format("split {} boundary edge{} at {} corner{} of other faces lying on {} (T-junctions: "
                                      "cracks along seams)",
                                      report.split_edges, report.split_edges == 1 ? "" : "s", corners,
@@ -643,6 +644,7 @@ void split_t_junctions(const std::vector<Point>& points, std::vector<SoupTriangl
   soup.clear();
   for (const Triangle& t : triangles)
     soup.push_back({static_cast<std::size_t>(t[0]), static_cast<std::size_t>(t[1]), static_cast<std::size_t>(t[2])});
+  return true;
 }
 
 RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std::vector<Polygon> polygons,
@@ -681,7 +683,10 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
                            faces_read, weld, weld_damage));
   remove_internal_walls(triangles, report);
   report.removed_duplicate_faces = static_cast<int>(PMP::merge_duplicate_polygons_in_polygon_soup(points, triangles));
-  split_t_junctions(points, triangles, report);
+  // A split can make a face the file has already (7 9 10 from 7 8 10, 9 on edge 7 8, beside a
+  // face 7 9 10): one copy stays, as for the duplicates above.
+  if (split_t_junctions(points, triangles, report))
+    report.removed_duplicate_faces += static_cast<int>(PMP::merge_duplicate_polygons_in_polygon_soup(points, triangles));
 
   RepairedSoup out;
   out.weld_damage = weld_damage;
