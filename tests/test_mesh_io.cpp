@@ -965,6 +965,11 @@ TEST_CASE("A --weld that joins every corner leaves no faces and names the weld n
   write_file(scratch("flat_only.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n");
   REQUIRE_THROWS_WITH(read_mesh(scratch("flat_only.off"), {true}),
                       Contains("flat_only.off: has no faces left after --repair removed the degenerate ones"));
+  // The same file with a --weld that joins no corner: the file's faces, not the weld, are named.
+  options.weld = 1e-6;
+  REQUIRE_THROWS_WITH(read_mesh(scratch("flat_only.off"), options),
+                      Contains("flat_only.off: has no faces left after --repair removed the degenerate ones") &&
+                          !Contains("--weld"));
 }
 
 TEST_CASE("Filling holes of a closed mesh fills nothing and notes that it is closed") {

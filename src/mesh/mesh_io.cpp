@@ -671,10 +671,12 @@ RepairedSoup repair_soup(const std::string& path, std::vector<Point> points, std
   const std::size_t before = triangles.size();
   triangles.erase(std::remove_if(triangles.begin(), triangles.end(), degenerate), triangles.end());
   report.removed_degenerate_faces += static_cast<int>(before - triangles.size());
+  // A weld that joined no corner is not what flattened the faces: the file's own faces were.
   if (triangles.empty())
-    fail(path, weld > 0 ? fmt::format("has no faces left after --weld {:g} joined their corners: {}", weld,
-                                      weld_damage.empty() ? "use a smaller value" : weld_damage)
-                        : std::string("has no faces left after --repair removed the degenerate ones"));
+    fail(path, report.welded_vertices > 0
+                   ? fmt::format("has no faces left after --weld {:g} joined their corners: {}", weld,
+                                 weld_damage.empty() ? "use a smaller value" : weld_damage)
+                   : std::string("has no faces left after --repair removed the degenerate ones"));
   // A weld that took most of the faces with the edges it collapsed has made another model (the
   // elk at --weld 0.5: 2 of its 3290 faces left, "verification: passed"): refused, as one that
   // left seams open is.
