@@ -18,13 +18,6 @@ Interval enclose(const Q& x) { return Interval(CGAL::to_interval(x)); }
 
 Sign sign_of(const Q& x) { return static_cast<Sign>(static_cast<int>(CGAL::sign(x))); }
 
-// Interval filter: the sign when the interval excludes zero, Zero meaning "undecided".
-Sign filtered_sign(const Interval& x) {
-  if (x.inf() > 0) return Sign::Positive;
-  if (x.sup() < 0) return Sign::Negative;
-  return Sign::Zero;
-}
-
 }  // namespace
 
 const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
@@ -135,14 +128,25 @@ Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, co
     CGAL::Protect_FPU_rounding<true> upward;
     s = filtered_sign((b.box[u] - a.box[u]) * (c.box[v] - a.box[v]) - (b.box[v] - a.box[v]) * (c.box[u] - a.box[u]));
   }
-  if (s == Sign::Zero) {
-    const Q& ax = coordinate(a.p(), u);
-    const Q& ay = coordinate(a.p(), v);
-    const Q det = (coordinate(b.p(), u) - ax) * (coordinate(c.p(), v) - ay) -
-                  (coordinate(b.p(), v) - ay) * (coordinate(c.p(), u) - ax);
-    s = sign_of(det);
-  }
+  if (s == Sign::Zero) return orient_exact(a, b, c, f);
   return f.sign > 0 ? s : -s;
+}
+
+Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f) {
+  const int u = f.u, v = f.v;
+  const Q& ax = coordinate(a.p(), u);
+  const Q& ay = coordinate(a.p(), v);
+  const Q det = (coordinate(b.p(), u) - ax) * (coordinate(c.p(), v) - ay) -
+                (coordinate(b.p(), v) - ay) * (coordinate(c.p(), u) - ax);
+  const Sign s = sign_of(det);
+  return f.sign > 0 ? s : -s;
+}
+
+std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri) {
+  std::uint8_t edges = 0;
+  for (int e = 0; e < 3; ++e)
+    if (q.on_mesh_edge(tri[e], tri[(e + 1) % 3])) edges |= static_cast<std::uint8_t>(1 << e);
+  return edges;
 }
 
 Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
@@ -237,6 +241,10 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
     const Sign s = filtered_sign(value);
     if (s != Sign::Zero) return s;
   }
+  return compare_power_distance_exact(q, a, b);
+}
+
+Sign compare_power_distance_exact(const ExactVertex& q, const Site& a, const Site& b) {
   Q exact(0);
   for (int c = 0; c < 3; ++c) {
     const Q pa(a.p[c]), pb(b.p[c]);
@@ -244,6 +252,19 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
   }
   exact += Q(b.w) - Q(a.w);
   return sign_of(exact);
+}
+
+std::vector<SiteTerms> site_terms(const std::vector<Site>& sites) {
+  std::vector<SiteTerms> terms(sites.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sites.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const Site& s = sites[k];
+      terms[k].x = s.p;
+      terms[k].c = Interval(s.p.x) * s.p.x + Interval(s.p.y) * s.p.y + Interval(s.p.z) * s.p.z - s.w;
+    }
+  });
+  return terms;
 }
 
 void merge_into(PropertyResult& into, const PropertyResult& part) {
