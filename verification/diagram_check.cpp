@@ -366,7 +366,7 @@ class DiagramChecker {
     std::sort(edges_.begin(), edges_.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
       return std::tie(x.from, x.to) < std::tie(y.from, y.to);
     });
-    Q rest(0);
+    std::optional<Q> rest;  // the edges left over, summed in full (made only when there is one)
     along_bc_.clear();  // (exact vertex id, index into Diagram::vertices, +-count)
     for (size_t k = 0; k < edges_.size();) {
       size_t m = k;
@@ -383,7 +383,8 @@ class DiagramChecker {
         continue;
       }
       points_ = {corner_[0], &vertices_.exact[e.from], &vertices_.exact[e.to]};
-      rest += Q(count) * twice_area(points_, f);
+      if (!rest) rest.emplace(0);
+      *rest += Q(count) * twice_area(points_, f);
     }
     std::sort(along_bc_.begin(), along_bc_.end());
     int n_c = 0;             // n_v at corner c
@@ -401,13 +402,13 @@ class DiagramChecker {
       k = m;
     }
     // With s_b = 0 and s_c = 1: sum = n_c * area + rest = area.
-    if (CGAL::is_zero(rest) && n_c == 1 && !elsewhere) return;
+    if ((!rest || CGAL::is_zero(*rest)) && n_c == 1 && !elsewhere) return;
     Q along_bc(0);
     for (const auto& [id, vertex, n] : along_bc_)
       if (n != 0) along_bc += Q(n) * parameter_along(d_.vertices[vertex], id, tri[1]);
     points_.assign(corner_.begin(), corner_.end());
     const Q triangle = twice_area(points_, f);
-    const Q ratio = along_bc + rest / triangle;
+    const Q ratio = rest ? along_bc + *rest / triangle : along_bc;
     if (ratio != Q(1))
       out_.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
                                      CGAL::to_double(ratio)));

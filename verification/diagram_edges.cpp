@@ -61,7 +61,12 @@ class EdgeChecker {
   void collect(int t, int e, std::vector<Segment>& out) const {
     out.clear();
     const Triangle& tri = mesh_.triangle(t);
-    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b);
+    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
+    // As SymbolicVertex::on_mesh_edge(a, b), inline.
+    auto on_edge = [&](const SymbolicVertex& q) {
+      return q.type == SymbolicVertex::Type::A ? q.v[0] == a || q.v[0] == b
+                                               : q.type == SymbolicVertex::Type::B && q.v[0] == lo && q.v[1] == hi;
+    };
     for (int p = diagram_.triangle_offsets[t]; p < diagram_.triangle_offsets[t + 1]; ++p) {
       if (!polygon_ok_[p]) continue;
       const CellPolygon& poly = diagram_.polygons[p];
@@ -69,7 +74,7 @@ class EdgeChecker {
       const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = (k + 1) % poly.vertex_count;
-        if (!verts[k].on_mesh_edge(a, b) || !verts[k1].on_mesh_edge(a, b)) continue;
+        if (!on_edge(verts[k]) || !on_edge(verts[k1])) continue;
         Segment s{ids[k], ids[k1], parameter(ids[k], lo), parameter(ids[k1], lo), poly.cell, p};
         // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
         const Sign order = compare(s.s1, s.s0);

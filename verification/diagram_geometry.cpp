@@ -3,6 +3,7 @@
 // power-distance and edge-parameter comparisons.
 #include "verification/diagram_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -108,17 +109,26 @@ void ExactVertices::make_points() {
 }
 
 Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners) {
+  // The axes in decreasing order of the normal's doubles (a guess, ties in axis order); the
+  // first whose exact projected orientation is not zero is dropped.
   const Triangle& tri = mesh.triangle(t);
-  Frame f;
-  const int drop = predicates::projection_axis(mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
-  if (drop < 0) return f;
-  f.u = (drop + 1) % 3;
-  f.v = (drop + 2) % 3;
-  const Sign s = orient(*corners[0], *corners[1], *corners[2], f);  // with sign = +1: the plain projected orientation
-  if (s == Sign::Zero) return f;
-  f.sign = s == Sign::Positive ? 1 : -1;
-  f.valid = true;
-  return f;
+  const Vec3& a = mesh.position(tri[0]);
+  const Vec3 n = cross(mesh.position(tri[1]) - a, mesh.position(tri[2]) - a);
+  double key[3];
+  for (int axis = 0; axis < 3; ++axis) key[axis] = std::isnan(n[axis]) ? 0.0 : std::fabs(n[axis]);
+  std::array<int, 3> order{0, 1, 2};
+  std::stable_sort(order.begin(), order.end(), [&](int p, int q) { return key[p] > key[q]; });
+  for (int drop : order) {
+    Frame f;
+    f.u = (drop + 1) % 3;
+    f.v = (drop + 2) % 3;
+    const Sign s = orient(*corners[0], *corners[1], *corners[2], f);  // with sign = +1: the plain projected orientation
+    if (s == Sign::Zero) continue;
+    f.sign = s == Sign::Positive ? 1 : -1;
+    f.valid = true;
+    return f;
+  }
+  return Frame{};
 }
 
 Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f) {
@@ -143,9 +153,15 @@ Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex&
 }
 
 std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri) {
+  // As SymbolicVertex::on_mesh_edge(tri[e], tri[e + 1]) for each e.
   std::uint8_t edges = 0;
-  for (int e = 0; e < 3; ++e)
-    if (q.on_mesh_edge(tri[e], tri[(e + 1) % 3])) edges |= static_cast<std::uint8_t>(1 << e);
+  for (int e = 0; e < 3; ++e) {
+    const int a = tri[e], b = tri[(e + 1) % 3];
+    const bool on = q.type == SymbolicVertex::Type::A
+                        ? q.v[0] == a || q.v[0] == b
+                        : q.type == SymbolicVertex::Type::B && q.v[0] == std::min(a, b) && q.v[1] == std::max(a, b);
+    if (on) edges |= static_cast<std::uint8_t>(1 << e);
+  }
   return edges;
 }
 
