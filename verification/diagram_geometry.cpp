@@ -116,8 +116,9 @@ Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const Exac
   const Vec3 n = cross(mesh.position(tri[1]) - a, mesh.position(tri[2]) - a);
   double key[3];
   for (int axis = 0; axis < 3; ++axis) key[axis] = std::isnan(n[axis]) ? 0.0 : std::fabs(n[axis]);
-  std::array<int, 3> order{0, 1, 2};
-  std::stable_sort(order.begin(), order.end(), [&](int p, int q) { return key[p] > key[q]; });
+  std::array<int, 3> order{0, 1, 2};  // an insertion sort: stable
+  for (int i = 1; i < 3; ++i)
+    for (int j = i; j > 0 && key[order[j]] > key[order[j - 1]]; --j) std::swap(order[j], order[j - 1]);
   for (int drop : order) {
     Frame f;
     f.u = (drop + 1) % 3;
@@ -153,14 +154,17 @@ Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex&
 }
 
 std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri) {
-  // As SymbolicVertex::on_mesh_edge(tri[e], tri[e + 1]) for each e.
+  // As SymbolicVertex::on_mesh_edge(tri[e], tri[e + 1]) for each e: a corner is on the two edges
+  // through it, a type B vertex on the edge it names.
   std::uint8_t edges = 0;
-  for (int e = 0; e < 3; ++e) {
-    const int a = tri[e], b = tri[(e + 1) % 3];
-    const bool on = q.type == SymbolicVertex::Type::A
-                        ? q.v[0] == a || q.v[0] == b
-                        : q.type == SymbolicVertex::Type::B && q.v[0] == std::min(a, b) && q.v[1] == std::max(a, b);
-    if (on) edges |= static_cast<std::uint8_t>(1 << e);
+  if (q.type == SymbolicVertex::Type::A) {
+    for (int c = 0; c < 3; ++c)
+      if (q.v[0] == tri[c]) edges |= static_cast<std::uint8_t>((1 << c) | (1 << ((c + 2) % 3)));
+  } else if (q.type == SymbolicVertex::Type::B) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      if (q.v[0] == std::min(a, b) && q.v[1] == std::max(a, b)) edges |= static_cast<std::uint8_t>(1 << e);
+    }
   }
   return edges;
 }
