@@ -431,24 +431,23 @@ class DiagramChecker {
     candidates_.clear();
     for (int p = begin; p < end; ++p)
       if (polygon_ok_[p] && area_sign_[p] == Sign::Positive) candidates_.push_back(p);
-    if (candidates_.size() <= kAllPairsUpTo) {
-      for (std::size_t a = 0; a < candidates_.size(); ++a)
-        for (std::size_t b = a + 1; b < candidates_.size(); ++b) test(candidates_[a], candidates_[b]);
-      return;
-    }
     boxes_.clear();
     for (int p : candidates_) {
-      const CellPolygon& poly = d_.polygons[p];
-      FrameBox box{p, vertex(poly, 0).box[f.u].inf(), vertex(poly, 0).box[f.u].sup(), vertex(poly, 0).box[f.v].inf(),
-                   vertex(poly, 0).box[f.v].sup()};
-      for (int k = 1; k < poly.vertex_count; ++k) {
-        const ExactVertex& x = vertex(poly, k);
-        box.u_lo = std::min(box.u_lo, x.box[f.u].inf());
-        box.u_hi = std::max(box.u_hi, x.box[f.u].sup());
-        box.v_lo = std::min(box.v_lo, x.box[f.v].inf());
-        box.v_hi = std::max(box.v_hi, x.box[f.v].sup());
+      const FrameVertex* fv = frame_vertices(p);
+      FrameBox box{p, fv[0].u.inf(), fv[0].u.sup(), fv[0].v.inf(), fv[0].v.sup()};
+      for (int k = 1; k < d_.polygons[p].vertex_count; ++k) {
+        box.u_lo = std::min(box.u_lo, fv[k].u.inf());
+        box.u_hi = std::max(box.u_hi, fv[k].u.sup());
+        box.v_lo = std::min(box.v_lo, fv[k].v.inf());
+        box.v_hi = std::max(box.v_hi, fv[k].v.sup());
       }
       boxes_.push_back(box);
+    }
+    if (candidates_.size() <= kAllPairsUpTo) {
+      for (std::size_t a = 0; a < candidates_.size(); ++a)
+        for (std::size_t b = a + 1; b < candidates_.size(); ++b)
+          if (!boxes_[a].apart(boxes_[b])) test(candidates_[a], candidates_[b]);
+      return;
     }
     std::sort(boxes_.begin(), boxes_.end(), [](const FrameBox& a, const FrameBox& b) {
       return std::tie(a.u_lo, a.polygon) < std::tie(b.u_lo, b.polygon);
@@ -467,16 +466,27 @@ class DiagramChecker {
     const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
     const FrameVertex* pv = frame_vertices(p);
     const FrameVertex* qv = frame_vertices(q);
-    for (int k = 0; k < pp.vertex_count; ++k) {
+    auto outside = [&](int k) {  // q on the closed outer side of p's edge k
       const int k1 = (k + 1) % pp.vertex_count;
-      bool outside = true;
-      for (int m = 0; m < qq.vertex_count && outside; ++m) {
+      for (int m = 0; m < qq.vertex_count; ++m) {
         // A shared vertex, or a third point of a mesh edge the polygon edge runs along, is on the line.
         if (qv[m].x == pv[k].x || qv[m].x == pv[k1].x || (pv[k].edges & pv[k1].edges & qv[m].edges)) continue;
-        outside = orient_upward(pv[k], pv[k1], qv[m], f) != Sign::Positive;
+        if (orient_upward(pv[k], pv[k1], qv[m], f) == Sign::Positive) return false;
       }
-      if (outside) return true;
-    }
+      return true;
+    };
+    // Neighbours share an edge, the likeliest to separate them: tried first (the verdict, whether
+    // some edge does, is the same in any order).
+    int shared = -1;
+    for (int k = 0; k < pp.vertex_count && shared < 0; ++k)
+      for (int m = 0; m < qq.vertex_count; ++m)
+        if (qv[m].x == pv[k].x && qv[(m + qq.vertex_count - 1) % qq.vertex_count].x == pv[(k + 1) % pp.vertex_count].x) {
+          shared = k;
+          break;
+        }
+    if (shared >= 0 && outside(shared)) return true;
+    for (int k = 0; k < pp.vertex_count; ++k)
+      if (k != shared && outside(k)) return true;
     return false;
   }
 
@@ -641,6 +651,7 @@ class DiagramChecker {
   struct FrameBox {
     int polygon;
     double u_lo, u_hi, v_lo, v_hi;
+    bool apart(const FrameBox& o) const { return u_hi < o.u_lo || o.u_hi < u_lo || v_hi < o.v_lo || o.v_hi < v_lo; }
   };
   std::vector<int> candidates_;
   std::vector<FrameBox> boxes_;

@@ -169,13 +169,19 @@ class EdgeChecker {
 void count_components(const Samples& samples, const Diagram& diagram, const std::vector<char>& piece,
                       std::vector<int>& parent, DiagramVerification& out) {
   const int n = diagram.sample_count;
-  std::vector<std::vector<int>> polygons_of_cell(n);
+  // The pieces of each cell, in polygon order: cell i's are order[first[i]] .. order[first[i + 1] - 1].
+  std::vector<int> first(n + 1, 0), order;
   for (int p = 0; p < static_cast<int>(diagram.polygons.size()); ++p)
-    if (piece[p]) polygons_of_cell[diagram.polygons[p].cell].push_back(p);
-  std::vector<int> roots;
+    if (piece[p]) ++first[diagram.polygons[p].cell + 1];
+  for (int i = 0; i < n; ++i) first[i + 1] += first[i];
+  order.resize(first[n]);
+  std::vector<int> next(first.begin(), first.end() - 1);
+  for (int p = 0; p < static_cast<int>(diagram.polygons.size()); ++p)
+    if (piece[p]) order[next[diagram.polygons[p].cell]++] = p;
+  std::vector<int> roots, polys;
   for (int i = 0; i < n; ++i) {
     ++out.connected.checked;
-    const std::vector<int>& polys = polygons_of_cell[i];
+    polys.assign(order.begin() + first[i], order.begin() + first[i + 1]);
     roots.clear();
     for (int p : polys) roots.push_back(find_root(parent, p));
     std::vector<int> distinct = roots;

@@ -26,7 +26,7 @@ const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (a
 ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx) {
   ExactVertex e;
   e.q_ = q;
-  e.ctx_ = ctx;
+  e.ctx_ = &ctx;
   if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
     e.box = enclosure->box;
     e.parameter_box = enclosure->parameter;
@@ -49,8 +49,8 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
   ExactVertex e;
   e.source_ = Source::Barycentric;
   e.q_.v = corners;
-  e.barycentric_ = b;
-  e.ctx_ = ctx;
+  e.barycentric_ = &b;
+  e.ctx_ = &ctx;
   CGAL::Protect_FPU_rounding<true> upward;
   const Interval sum = Interval(b.x) + Interval(b.y) + Interval(b.z);
   e.box = {Interval(0), Interval(0), Interval(0)};
@@ -65,13 +65,13 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
 
 const ExactPoint& ExactVertex::p() const {
   return exact_.get([&] {
-    if (!ctx_.vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
-    if (source_ == Source::Symbolic) return exact_position(q_, ctx_);
-    const Q b[3] = {Q(barycentric_.x), Q(barycentric_.y), Q(barycentric_.z)};
+    if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
+    if (source_ == Source::Symbolic) return exact_position(q_, *ctx_);
+    const Q b[3] = {Q(barycentric_->x), Q(barycentric_->y), Q(barycentric_->z)};
     const Q sum = b[0] + b[1] + b[2];
     ExactPoint x{Q(0), Q(0), Q(0)};
     for (int c = 0; c < 3; ++c) {
-      const ExactPoint corner = to_exact(ctx_.vertices[q_.v[c]]);
+      const ExactPoint corner = to_exact(ctx_->vertices[q_.v[c]]);
       x.x += b[c] * corner.x / sum;
       x.y += b[c] * corner.y / sum;
       x.z += b[c] * corner.z / sum;
@@ -82,8 +82,8 @@ const ExactPoint& ExactVertex::p() const {
 
 const Q& ExactVertex::edge_parameter() const {
   return parameter_.get([&] {
-    if (!ctx_.vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
-    return exact_edge_parameter(q_, ctx_);
+    if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
+    return exact_edge_parameter(q_, *ctx_);
   });
 }
 

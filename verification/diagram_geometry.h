@@ -64,10 +64,11 @@ class ExactVertex {
   Interval parameter_box{0};  //!< type B only: encloses edge_parameter()
 
   ExactVertex() = default;
-  //! The point q defines; not valid when it defines none (decided exactly).
+  //! The point q defines; not valid when it defines none (decided exactly). ctx must outlive the
+  //! vertex (its rationals are made from it on first use).
   static ExactVertex of(const SymbolicVertex& q, const SymbolicContext& ctx);
   //! The point at barycentric coordinates b (not normalised; their sum is positive) of triangle
-  //! `corners` (vertex indices into ctx.vertices).
+  //! `corners` (vertex indices into ctx.vertices). b and ctx must outlive the vertex.
   static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
 
   //! The exact coordinates (computed on the first call, from any thread).
@@ -84,8 +85,8 @@ class ExactVertex {
   enum class Source : std::uint8_t { Symbolic, Barycentric };
   Source source_ = Source::Symbolic;
   SymbolicVertex q_;  // Barycentric: q_.v holds the corners
-  Vec3 barycentric_;
-  SymbolicContext ctx_;
+  const Vec3* barycentric_ = nullptr;
+  const SymbolicContext* ctx_ = nullptr;
   Lazy<ExactPoint> exact_;
   Lazy<Q> parameter_;
 };
