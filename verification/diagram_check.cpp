@@ -113,11 +113,16 @@ struct Checked {
     const int n = d.sample_count;
     vertices.of_diagram_vertex.assign(d.vertices.size(), -1);
     vertices.exact.reserve(d.vertices.size() / 2 + mesh.vertex_count());  // most vertices are in two or more polygons
-    for (size_t k = 0; k < d.vertices.size(); ++k)
-      if (well_formed(d.vertices[k], mesh.vertex_count(), n))
-        vertices.of_diagram_vertex[k] = vertices.exact.add(d.vertices[k]);
+    // The mesh vertices first: a polygon corner that is one of them (equal as a symbolic vertex)
+    // takes its id without a look-up.
     mesh_vertex.resize(mesh.vertex_count());
     for (int v = 0; v < mesh.vertex_count(); ++v) mesh_vertex[v] = vertices.exact.add(SymbolicVertex::mesh_vertex(v));
+    for (size_t k = 0; k < d.vertices.size(); ++k) {
+      const SymbolicVertex& q = d.vertices[k];
+      if (!well_formed(q, mesh.vertex_count(), n)) continue;
+      const bool corner = q.type == SymbolicVertex::Type::A && q == SymbolicVertex::mesh_vertex(q.v[0]);
+      vertices.of_diagram_vertex[k] = corner ? mesh_vertex[q.v[0]] : vertices.exact.add(q);
+    }
     vertices.exact.make_points();
     terms = site_terms(d.sites);
     polygon_ok.assign(d.polygons.size(), 0);
@@ -466,14 +471,21 @@ class DiagramChecker {
     const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
     const FrameVertex* pv = frame_vertices(p);
     const FrameVertex* qv = frame_vertices(q);
-    auto outside = [&](int k) {  // q on the closed outer side of p's edge k
+    // q on the closed outer side of the line of p's edge k, and not all on it: q has positive area,
+    // so a line through two distinct points has some vertex of q strictly outside; an edge whose
+    // ends coincide in the exact geometry (a degenerate input's limit) has no line and separates
+    // nothing, though every orientation against it is zero.
+    auto outside = [&](int k) {
       const int k1 = (k + 1) % pp.vertex_count;
+      bool strictly = false;
       for (int m = 0; m < qq.vertex_count; ++m) {
         // A shared vertex, or a third point of a mesh edge the polygon edge runs along, is on the line.
         if (qv[m].x == pv[k].x || qv[m].x == pv[k1].x || (pv[k].edges & pv[k1].edges & qv[m].edges)) continue;
-        if (orient_upward(pv[k], pv[k1], qv[m], f) == Sign::Positive) return false;
+        const Sign s = orient_upward(pv[k], pv[k1], qv[m], f);
+        if (s == Sign::Positive) return false;
+        strictly = strictly || s == Sign::Negative;
       }
-      return true;
+      return strictly;
     };
     // Neighbours share an edge, the likeliest to separate them: tried first (the verdict, whether
     // some edge does, is the same in any order).
