@@ -11,8 +11,8 @@ Markdown table; exits 1 if a verification failed or a run did not finish.
     bench/verify_sphere.py --bench build/bench_verify --base ../main-build/bench_verify --cases big
     bench/verify_sphere.py --bench build/bench_verify --cases 20000:80000 --threads 1
 
-Cases: `big` (100k samples on 327,680 triangles, 1M on 1,310,720), `fig9` (the 14 rows of
-bench_fig9), `all` (both), or SAMPLES:TRIANGLES,... Standard library only.
+Cases, comma-separated: `big` (100k samples on 327,680 triangles, 1M on 1,310,720), `fig9` (the
+14 rows of bench_fig9), `all` (both), SAMPLES:TRIANGLES. Standard library only.
 """
 
 import argparse
@@ -28,13 +28,11 @@ FIG9 = [(n, 20480) for n in (2000, 5000, 10000, 20000, 50000, 100000)] + \
 
 
 def cases_of(spec):
-    if spec == "big":
-        return BIG
-    if spec == "fig9":
-        return FIG9
-    if spec == "all":
-        return BIG + FIG9
-    return [tuple(int(x) for x in c.split(":")) for c in spec.split(",")]
+    named = {"big": BIG, "fig9": FIG9, "all": BIG + FIG9}
+    cases = []
+    for item in spec.split(","):
+        cases += named[item] if item in named else [tuple(int(x) for x in item.split(":"))]
+    return cases
 
 
 def run(bench, n, m, threads, runs):
@@ -66,7 +64,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--bench", default=os.path.join(here, "..", "build", "bench_verify"))
     parser.add_argument("--base", help="a second bench_verify, run alternately with the first")
-    parser.add_argument("--cases", default="all", help="big, fig9, all, or SAMPLES:TRIANGLES,...")
+    parser.add_argument("--cases", default="all", help="comma-separated: big, fig9, all, SAMPLES:TRIANGLES")
     parser.add_argument("--threads", default="1,2", help="thread counts, comma-separated")
     parser.add_argument("--runs", type=int, default=1, help="runs per process, minimum kept")
     args = parser.parse_args()
