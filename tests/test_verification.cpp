@@ -908,3 +908,103 @@ TEST_CASE("Cell components recomputed without polygon_along are those the builde
   CHECK(split_cells > 0);  // the RVD on nearby sheets splits cells
   CHECK(joined > 0);
 }
+
+TEST_CASE("The per-triangle filters give the exact signs at ties, and a broken degenerate diagram is caught through them",
+          "[verification][degenerate]") {
+  // The checks read each triangle's vertices as FrameVertex (enclosures side by side, the mesh
+  // edges they lie on as bits) and compare power distances through SiteTerms; every sign they
+  // decide must be the rationals' sign, also where the rationals give zero (samples on mesh
+  // vertices and edge midpoints: bisectors through vertices and along edges, cospherical sites).
+  const SurfaceMesh grid = test::grid(4, 4);
+  const SurfaceMesh sphere = test::icosphere(2);
+  std::vector<Vec3> mixed;
+  for (int v = 0; v < sphere.vertex_count(); v += 5) mixed.push_back(sphere.position(v));
+  for (int t = 0; t < sphere.triangle_count(); t += 17) {
+    const Triangle& tri = sphere.triangle(t);
+    mixed.push_back(0.5 * (sphere.position(tri[0]) + sphere.position(tri[1])));
+  }
+  const std::vector<std::tuple<std::string, const SurfaceMesh*, Samples>> cases = {
+      {"samples on grid vertices", &grid, locate_points(grid, grid.positions())},
+      {"sphere vertices and edge midpoints", &sphere, locate_points(sphere, mixed)},
+      {"all sphere vertices (cospherical)", &sphere, locate_points(sphere, sphere.positions())}};
+  for (const auto& [name, mesh, samples] : cases) {
+    INFO(name);
+    Diagram d = compute_diagram(*mesh, samples, DiagramKind::Lrvd);
+    REQUIRE(verify_diagram(*mesh, samples, d).passed);
+    const SymbolicContext ctx = d.context(*mesh);
+    const std::vector<verify_detail::SiteTerms> terms = verify_detail::site_terms(d.sites);
+    int orient_zeros = 0, power_zeros = 0;
+    int target = -1;  // a polygon of four or more vertices turning strictly left at its second
+    for (int t = 0; t < mesh->triangle_count(); ++t) {
+      const Triangle& tri = mesh->triangle(t);
+      std::vector<verify_detail::ExactVertex> corners;
+      for (int c = 0; c < 3; ++c) corners.push_back(verify_detail::ExactVertex::of(SymbolicVertex::mesh_vertex(tri[c]), ctx));
+      const verify_detail::Frame f = verify_detail::triangle_frame(*mesh, t, {&corners[0], &corners[1], &corners[2]});
+      REQUIRE(f.valid);
+      const int drop = predicates::projection_axis(mesh->position(tri[0]), mesh->position(tri[1]), mesh->position(tri[2]));
+      CHECK(f.u == (drop + 1) % 3);
+      std::vector<SymbolicVertex> symbolic;
+      std::vector<int> cells, first;
+      for (int p = d.triangle_offsets[t]; p < d.triangle_offsets[t + 1]; ++p) {
+        cells.push_back(d.polygons[p].cell);
+        first.push_back(static_cast<int>(symbolic.size()));
+        for (int k = 0; k < d.polygons[p].vertex_count; ++k) symbolic.push_back(d.polygon_vertices(d.polygons[p])[k]);
+      }
+      std::vector<verify_detail::ExactVertex> points;
+      for (const SymbolicVertex& q : symbolic) points.push_back(verify_detail::ExactVertex::of(q, ctx));
+      std::vector<verify_detail::FrameVertex> frame;
+      for (size_t k = 0; k < symbolic.size(); ++k) {
+        const std::uint8_t edges = verify_detail::edges_of(symbolic[k], tri);
+        for (int e = 0; e < 3; ++e) CHECK(((edges >> e) & 1) == symbolic[k].on_mesh_edge(tri[e], tri[(e + 1) % 3]));
+        frame.push_back({points[k].box[f.u], points[k].box[f.v], &points[k], edges});
+      }
+      for (int p = d.triangle_offsets[t]; p < d.triangle_offsets[t + 1] && target < 0; ++p) {
+        const int k = first[p - d.triangle_offsets[t]];
+        if (d.polygons[p].vertex_count >= 4 &&
+            verify_detail::orient_exact(points[k], points[k + 1], points[k + 2], f) == Sign::Positive)
+          target = p;
+      }
+      for (size_t a = 0; a < frame.size(); ++a)
+        for (size_t b = a + 1; b < frame.size(); ++b)
+          for (size_t c = b + 1; c < frame.size(); ++c) {
+            Sign fast;
+            {
+              CGAL::Protect_FPU_rounding<true> upward;
+              fast = verify_detail::orient_upward(frame[a], frame[b], frame[c], f);
+            }
+            const Sign exact = verify_detail::orient_exact(points[a], points[b], points[c], f);
+            CHECK(fast == exact);
+            orient_zeros += exact == Sign::Zero && symbolic[a] != symbolic[b] && symbolic[b] != symbolic[c] &&
+                            symbolic[a] != symbolic[c];
+          }
+      for (size_t k = 0; k < points.size(); ++k)
+        for (int i : cells)
+          for (int j : cells) {
+            const Sign exact = verify_detail::compare_power_distance_exact(points[k], d.sites[i], d.sites[j]);
+            Sign fast;
+            {
+              CGAL::Protect_FPU_rounding<true> upward;
+              fast = verify_detail::filtered_sign(terms[i].e(points[k]) - terms[j].e(points[k]));
+            }
+            CHECK((fast == Sign::Zero || fast == exact));  // Zero: undecided, the rationals decide
+            power_zeros += i != j && exact == Sign::Zero;
+          }
+    }
+    CHECK(orient_zeros > 0);  // three distinct vertices on one line: ties the filter left to the rationals
+    CHECK(power_zeros > 0);
+
+    // Broken through the same paths: a polygon read as a bow tie (a, c, b, ...: b is right of
+    // a -> c, since a, b, c turned strictly left), and a polygon listed twice.
+    REQUIRE(target >= 0);
+    const CellPolygon poly = d.polygons[target];
+    Diagram bow_tie = d;
+    std::swap(bow_tie.vertices[poly.first_vertex + 1], bow_tie.vertices[poly.first_vertex + 2]);
+    const DiagramVerification v = verify_diagram(*mesh, samples, bow_tie);
+    require_only_broken(v, v.disjoint,
+                        fmt::format("triangle {}: polygon of cell {} is not convex and counterclockwise", poly.triangle, poly.cell));
+    insert_polygon(d, target, poly);
+    const DiagramVerification twice = verify_diagram(*mesh, samples, d);
+    require_only_broken(twice, twice.disjoint, fmt::format("triangle {}: polygons of cells {} and {} overlap", poly.triangle,
+                                                           poly.cell, poly.cell));
+  }
+}

@@ -105,6 +105,7 @@ struct Checked {
   std::vector<int> mesh_vertex;  // exact vertex id of each mesh vertex
   std::vector<char> polygon_ok;
   std::vector<Sign> area_sign;
+  std::vector<SiteTerms> terms;  // of every site, for (3)
 
   // Exact vertex ids of every distinct polygon vertex and mesh vertex (their enclosures made in
   // parallel); which polygons the geometric checks can use.
@@ -112,12 +113,18 @@ struct Checked {
     const int n = d.sample_count;
     vertices.of_diagram_vertex.assign(d.vertices.size(), -1);
     vertices.exact.reserve(d.vertices.size() / 2 + mesh.vertex_count());  // most vertices are in two or more polygons
-    for (size_t k = 0; k < d.vertices.size(); ++k)
-      if (well_formed(d.vertices[k], mesh.vertex_count(), n))
-        vertices.of_diagram_vertex[k] = vertices.exact.add(d.vertices[k]);
+    // The mesh vertices first: a polygon corner that is one of them (equal as a symbolic vertex)
+    // takes its id without a look-up.
     mesh_vertex.resize(mesh.vertex_count());
     for (int v = 0; v < mesh.vertex_count(); ++v) mesh_vertex[v] = vertices.exact.add(SymbolicVertex::mesh_vertex(v));
+    for (size_t k = 0; k < d.vertices.size(); ++k) {
+      const SymbolicVertex& q = d.vertices[k];
+      if (!well_formed(q, mesh.vertex_count(), n)) continue;
+      const bool corner = q.type == SymbolicVertex::Type::A && q == SymbolicVertex::mesh_vertex(q.v[0]);
+      vertices.of_diagram_vertex[k] = corner ? mesh_vertex[q.v[0]] : vertices.exact.add(q);
+    }
     vertices.exact.make_points();
+    terms = site_terms(d.sites);
     polygon_ok.assign(d.polygons.size(), 0);
     area_sign.assign(d.polygons.size(), Sign::Zero);
     for (size_t p = 0; p < d.polygons.size(); ++p) {
@@ -191,7 +198,7 @@ class DiagramChecker {
  public:
   DiagramChecker(Checked& in, DiagramVerification& out)
       : mesh_(in.mesh), samples_(in.samples), d_(in.d), options_(in.options), out_(out), vertices_(in.vertices),
-        mesh_vertex_(in.mesh_vertex), polygon_ok_(in.polygon_ok), area_sign_(in.area_sign) {}
+        mesh_vertex_(in.mesh_vertex), polygon_ok_(in.polygon_ok), area_sign_(in.area_sign), terms_(in.terms) {}
 
   void check_triangles(int begin, int end) {
     for (int t = begin; t < end; ++t) check_triangle(t);
@@ -216,6 +223,7 @@ class DiagramChecker {
       out_.coverage.fail(fmt::format("triangle {}: no polygon", t));
       return;
     }
+    if (options_.exact_geometry) load_frame_vertices(tri, begin, end, f);
     bool areas_known = true;
     for (int p = begin; p < end; ++p) {
       ++out_.disjoint.checked;
@@ -245,6 +253,27 @@ class DiagramChecker {
     check_equidistance(t, begin, end);
   }
 
+  // The triangle's corners and its usable polygons' vertices as FrameVertex, side by side:
+  // frame_[first_[p - begin] + k] is vertex k of polygon p.
+  void load_frame_vertices(const Triangle& tri, int begin, int end, const Frame& f) {
+    for (int c = 0; c < 3; ++c)
+      corner_frame_[c] = {corner_[c]->box[f.u], corner_[c]->box[f.v], corner_[c],
+                          static_cast<std::uint8_t>((1 << c) | (1 << ((c + 2) % 3)))};
+    frame_.clear();
+    first_.clear();
+    for (int p = begin; p < end; ++p) {
+      first_.push_back(static_cast<int>(frame_.size()));
+      if (!polygon_ok_[p]) continue;
+      const CellPolygon& poly = d_.polygons[p];
+      const SymbolicVertex* verts = d_.polygon_vertices(poly);
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const ExactVertex& x = vertex(poly, k);
+        frame_.push_back({x.box[f.u], x.box[f.v], &x, edges_of(verts[k], tri)});
+      }
+    }
+  }
+  const FrameVertex* frame_vertices(int p) const { return frame_.data() + first_[p - d_.triangle_offsets[d_.polygons[p].triangle]]; }
+
   // A polygon the geometric checks cannot use: a cell that is no sample, or a vertex that is
   // malformed (indices out of range) or names no point (e.g. its edge is parallel to its bisector).
   void report_unusable(int t, int p) {
@@ -273,13 +302,16 @@ class DiagramChecker {
   std::string polygon_problem(int p, const Triangle& tri, const Frame& f) {
     const CellPolygon& poly = d_.polygons[p];
     const SymbolicVertex* verts = d_.polygon_vertices(poly);
+    const FrameVertex* fv = frame_vertices(p);
     const int n = poly.vertex_count;
     points_.clear();
-    for (int k = 0; k < n; ++k) points_.push_back(&vertex(poly, k));
+    for (int k = 0; k < n; ++k) points_.push_back(fv[k].x);
     if (n < 3) return fmt::format("has {} vertices", n);
+    // One exact vertex per distinct symbolic vertex: equal points are equal vertices.
     for (int k = 0; k < n; ++k)
       for (int m = 0; m < k; ++m)
-        if (verts[k] == verts[m]) return fmt::format("repeats vertex {}", describe(verts[k]));
+        if (fv[k].x == fv[m].x) return fmt::format("repeats vertex {}", describe(verts[k]));
+    CGAL::Protect_FPU_rounding<true> upward;
     for (int k = 0; k < n; ++k) {
       const SymbolicVertex& q = verts[k];
       if (!defined_on_triangle(q, tri)) return fmt::format("has vertex {} of another triangle", describe(q));
@@ -288,7 +320,7 @@ class DiagramChecker {
         inside = within_edge(*points_[k]);
       } else if (q.type == SymbolicVertex::Type::C) {
         for (int c = 0; c < 3 && inside; ++c)
-          inside = orient(*corner_[c], *corner_[(c + 1) % 3], *points_[k], f) != Sign::Negative;
+          inside = orient_upward(corner_frame_[c], corner_frame_[(c + 1) % 3], fv[k], f) != Sign::Negative;
       }
       if (!inside) return fmt::format("has vertex {} outside the triangle", describe(q));
     }
@@ -296,8 +328,9 @@ class DiagramChecker {
     for (int k = 0; k < n; ++k) {
       const int k1 = (k + 1) % n;
       for (int m = 0; m < n; ++m) {
-        if (m == k || m == k1 || on_one_mesh_edge(tri, verts[k], verts[k1], verts[m])) continue;
-        const Sign s = orient(*points_[k], *points_[k1], *points_[m], f);
+        // Three points of one mesh edge by definition are collinear.
+        if (m == k || m == k1 || (fv[k].edges & fv[k1].edges & fv[m].edges)) continue;
+        const Sign s = orient_upward(fv[k], fv[k1], fv[m], f);
         if (s == Sign::Negative)
           return fmt::format("is not convex and counterclockwise: {} is right of edge {} -> {}", describe(verts[m]),
                              describe(verts[k]), describe(verts[k1]));
@@ -306,16 +339,6 @@ class DiagramChecker {
     }
     area_sign_[p] = strictly_left ? Sign::Positive : Sign::Zero;
     return {};
-  }
-
-  // Whether three vertices lie on one edge of the triangle by definition (then exactly collinear).
-  static bool on_one_mesh_edge(const Triangle& tri, const SymbolicVertex& a, const SymbolicVertex& b,
-                               const SymbolicVertex& c) {
-    for (int e = 0; e < 3; ++e) {
-      const int x = tri[e], y = tri[(e + 1) % 3];
-      if (a.on_mesh_edge(x, y) && b.on_mesh_edge(x, y) && c.on_mesh_edge(x, y)) return true;
-    }
-    return false;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
@@ -336,17 +359,19 @@ class DiagramChecker {
     for (int p = begin; p < end; ++p) {
       const CellPolygon& poly = d_.polygons[p];
       const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      const FrameVertex* fv = frame_vertices(p);
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = (k + 1) % poly.vertex_count;
         const int u = poly.first_vertex + k, w = poly.first_vertex + k1;
-        if (ids[k] < ids[k1]) edges_.push_back({ids[k], ids[k1], u, w, 1});
-        else edges_.push_back({ids[k1], ids[k], w, u, -1});
+        const std::uint8_t edges = fv[k].edges & fv[k1].edges;
+        if (ids[k] < ids[k1]) edges_.push_back({ids[k], ids[k1], u, w, 1, edges});
+        else edges_.push_back({ids[k1], ids[k], w, u, -1, edges});
       }
     }
     std::sort(edges_.begin(), edges_.end(), [](const DirectedEdge& x, const DirectedEdge& y) {
       return std::tie(x.from, x.to) < std::tie(y.from, y.to);
     });
-    Q rest(0);
+    std::optional<Q> rest;  // the edges left over, summed in full (made only when there is one)
     along_bc_.clear();  // (exact vertex id, index into Diagram::vertices, +-count)
     for (size_t k = 0; k < edges_.size();) {
       size_t m = k;
@@ -356,16 +381,15 @@ class DiagramChecker {
       const DirectedEdge& e = edges_[k];
       k = m;
       if (count == 0) continue;
-      const SymbolicVertex &u = d_.vertices[e.from_vertex], &w = d_.vertices[e.to_vertex];
-      if (u.on_mesh_edge(tri[0], tri[1]) && w.on_mesh_edge(tri[0], tri[1])) continue;
-      if (u.on_mesh_edge(tri[2], tri[0]) && w.on_mesh_edge(tri[2], tri[0])) continue;
-      if (u.on_mesh_edge(tri[1], tri[2]) && w.on_mesh_edge(tri[1], tri[2])) {
+      if (e.edges & 0b101) continue;  // along (a, b) or (c, a)
+      if (e.edges & 0b010) {          // along (b, c)
         along_bc_.push_back({e.to, e.to_vertex, count});
         along_bc_.push_back({e.from, e.from_vertex, -count});
         continue;
       }
       points_ = {corner_[0], &vertices_.exact[e.from], &vertices_.exact[e.to]};
-      rest += Q(count) * twice_area(points_, f);
+      if (!rest) rest.emplace(0);
+      *rest += Q(count) * twice_area(points_, f);
     }
     std::sort(along_bc_.begin(), along_bc_.end());
     int n_c = 0;             // n_v at corner c
@@ -383,13 +407,13 @@ class DiagramChecker {
       k = m;
     }
     // With s_b = 0 and s_c = 1: sum = n_c * area + rest = area.
-    if (CGAL::is_zero(rest) && n_c == 1 && !elsewhere) return;
+    if ((!rest || CGAL::is_zero(*rest)) && n_c == 1 && !elsewhere) return;
     Q along_bc(0);
     for (const auto& [id, vertex, n] : along_bc_)
       if (n != 0) along_bc += Q(n) * parameter_along(d_.vertices[vertex], id, tri[1]);
     points_.assign(corner_.begin(), corner_.end());
     const Q triangle = twice_area(points_, f);
-    const Q ratio = along_bc + rest / triangle;
+    const Q ratio = rest ? along_bc + *rest / triangle : along_bc;
     if (ratio != Q(1))
       out_.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
                                      CGAL::to_double(ratio)));
@@ -403,33 +427,32 @@ class DiagramChecker {
   // union of its vertices' enclosures (ExactVertex::box), so that boxes apart in u or v hold
   // polygons apart. A sweep along u finds those pairs; they are tested in the same order as all.
   void check_overlaps(int t, int begin, int end, const Frame& f) {
-    const Triangle& tri = mesh_.triangle(t);
+    CGAL::Protect_FPU_rounding<true> upward;
     auto test = [&](int p, int q) {
-      if (separated(p, q, tri, f) || separated(q, p, tri, f)) return;
+      if (separated(p, q, f) || separated(q, p, f)) return;
       out_.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
                                      d_.polygons[q].cell));
     };
     candidates_.clear();
     for (int p = begin; p < end; ++p)
       if (polygon_ok_[p] && area_sign_[p] == Sign::Positive) candidates_.push_back(p);
-    if (candidates_.size() <= kAllPairsUpTo) {
-      for (std::size_t a = 0; a < candidates_.size(); ++a)
-        for (std::size_t b = a + 1; b < candidates_.size(); ++b) test(candidates_[a], candidates_[b]);
-      return;
-    }
     boxes_.clear();
     for (int p : candidates_) {
-      const CellPolygon& poly = d_.polygons[p];
-      FrameBox box{p, vertex(poly, 0).box[f.u].inf(), vertex(poly, 0).box[f.u].sup(), vertex(poly, 0).box[f.v].inf(),
-                   vertex(poly, 0).box[f.v].sup()};
-      for (int k = 1; k < poly.vertex_count; ++k) {
-        const ExactVertex& x = vertex(poly, k);
-        box.u_lo = std::min(box.u_lo, x.box[f.u].inf());
-        box.u_hi = std::max(box.u_hi, x.box[f.u].sup());
-        box.v_lo = std::min(box.v_lo, x.box[f.v].inf());
-        box.v_hi = std::max(box.v_hi, x.box[f.v].sup());
+      const FrameVertex* fv = frame_vertices(p);
+      FrameBox box{p, fv[0].u.inf(), fv[0].u.sup(), fv[0].v.inf(), fv[0].v.sup()};
+      for (int k = 1; k < d_.polygons[p].vertex_count; ++k) {
+        box.u_lo = std::min(box.u_lo, fv[k].u.inf());
+        box.u_hi = std::max(box.u_hi, fv[k].u.sup());
+        box.v_lo = std::min(box.v_lo, fv[k].v.inf());
+        box.v_hi = std::max(box.v_hi, fv[k].v.sup());
       }
       boxes_.push_back(box);
+    }
+    if (candidates_.size() <= kAllPairsUpTo) {
+      for (std::size_t a = 0; a < candidates_.size(); ++a)
+        for (std::size_t b = a + 1; b < candidates_.size(); ++b)
+          if (!boxes_[a].apart(boxes_[b])) test(candidates_[a], candidates_[b]);
+      return;
     }
     std::sort(boxes_.begin(), boxes_.end(), [](const FrameBox& a, const FrameBox& b) {
       return std::tie(a.u_lo, a.polygon) < std::tie(b.u_lo, b.polygon);
@@ -443,20 +466,39 @@ class DiagramChecker {
     for (const auto& [p, q] : pairs_) test(p, q);
   }
 
-  bool separated(int p, int q, const Triangle& tri, const Frame& f) const {
+  // \pre the rounding mode is upward.
+  bool separated(int p, int q, const Frame& f) const {
     const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
-    const SymbolicVertex* pv = d_.polygon_vertices(pp);
-    const SymbolicVertex* qv = d_.polygon_vertices(qq);
-    for (int k = 0; k < pp.vertex_count; ++k) {
+    const FrameVertex* pv = frame_vertices(p);
+    const FrameVertex* qv = frame_vertices(q);
+    // q on the closed outer side of the line of p's edge k, and not all on it: q has positive area,
+    // so a line through two distinct points has some vertex of q strictly outside; an edge whose
+    // ends coincide in the exact geometry (a degenerate input's limit) has no line and separates
+    // nothing, though every orientation against it is zero.
+    auto outside = [&](int k) {
       const int k1 = (k + 1) % pp.vertex_count;
-      bool outside = true;
-      for (int m = 0; m < qq.vertex_count && outside; ++m) {
+      bool strictly = false;
+      for (int m = 0; m < qq.vertex_count; ++m) {
         // A shared vertex, or a third point of a mesh edge the polygon edge runs along, is on the line.
-        if (qv[m] == pv[k] || qv[m] == pv[k1] || on_one_mesh_edge(tri, pv[k], pv[k1], qv[m])) continue;
-        outside = orient(vertex(pp, k), vertex(pp, k1), vertex(qq, m), f) != Sign::Positive;
+        if (qv[m].x == pv[k].x || qv[m].x == pv[k1].x || (pv[k].edges & pv[k1].edges & qv[m].edges)) continue;
+        const Sign s = orient_upward(pv[k], pv[k1], qv[m], f);
+        if (s == Sign::Positive) return false;
+        strictly = strictly || s == Sign::Negative;
       }
-      if (outside) return true;
-    }
+      return strictly;
+    };
+    // Neighbours share an edge, the likeliest to separate them: tried first (the verdict, whether
+    // some edge does, is the same in any order).
+    int shared = -1;
+    for (int k = 0; k < pp.vertex_count && shared < 0; ++k)
+      for (int m = 0; m < qq.vertex_count; ++m)
+        if (qv[m].x == pv[k].x && qv[(m + qq.vertex_count - 1) % qq.vertex_count].x == pv[(k + 1) % pp.vertex_count].x) {
+          shared = k;
+          break;
+        }
+    if (shared >= 0 && outside(shared)) return true;
+    for (int k = 0; k < pp.vertex_count; ++k)
+      if (k != shared && outside(k)) return true;
     return false;
   }
 
@@ -484,17 +526,25 @@ class DiagramChecker {
         ++out_.equidistant.checked;
         const int id = vertices_.of_diagram_vertex[poly.first_vertex + k];
         const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
-        int equidistant = 0;
-        std::string problem;
-        if (near) near->select(vertices_.exact[id], d_.sites[i], q, compared_);
-        for (int j : near ? compared_ : present_) {
-          if (j == i) continue;
-          const Sign s = q.has_label(i) && q.has_label(j)
-                             ? Sign::Zero
-                             : compare_power_distance(vertices_.exact[id], d_.sites[i], d_.sites[j]);
-          if (s == Sign::Zero) ++equidistant;
-          if (s == Sign::Positive && problem.empty()) problem = fmt::format("is closer to x_{} than to x_{}", j, i);
+        const ExactVertex& x = vertices_.exact[id];
+        int equidistant = 0, closer = -1;  // closer: the first cell strictly closer to q than x_i
+        if (near) near->select(x, d_.sites[i], q, compared_);
+        {
+          CGAL::Protect_FPU_rounding<true> upward;
+          const Interval e_i = terms_[i].e(x);  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
+          for (int j : near ? compared_ : present_) {
+            if (j == i) continue;
+            Sign s = Sign::Zero;
+            if (!(q.has_label(i) && q.has_label(j))) {
+              s = filtered_sign(e_i - terms_[j].e(x));
+              if (s == Sign::Zero) s = compare_power_distance_exact(x, d_.sites[i], d_.sites[j]);
+            }
+            if (s == Sign::Zero) ++equidistant;
+            if (s == Sign::Positive && closer < 0) closer = j;
+          }
         }
+        std::string problem;
+        if (closer >= 0) problem = fmt::format("is closer to x_{} than to x_{}", closer, i);
         if (problem.empty() && equidistant + 1 < q.num_labels())
           problem = fmt::format("is equidistant from x_{} and {} other cell(s) of the triangle, not {}", i, equidistant,
                                 q.num_labels() - 1);
@@ -593,11 +643,16 @@ class DiagramChecker {
   const std::vector<int>& mesh_vertex_;
   const std::vector<char>& polygon_ok_;
   std::vector<Sign>& area_sign_;
+  const std::vector<SiteTerms>& terms_;
   std::vector<const ExactVertex*> points_;
+  std::vector<FrameVertex> frame_;  // the triangle's polygons' vertices (load_frame_vertices)
+  std::vector<int> first_;          // where each polygon of the triangle starts in frame_
+  std::array<FrameVertex, 3> corner_frame_;
   struct DirectedEdge {
     int from, to;                // exact vertex ids, from < to
     int from_vertex, to_vertex;  // indices into Diagram::vertices
     int direction;               // +1 if a polygon runs from -> to, -1 if to -> from
+    std::uint8_t edges;          // the triangle's edges both ends lie on by definition
   };
   std::vector<DirectedEdge> edges_;
   std::vector<std::array<int, 3>> along_bc_;
@@ -608,6 +663,7 @@ class DiagramChecker {
   struct FrameBox {
     int polygon;
     double u_lo, u_hi, v_lo, v_hi;
+    bool apart(const FrameBox& o) const { return u_hi < o.u_lo || o.u_hi < u_lo || v_hi < o.v_lo || o.v_hi < v_lo; }
   };
   std::vector<int> candidates_;
   std::vector<FrameBox> boxes_;

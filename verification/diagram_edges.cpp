@@ -61,7 +61,12 @@ class EdgeChecker {
   void collect(int t, int e, std::vector<Segment>& out) const {
     out.clear();
     const Triangle& tri = mesh_.triangle(t);
-    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b);
+    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
+    // As SymbolicVertex::on_mesh_edge(a, b), inline.
+    auto on_edge = [&](const SymbolicVertex& q) {
+      return q.type == SymbolicVertex::Type::A ? q.v[0] == a || q.v[0] == b
+                                               : q.type == SymbolicVertex::Type::B && q.v[0] == lo && q.v[1] == hi;
+    };
     for (int p = diagram_.triangle_offsets[t]; p < diagram_.triangle_offsets[t + 1]; ++p) {
       if (!polygon_ok_[p]) continue;
       const CellPolygon& poly = diagram_.polygons[p];
@@ -69,7 +74,7 @@ class EdgeChecker {
       const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = (k + 1) % poly.vertex_count;
-        if (!verts[k].on_mesh_edge(a, b) || !verts[k1].on_mesh_edge(a, b)) continue;
+        if (!on_edge(verts[k]) || !on_edge(verts[k1])) continue;
         Segment s{ids[k], ids[k1], parameter(ids[k], lo), parameter(ids[k1], lo), poly.cell, p};
         // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
         const Sign order = compare(s.s1, s.s0);
@@ -164,13 +169,19 @@ class EdgeChecker {
 void count_components(const Samples& samples, const Diagram& diagram, const std::vector<char>& piece,
                       std::vector<int>& parent, DiagramVerification& out) {
   const int n = diagram.sample_count;
-  std::vector<std::vector<int>> polygons_of_cell(n);
+  // The pieces of each cell, in polygon order: cell i's are order[first[i]] .. order[first[i + 1] - 1].
+  std::vector<int> first(n + 1, 0), order;
   for (int p = 0; p < static_cast<int>(diagram.polygons.size()); ++p)
-    if (piece[p]) polygons_of_cell[diagram.polygons[p].cell].push_back(p);
-  std::vector<int> roots;
+    if (piece[p]) ++first[diagram.polygons[p].cell + 1];
+  for (int i = 0; i < n; ++i) first[i + 1] += first[i];
+  order.resize(first[n]);
+  std::vector<int> next(first.begin(), first.end() - 1);
+  for (int p = 0; p < static_cast<int>(diagram.polygons.size()); ++p)
+    if (piece[p]) order[next[diagram.polygons[p].cell]++] = p;
+  std::vector<int> roots, polys;
   for (int i = 0; i < n; ++i) {
     ++out.connected.checked;
-    const std::vector<int>& polys = polygons_of_cell[i];
+    polys.assign(order.begin() + first[i], order.begin() + first[i + 1]);
     roots.clear();
     for (int p : polys) roots.push_back(find_root(parent, p));
     std::vector<int> distinct = roots;

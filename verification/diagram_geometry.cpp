@@ -3,6 +3,7 @@
 // power-distance and edge-parameter comparisons.
 #include "verification/diagram_geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,13 +19,6 @@ Interval enclose(const Q& x) { return Interval(CGAL::to_interval(x)); }
 
 Sign sign_of(const Q& x) { return static_cast<Sign>(static_cast<int>(CGAL::sign(x))); }
 
-// Interval filter: the sign when the interval excludes zero, Zero meaning "undecided".
-Sign filtered_sign(const Interval& x) {
-  if (x.inf() > 0) return Sign::Positive;
-  if (x.sup() < 0) return Sign::Negative;
-  return Sign::Zero;
-}
-
 }  // namespace
 
 const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
@@ -32,7 +26,7 @@ const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (a
 ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx) {
   ExactVertex e;
   e.q_ = q;
-  e.ctx_ = ctx;
+  e.ctx_ = &ctx;
   if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
     e.box = enclosure->box;
     e.parameter_box = enclosure->parameter;
@@ -55,8 +49,8 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
   ExactVertex e;
   e.source_ = Source::Barycentric;
   e.q_.v = corners;
-  e.barycentric_ = b;
-  e.ctx_ = ctx;
+  e.barycentric_ = &b;
+  e.ctx_ = &ctx;
   CGAL::Protect_FPU_rounding<true> upward;
   const Interval sum = Interval(b.x) + Interval(b.y) + Interval(b.z);
   e.box = {Interval(0), Interval(0), Interval(0)};
@@ -71,13 +65,13 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
 
 const ExactPoint& ExactVertex::p() const {
   return exact_.get([&] {
-    if (!ctx_.vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
-    if (source_ == Source::Symbolic) return exact_position(q_, ctx_);
-    const Q b[3] = {Q(barycentric_.x), Q(barycentric_.y), Q(barycentric_.z)};
+    if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
+    if (source_ == Source::Symbolic) return exact_position(q_, *ctx_);
+    const Q b[3] = {Q(barycentric_->x), Q(barycentric_->y), Q(barycentric_->z)};
     const Q sum = b[0] + b[1] + b[2];
     ExactPoint x{Q(0), Q(0), Q(0)};
     for (int c = 0; c < 3; ++c) {
-      const ExactPoint corner = to_exact(ctx_.vertices[q_.v[c]]);
+      const ExactPoint corner = to_exact(ctx_->vertices[q_.v[c]]);
       x.x += b[c] * corner.x / sum;
       x.y += b[c] * corner.y / sum;
       x.z += b[c] * corner.z / sum;
@@ -88,8 +82,8 @@ const ExactPoint& ExactVertex::p() const {
 
 const Q& ExactVertex::edge_parameter() const {
   return parameter_.get([&] {
-    if (!ctx_.vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
-    return exact_edge_parameter(q_, ctx_);
+    if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
+    return exact_edge_parameter(q_, *ctx_);
   });
 }
 
@@ -115,17 +109,27 @@ void ExactVertices::make_points() {
 }
 
 Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners) {
+  // The axes in decreasing order of the normal's doubles (a guess, ties in axis order); the
+  // first whose exact projected orientation is not zero is dropped.
   const Triangle& tri = mesh.triangle(t);
-  Frame f;
-  const int drop = predicates::projection_axis(mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2]));
-  if (drop < 0) return f;
-  f.u = (drop + 1) % 3;
-  f.v = (drop + 2) % 3;
-  const Sign s = orient(*corners[0], *corners[1], *corners[2], f);  // with sign = +1: the plain projected orientation
-  if (s == Sign::Zero) return f;
-  f.sign = s == Sign::Positive ? 1 : -1;
-  f.valid = true;
-  return f;
+  const Vec3& a = mesh.position(tri[0]);
+  const Vec3 n = cross(mesh.position(tri[1]) - a, mesh.position(tri[2]) - a);
+  double key[3];
+  for (int axis = 0; axis < 3; ++axis) key[axis] = std::isnan(n[axis]) ? 0.0 : std::fabs(n[axis]);
+  std::array<int, 3> order{0, 1, 2};  // an insertion sort: stable
+  for (int i = 1; i < 3; ++i)
+    for (int j = i; j > 0 && key[order[j]] > key[order[j - 1]]; --j) std::swap(order[j], order[j - 1]);
+  for (int drop : order) {
+    Frame f;
+    f.u = (drop + 1) % 3;
+    f.v = (drop + 2) % 3;
+    const Sign s = orient(*corners[0], *corners[1], *corners[2], f);  // with sign = +1: the plain projected orientation
+    if (s == Sign::Zero) continue;
+    f.sign = s == Sign::Positive ? 1 : -1;
+    f.valid = true;
+    return f;
+  }
+  return Frame{};
 }
 
 Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f) {
@@ -135,14 +139,34 @@ Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, co
     CGAL::Protect_FPU_rounding<true> upward;
     s = filtered_sign((b.box[u] - a.box[u]) * (c.box[v] - a.box[v]) - (b.box[v] - a.box[v]) * (c.box[u] - a.box[u]));
   }
-  if (s == Sign::Zero) {
-    const Q& ax = coordinate(a.p(), u);
-    const Q& ay = coordinate(a.p(), v);
-    const Q det = (coordinate(b.p(), u) - ax) * (coordinate(c.p(), v) - ay) -
-                  (coordinate(b.p(), v) - ay) * (coordinate(c.p(), u) - ax);
-    s = sign_of(det);
-  }
+  if (s == Sign::Zero) return orient_exact(a, b, c, f);
   return f.sign > 0 ? s : -s;
+}
+
+Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f) {
+  const int u = f.u, v = f.v;
+  const Q& ax = coordinate(a.p(), u);
+  const Q& ay = coordinate(a.p(), v);
+  const Q det = (coordinate(b.p(), u) - ax) * (coordinate(c.p(), v) - ay) -
+                (coordinate(b.p(), v) - ay) * (coordinate(c.p(), u) - ax);
+  const Sign s = sign_of(det);
+  return f.sign > 0 ? s : -s;
+}
+
+std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri) {
+  // As SymbolicVertex::on_mesh_edge(tri[e], tri[e + 1]) for each e: a corner is on the two edges
+  // through it, a type B vertex on the edge it names.
+  std::uint8_t edges = 0;
+  if (q.type == SymbolicVertex::Type::A) {
+    for (int c = 0; c < 3; ++c)
+      if (q.v[0] == tri[c]) edges |= static_cast<std::uint8_t>((1 << c) | (1 << ((c + 2) % 3)));
+  } else if (q.type == SymbolicVertex::Type::B) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      if (q.v[0] == std::min(a, b) && q.v[1] == std::max(a, b)) edges |= static_cast<std::uint8_t>(1 << e);
+    }
+  }
+  return edges;
 }
 
 Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
@@ -237,6 +261,10 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
     const Sign s = filtered_sign(value);
     if (s != Sign::Zero) return s;
   }
+  return compare_power_distance_exact(q, a, b);
+}
+
+Sign compare_power_distance_exact(const ExactVertex& q, const Site& a, const Site& b) {
   Q exact(0);
   for (int c = 0; c < 3; ++c) {
     const Q pa(a.p[c]), pb(b.p[c]);
@@ -244,6 +272,19 @@ Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b) 
   }
   exact += Q(b.w) - Q(a.w);
   return sign_of(exact);
+}
+
+std::vector<SiteTerms> site_terms(const std::vector<Site>& sites) {
+  std::vector<SiteTerms> terms(sites.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, sites.size(), 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (std::size_t k = r.begin(); k != r.end(); ++k) {
+      const Site& s = sites[k];
+      terms[k].x = s.p;
+      terms[k].c = Interval(s.p.x) * s.p.x + Interval(s.p.y) * s.p.y + Interval(s.p.z) * s.p.z - s.w;
+    }
+  });
+  return terms;
 }
 
 void merge_into(PropertyResult& into, const PropertyResult& part) {

@@ -64,10 +64,11 @@ class ExactVertex {
   Interval parameter_box{0};  //!< type B only: encloses edge_parameter()
 
   ExactVertex() = default;
-  //! The point q defines; not valid when it defines none (decided exactly).
+  //! The point q defines; not valid when it defines none (decided exactly). ctx must outlive the
+  //! vertex (its rationals are made from it on first use).
   static ExactVertex of(const SymbolicVertex& q, const SymbolicContext& ctx);
   //! The point at barycentric coordinates b (not normalised; their sum is positive) of triangle
-  //! `corners` (vertex indices into ctx.vertices).
+  //! `corners` (vertex indices into ctx.vertices). b and ctx must outlive the vertex.
   static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
 
   //! The exact coordinates (computed on the first call, from any thread).
@@ -84,8 +85,8 @@ class ExactVertex {
   enum class Source : std::uint8_t { Symbolic, Barycentric };
   Source source_ = Source::Symbolic;
   SymbolicVertex q_;  // Barycentric: q_.v holds the corners
-  Vec3 barycentric_;
-  SymbolicContext ctx_;
+  const Vec3* barycentric_ = nullptr;
+  const SymbolicContext* ctx_ = nullptr;
   Lazy<ExactPoint> exact_;
   Lazy<Q> parameter_;
 };
@@ -128,6 +129,34 @@ Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const Exac
 //! Exact orientation of a, b, c projected into the frame, relative to the triangle's normal:
 //! Positive for a counterclockwise turn seen from the normal.
 Sign orient(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f);
+//! The same from the rational points alone (no filter): what orient falls back on.
+Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex& c, const Frame& f);
+
+//! Interval filter: the sign when the interval excludes zero, Zero meaning "undecided".
+inline Sign filtered_sign(const Interval& x) {
+  if (x.inf() > 0) return Sign::Positive;
+  if (x.sup() < 0) return Sign::Negative;
+  return Sign::Zero;
+}
+
+//! A polygon vertex as the per-triangle checks read it: its enclosure in the triangle's frame
+//! (copied from its ExactVertex, side by side with the others of the triangle), the point itself
+//! for the rationals, and the triangle's edges it lies on by definition (bit e: edge
+//! (tri[e], tri[e + 1]); type A at a corner is on two, type B on its own edge).
+struct FrameVertex {
+  Interval u{0}, v{0};
+  const ExactVertex* x = nullptr;
+  std::uint8_t edges = 0;
+};
+//! The edges of `tri` that q lies on by definition, as FrameVertex::edges.
+std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri);
+//! orient on frame vertices. \pre the rounding mode is upward (CGAL::Protect_FPU_rounding): the
+//! rationals, when the filter cannot decide, do not depend on it.
+inline Sign orient_upward(const FrameVertex& a, const FrameVertex& b, const FrameVertex& c, const Frame& f) {
+  const Sign s = filtered_sign((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u));
+  if (s == Sign::Zero) return orient_exact(*a.x, *b.x, *c.x, f);
+  return f.sign > 0 ? s : -s;
+}
 
 //! Exact twice signed area of the projected polygon, relative to the triangle's normal.
 Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f);
@@ -156,6 +185,21 @@ Sign compare(const EdgePosition& x, const EdgePosition& y);
 
 //! Exact sign of d_a(q) - d_b(q), the power distances to sites a and b (Negative: q closer to a).
 Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b);
+//! The same from q's rational point alone (no filter).
+Sign compare_power_distance_exact(const ExactVertex& q, const Site& a, const Site& b);
+
+//! A site's part of the power distances: d_k(q) = |q|^2 + e_k(q) with e_k(q) = c_k - 2 q.x_k and
+//! c_k = |x_k|^2 - w_k, so d_a(q) - d_b(q) = e_a(q) - e_b(q). `c` encloses c_k.
+struct SiteTerms {
+  Vec3 x;
+  Interval c{0};
+  //! Encloses e_k(q) (the rounding mode upward).
+  Interval e(const ExactVertex& q) const {
+    return c - 2 * (q.box[0] * x.x + q.box[1] * x.y + q.box[2] * x.z);
+  }
+};
+//! SiteTerms of every site, computed in parallel.
+std::vector<SiteTerms> site_terms(const std::vector<Site>& sites);
 
 //! "A(5)", "B(edge 3-9, cells 2|7)", "C(triangle 1-2-3, cells 2|7|9)".
 std::string describe(const SymbolicVertex& q);
