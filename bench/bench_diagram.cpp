@@ -18,7 +18,7 @@
 #include "common/error.h"
 #include "mesh/mesh_io.h"
 #include "predicates/predicates.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "remesh/cvt.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"

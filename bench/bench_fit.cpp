@@ -17,7 +17,7 @@
 #include "mesh/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/fit.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"
 
 using namespace lrvd;
@@ -64,12 +64,15 @@ int main(int argc, char** argv) {
     const SurfaceMesh input = read_mesh(std::string(LRVD_CGAL_DATA_DIR) + "/" + model + ".off").mesh;
     const double diagonal = input.bounding_box().diagonal();
     for (int n : counts) {
-      const double length = suggested_refinement_length(input, n);
-      const SurfaceMesh mesh = length > 0 && input.max_edge_length() > length ? refine_long_edges(input, length) : input;
       RemeshOptions options;
       options.fit = false;
       options.untangle = false;
-      const RemeshResult cvt = remesh_cvt(input, mesh, sample_uniform(mesh, n, seed), options);
+      // As `lrvd remesh` makes it, with the vertices left at the samples; `mesh` is the surface it ran on.
+      RemeshStart from;
+      from.n = n;
+      from.seed = seed;
+      const RemeshResult cvt = remesh_from(input, from, options);
+      const SurfaceMesh& mesh = *from.mesh;
       DualMesh fitted;
       FitResult fit;
       double best = 1e30;

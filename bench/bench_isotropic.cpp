@@ -29,7 +29,7 @@
 #include "mesh/mesh_io.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"
 
 using namespace lrvd;

@@ -18,7 +18,7 @@
 #include "bench_util.h"
 #include "mesh/mesh_io.h"
 #include "metrics/quality.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"
 #include "voronoi/lrvd.h"
 

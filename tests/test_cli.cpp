@@ -22,7 +22,7 @@
 #include "common/error.h"
 #include "mesh/closest_point.h"
 #include "mesh/mesh_io.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "test_meshes.h"
 
 using nlohmann::json;

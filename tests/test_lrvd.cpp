@@ -17,7 +17,7 @@
 #include "mesh/stress.h"
 #include "remesh/cvt.h"
 #include "remesh/mps.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"

@@ -173,3 +173,17 @@ TEST_CASE("Quality metrics are the same on every run and thread count") {
   other.seed += 1;
   REQUIRE(quality_metrics(fine, coarse.positions(), coarse.triangles(), other).rms_pct != a.rms_pct);
 }
+
+TEST_CASE("The quality metrics refuse a remesh too large for doubles instead of giving inf and NaN", "[quality]") {
+  const SurfaceMesh unit = test::icosphere(2);
+  std::vector<Vec3> huge = unit.positions();
+  for (Vec3& p : huge) p = 1e200 * p;
+  REQUIRE_THROWS_WITH(quality_metrics(unit, huge, unit.triangles()),
+                      Catch::Contains("the remesh is") && Catch::Contains("across"));
+  // The same remesh at the reference's size is measured, also with a far vertex no triangle uses.
+  std::vector<Vec3> with_unused = unit.positions();
+  with_unused.push_back({1e200, 0, 0});
+  const QualityMetrics m = quality_metrics(unit, with_unused, unit.triangles());
+  REQUIRE(std::isfinite(m.q_avg));
+  REQUIRE(m.hausdorff_pct < 1e-9);  // points drawn on a triangle are on it up to rounding
+}

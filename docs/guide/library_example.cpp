@@ -7,7 +7,7 @@
 
 #include "common/error.h"
 #include "mesh/mesh_io.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "verification/diagram_check.h"
 #include "verification/remesh_check.h"
 #include "voronoi/lrvd.h"

@@ -15,7 +15,7 @@
 #include "common/error.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
-#include "remesh/remesh.h"
+#include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"
 #include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
@@ -87,7 +87,7 @@ ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh&
   } catch (const InputError&) {
     return holes;  // the fill would not give a valid mesh: nothing to suggest
   }
-  // `mesh` is `input`, maybe refined and renumbered (order_for_remeshing): each of its loops runs
+  // `mesh` is `input`, maybe refined and renumbered (remesh_from): each of its loops runs
   // through the input loop's own vertices, at the same positions, with midpoints between them.
   std::vector<char> still_open(input.vertex_count(), 0);
   for (const std::vector<int>& loop : filled.boundary_loops())
@@ -119,14 +119,6 @@ int run_remesh(const RemeshCommandOptions& opt) {
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
-  // The CVT keeps each sample on its component: each gets its share of the samples up front, and
-  // at least the fewest vertices its own topology needs.
-  if (input.mesh.component_count() > 1 && opt.input.points_path.empty())
-    input.samples = sample_by_component(input.mesh, input.samples.size(), opt.input.seed,
-                                        input.mesh.minimum_vertex_counts());
-
-  // The CVT's diagrams pass over the mesh in memory order; the samples stay where they are.
-  order_for_remeshing(input.mesh, input.samples);
 
   RemeshOptions remesh;
   CvtOptions& cvt = remesh.cvt;
@@ -137,9 +129,19 @@ int run_remesh(const RemeshCommandOptions& opt) {
   remesh.fit = !opt.no_fit;
   if (opt.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
   remesh.on_progress = [](const std::string& message) { progress(message); };
-  reset_predicate_stats();
-  progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
-  const RemeshResult remeshed = remesh_cvt(input.loaded.mesh, input.mesh, input.samples, remesh);
+  // The samples drawn per component unless given (--points), both renumbered: remesh_from.
+  RemeshStart start;
+  start.n = input.samples.size();
+  start.seed = opt.input.seed;
+  start.mesh = std::move(input.mesh);
+  if (!opt.input.points_path.empty()) start.samples = std::move(input.samples);
+  start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
+    reset_predicate_stats();
+    progress(fmt::format("CVT of {} samples on the {}", samples.size(), opt.kind));
+  };
+  const RemeshResult remeshed = remesh_from(input.loaded.mesh, start, remesh);
+  input.mesh = std::move(*start.mesh);
+  input.samples = std::move(*start.samples);
   const CvtResult& result = remeshed.cvt;
   const DualMesh& dual = remeshed.dual;
   write_mesh(opt.output, dual.positions, dual.triangles);
@@ -170,18 +172,18 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["repair_rounds"] = remeshed.repair_rounds;
   report["diagram_evaluations"] = remeshed.diagram_evaluations;
   // The repair ended with defects and the second run, samples kept to their own sheets, did better.
-  report["kept_to_sheets"] = remeshed.kept_to_sheets;
-  report["tip_caps_lowered"] = remeshed.tip_caps_lowered;
-  report["samples_reallocated"] = remeshed.samples_reallocated;
-  report["reallocation_tried"] = remeshed.reallocation_tried;
-  report["runs"] = remeshed.runs;
+  report["kept_to_sheets"] = remeshed.path.kept_to_sheets;
+  report["tip_caps_lowered"] = remeshed.path.tip_caps_lowered;
+  report["samples_reallocated"] = remeshed.path.samples_reallocated;
+  report["reallocation_tried"] = remeshed.path.reallocation_tried;
+  report["runs"] = remeshed.path.runs;
   // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
-  report["polished"] = remeshed.polished;
+  report["polished"] = remeshed.path.polished;
   // The kept state took RemeshOptions::ease_iterations with the repair's raised density eased back.
-  report["density_eased"] = remeshed.eased;
+  report["density_eased"] = remeshed.path.eased;
   // A run stopped because every cell was at a defect or next to one (docs/reference/metrics.md,
   // "What the repair left").
-  report["repair_saturated"] = remeshed.repair_saturated;
+  report["repair_saturated"] = remeshed.path.repair_saturated;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;
   // Lengths in % of the input's bounding-box diagonal, as the distances are.
@@ -228,7 +230,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
       where = fmt::format("; the first at vertex {}, ({:.6g}, {:.6g}, {:.6g})", first, p.x, p.y, p.z);
     }
     std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
-    if (remeshed.repair_saturated)
+    if (remeshed.path.repair_saturated)
       // A 10 x 1 x 0.01 plate fails so at 50 vertices and is valid at 20 and at 100 (an audit).
       std::printf("repair: every cell was at a defect or next to one, where a higher density changes nothing: the "
                   "surface is thinner than the cells everywhere; more vertices (smaller cells) usually mend it, and "

@@ -5,9 +5,10 @@
 
 #include <functional>
 #include <string>
-#include <tuple>
+#include <vector>
 
 #include "remesh/cvt.h"
+#include "remesh/dual_defects.h"
 #include "remesh/fit.h"
 #include "remesh/untangle.h"
 #include "voronoi/dual.h"
@@ -68,60 +69,26 @@ struct RemeshOptions {
   std::function<void(const std::string&)> on_progress;
 };
 
-//! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
-//! repeated on the same three vertices or given by two triple points (merged), samples in no
-//! triangle, and triangles that intersect each other (but for the crossings the input has too:
-//! `inherited`, between samples on two input components that cross each other): the
-//! samples involved; also the cells that are not disks (a ring around a thin part, a handle
-//! inside one cell), share more
-//! than one boundary arc with a neighbour, or meet across a strip of an open mesh narrower than
-//! them, which locate a lost handle, hole or link when the dual's Euler characteristic is wrong.
-struct DualDefects {
-  std::vector<int> topological;    //!< samples at bad edges, repeated or merged triangles, unused samples
-  std::vector<int> crossing;       //!< samples of triangles that intersect others
-  //! cells that are not disks (rings, or holding a handle smaller than them: V - E + F below 1),
-  //! or share two arcs with a neighbour, or (two used cells) meet across a
-  //! strip narrower than them: their one shared arc runs from the mesh boundary to the mesh
-  //! boundary through no triple point, so the dual has no edge between them
-  std::vector<int> cell_topology;
-  //! Unused samples (also in `topological`) whose cells are disks that meet the boundary of an open
-  //! mesh and one other cell: a small cell in a corner sharper than the cells, whose one neighbour
-  //! spans the corner.
-  //! More samples there repeat the pattern at a smaller scale; fewer make the cell grow until it
-  //! meets two others.
-  std::vector<int> cornered;
-  //! Samples in `topological` whose cells, away from any boundary, hold more than π of the
-  //! surface's angle deficit and meet one other cell (unused: a disk inside it) or two (which share
-  //! two arcs round it): a cap on a tip sharper than a half-plane. Around such a cap fewer than
-  //! three cells of its own size fit, at any scale, so more samples repeat the pattern; a larger cap
-  //! meets more cells.
-  std::vector<int> tip_caps;
-  //! Neighbours of the tip caps that are in `cell_topology` (a ring round the narrowing part below a
-  //! cap, or two cells sharing two arcs round it). When its caps have not grown past them for a few rounds, the third run lowers the
-  //! density there too, so a cap can take the narrowing part.
-  std::vector<int> tip_cap_rings;
-  //! Boundary loops of the mesh (indices into SurfaceMesh::boundary_loops) that fewer than three
-  //! cells meet: holes the dual closes over (their cells are in `cell_topology`).
-  std::vector<int> closed_over_loops;
-  bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
-  //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
-  std::vector<std::pair<int, int>> crossing_pairs;
-  //! Nothing to repair: no defect of the dual itself, no crossing, and the right Euler
-  //! characteristic (cell-topology findings alone are harmless then).
-  bool empty() const { return topological.empty() && crossing.empty() && euler_ok; }
-  //! The samples to act on: the dual's own defects first, then crossings, then — when the
-  //! Euler characteristic is wrong — the cells that are rings, share two arcs or meet across a strip.
-  const std::vector<int>& where_to_act() const {
-    if (!topological.empty()) return topological;
-    if (!crossing.empty()) return crossing;
-    return cell_topology;
-  }
-  //! "no defect", or the defects by kind with their counts, for progress lines and messages.
-  std::string describe() const;
-  bool fewer_than(const DualDefects& o) const {
-    return std::make_tuple(topological.size(), !euler_ok, crossing.size(), cell_topology.size()) <
-           std::make_tuple(o.topological.size(), !o.euler_ok, o.crossing.size(), o.cell_topology.size());
-  }
+//! Which way remesh_cvt went: the runs it tried, the one it kept, and what followed that run's
+//! repair rounds.
+struct RemeshPath {
+  //! Runs of the first CVT and its repair rounds tried: 1, or more when defects were left (the runs
+  //! with samples kept to their sheets, with tip caps lowered, from reallocated samples).
+  int runs = 0;
+  bool kept_to_sheets = false;    //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
+  bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
+  int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
+  //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
+  int reallocation_tried = 0;
+  //! The kept state's dual had crossings alone and was fitted and untangled during the repair
+  //! rounds (RemeshOptions::untangle): it is neither polished nor relaxed, nor fitted again.
+  bool fitted_in_rounds = false;
+  bool polished = false;  //!< the result is the polished state (RemeshOptions::polish_steps)
+  bool eased = false;     //!< the result is the eased state (RemeshOptions::ease_iterations)
+  //! Defects are left, and every run tried stopped at a round with every cell at a defect or next
+  //! to one (the raise would have been uniform, which changes no CVT): the surface is thinner than
+  //! the cells everywhere, and only more vertices mend it.
+  bool repair_saturated = false;
 };
 
 struct RemeshResult {
@@ -132,31 +99,16 @@ struct RemeshResult {
   int repair_rounds = 0;    //!< rounds that raised the density around defects and optimised again
   FitResult fit;            //!< what the fitting did (nothing when RemeshOptions::fit is off)
   UntangleResult untangle;  //!< what the untangling did (nothing when the dual had no crossing)
-  bool fitted = false;      //!< `dual` is fitted and untangled already
-  DualMesh untangled_from;  //!< when fitted: the fitted dual before untangling
-  bool kept_to_sheets = false;  //!< the result is the second or third run's (RemeshOptions::keep_to_sheets_retry)
-  bool tip_caps_lowered = false;  //!< the result is the third run's (RemeshOptions::tip_caps_retry)
-  bool polished = false;          //!< the result is the polished state (RemeshOptions::polish_steps)
-  bool eased = false;             //!< the result is the eased state (RemeshOptions::ease_iterations)
-  RelaxResult relax;              //!< the worst triangles' relaxation (RemeshOptions::relax)
-  int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
-  //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
-  int reallocation_tried = 0;
-  //! Runs of the first CVT and its repair rounds tried: 1, or more when defects were left (the runs
-  //! with samples kept to their sheets, with tip caps lowered, from reallocated samples).
-  int runs = 0;
-  //! Defects are left, and every run tried stopped at a round with every cell at a defect or next
-  //! to one (the raise would have been uniform, which changes no CVT): the surface is thinner than
-  //! the cells everywhere, and only more vertices mend it.
-  bool repair_saturated = false;
+  //! While the remesh runs, once `dual` is fitted: the fitted dual before untangling, which the
+  //! final untangling starts again from (RemeshOptions::final_max_moves). Empty in the result.
+  DualMesh untangled_from;
+  RelaxResult relax;        //!< the worst triangles' relaxation (RemeshOptions::relax)
+  RemeshPath path;          //!< which runs were tried, which one was kept, and what followed its rounds
   //! What the repair left in `dual` as the rounds saw it, before the final fitting and untangling
   //! (the crossings those leave are in `untangle.remaining`): where a failed check comes from.
   DualDefects defects;
   double time_s = 0;
 };
-
-DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
-                              const Samples& samples, bool input_closed, const InputCrossings& inherited = {});
 
 //! CVT remeshing to exactly samples.size() vertices. `reference` is the surface whose topology the
 //! output must keep (closed or not); `mesh` the (possibly refined) surface the samples live on.
@@ -185,30 +137,5 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! `final_max_moves`.
 RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                         const RemeshOptions& options = {});
-
-//! \throw InputError when n is below input.minimum_vertex_count(): no triangle mesh with the
-//! input's topology has fewer vertices.
-void require_remesh_vertex_count(const SurfaceMesh& input, int n);
-
-//! Meshes with fewer triangles are remeshed in their own order: a diagram of them stays in the
-//! caches whatever the order (elk 516, 3290 triangles: 2 % faster reordered, within the spread).
-constexpr int kSpatialOrderMinTriangles = 20000;
-
-//! Renumbers `mesh` along a Morton curve (spatially_ordered, mesh/surface_mesh.h) and the samples'
-//! triangles with it, when it has at least kSpatialOrderMinTriangles triangles; the samples stay
-//! where they are. A CVT computes hundreds of diagrams of the mesh, whose passes over it then stay
-//! local in memory (armadillo 4000, 52k triangles: 10 % less time; dragon_100k 1000: 14 %).
-//! remesh_to and `lrvd remesh` do this before remesh_cvt, so their results (the diagram, the
-//! samples' triangles) refer to the renumbered mesh.
-void order_for_remeshing(SurfaceMesh& mesh, Samples& samples);
-
-//! The whole remesh of `input` to exactly n vertices, as `lrvd remesh MESH -n N --seed S` does it:
-//! the input refined where n is comparable to its triangle count (suggested_refinement_length), n
-//! uniform samples (with several connected components, each its share by area and at least the
-//! fewest vertices its topology needs), both renumbered by order_for_remeshing, then remesh_cvt.
-//! The output is result.dual; check it with verify_remesh (verification/remesh_check.h).
-//! \throw InputError when n is below input.minimum_vertex_count(), or when n needs a refinement
-//! beyond kMaxRefinedTriangles.
-RemeshResult remesh_to(const SurfaceMesh& input, int n, uint64_t seed = 1, const RemeshOptions& options = {});
 
 }  // namespace lrvd

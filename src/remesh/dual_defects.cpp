@@ -1,0 +1,397 @@
+// The defects of a CVT's dual (remesh/dual_defects.h): its own (bad edges, repeated, merged or unused
+// triangles, pinched vertices), crossings, and the cells that are not disks or meet wrongly.
+#include "remesh/dual_defects.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <string>
+#include <tuple>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "mesh/curvature.h"
+#include "metrics/self_intersections.h"
+#include "voronoi/clip.h"
+
+namespace lrvd {
+
+namespace {
+
+// Cells that are not disks (more than one boundary loop: a ring around a thin tube; or an Euler
+// characteristic V - E + F below 1: a handle inside the cell, smaller than it) and pairs of
+// cells that share more than one boundary arc (paper Fig. 13): the dual is wrong there even when
+// it looks like a manifold. Also, in `strips`, the pairs whose one shared arc runs from the mesh
+// boundary to the mesh boundary through no triple point: across a strip narrower than the cells,
+// where the dual has no edge between them. Boundary pieces are joined through their shared symbolic
+// vertices.
+void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect,
+                               std::vector<std::pair<int, int>>& strips) {
+  using Key = std::pair<int, int>;  // (cell, 0) for a cell's whole boundary, (i, j + 1) for arc i|j
+  struct Piece {
+    Key key;
+    SymbolicVertex u, w;
+  };
+  std::vector<Piece> pieces;
+  std::vector<SymbolicVertex> arc_ends_on_boundary;  // arc vertices on a boundary edge of the mesh
+  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids;  // every polygon vertex, numbered
+  auto id_of = [&](const SymbolicVertex& q) { return ids.try_emplace(q, static_cast<int>(ids.size())).first->second; };
+  // Per cell, for its Euler characteristic: polygons, polygon edges shared with the cell's own
+  // polygon across a mesh edge (each counted from both sides), the other edges, and (cell, vertex).
+  const int cells = diagram.sample_count;
+  std::vector<int> faces(cells, 0), inner_sides(cells, 0), outer_edges(cells, 0);
+  std::vector<char> unknown_edge(cells, 0);
+  std::vector<std::pair<int, int>> cell_vertices;
+  for (const CellPolygon& poly : diagram.polygons) {
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    ++faces[poly.cell];
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const SymbolicVertex &u = v[k], &w = v[(k + 1) % poly.vertex_count];
+      cell_vertices.push_back({poly.cell, id_of(u)});
+      int other = -1;  // the neighbour cell across this edge, or -2 on the mesh boundary
+      for (int e = 0; e < 3 && other == -1; ++e)
+        if (u.on_mesh_edge(tri[e], tri[(e + 1) % 3]) && w.on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+          other = mesh.neighbor(poly.triangle, e) < 0 ? -2 : -3;
+      if (other == -3) {  // inside the cell, across a mesh edge
+        ++inner_sides[poly.cell];
+        continue;
+      }
+      if (other == -1)
+        for (int l : u.label)
+          if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
+      if (other == -1) {
+        unknown_edge[poly.cell] = 1;
+        continue;
+      }
+      ++outer_edges[poly.cell];
+      pieces.push_back({{poly.cell, 0}, u, w});
+      if (other >= 0 && poly.cell < other) {
+        pieces.push_back({{poly.cell, other + 1}, u, w});
+        for (const SymbolicVertex* q : {&u, &w})
+          for (int e = 0; e < 3; ++e)
+            if (q->type == SymbolicVertex::Type::B && mesh.neighbor(poly.triangle, e) < 0 &&
+                q->on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+              arc_ends_on_boundary.push_back(*q);
+      }
+    }
+  }
+  // V - E + F of each cell: 1 for a disk, 0 for a ring, -1 for a disk with a handle in it.
+  std::sort(cell_vertices.begin(), cell_vertices.end());
+  cell_vertices.erase(std::unique(cell_vertices.begin(), cell_vertices.end()), cell_vertices.end());
+  std::vector<int> euler(faces);
+  for (const auto& [cell, vertex] : cell_vertices) ++euler[cell];
+  for (int c = 0; c < cells; ++c) {
+    euler[c] -= inner_sides[c] / 2 + outer_edges[c];
+    if (faces[c] > 0 && !unknown_edge[c] && inner_sides[c] % 2 == 0 && euler[c] < 1) defect.insert(c);
+  }
+  // Count connected components per key with a union-find over the key's vertices: the pieces
+  // sorted by key, the vertices numbered with the cells' ones.
+  struct Link {
+    Key key;
+    int u, w;
+    bool operator<(const Link& o) const { return key < o.key; }
+  };
+  // Grouped by cell (a counting sort), then each cell's few pieces sorted by key.
+  std::vector<int> first_of_cell(diagram.sample_count + 1, 0);
+  for (const Piece& p : pieces) ++first_of_cell[p.key.first + 1];
+  for (int c = 0; c < diagram.sample_count; ++c) first_of_cell[c + 1] += first_of_cell[c];
+  std::vector<Link> links(pieces.size());
+  std::vector<int> next(first_of_cell.begin(), first_of_cell.end() - 1);
+  for (const Piece& p : pieces) {
+    const int u = id_of(p.u);
+    links[next[p.key.first]++] = {p.key, u, id_of(p.w)};
+  }
+  // Per vertex id: 1 for a triple point (type C), 2 for an arc's end on the mesh boundary.
+  std::vector<char> kind(ids.size(), 0);
+  for (const auto& [q, id] : ids)
+    if (q.type == SymbolicVertex::Type::C) kind[id] = 1;
+  for (const SymbolicVertex& q : arc_ends_on_boundary) kind[ids.at(q)] = 2;
+  for (int c = 0; c < diagram.sample_count; ++c)
+    std::sort(links.begin() + first_of_cell[c], links.begin() + first_of_cell[c + 1]);
+  std::vector<int> parent(ids.size(), -1);  // -1: not in the current key's forest
+  std::vector<int> touched;
+  auto root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (size_t first = 0; first < links.size();) {
+    size_t last = first;
+    int components = 0;
+    bool triple = false, boundary_end = false;
+    for (; last < links.size() && links[last].key == links[first].key; ++last)
+      for (int x : {links[last].u, links[last].w}) {
+        if (parent[x] < 0) parent[x] = x, touched.push_back(x), ++components;
+        triple = triple || kind[x] == 1;
+        boundary_end = boundary_end || kind[x] == 2;
+      }
+    for (size_t k = first; k < last; ++k) {
+      const int ra = root(links[k].u), rb = root(links[k].w);
+      if (ra != rb) parent[ra] = rb, --components;
+    }
+    if (components > 1) {
+      defect.insert(links[first].key.first);
+      if (links[first].key.second > 0) defect.insert(links[first].key.second - 1);
+    } else if (links[first].key.second > 0 && boundary_end && !triple) {
+      strips.push_back({links[first].key.first, links[first].key.second - 1});
+    }
+    for (int x : touched) parent[x] = -1;
+    touched.clear();
+    first = last;
+  }
+}
+
+// Vertices whose triangles form more than one fan (two triangles around v are in one fan when a
+// chain of triangles sharing edges (v, x) joins them): the dual is pinched there, also where every
+// edge has one or two triangles (an open mesh's dual, or a closed one's whose Euler characteristic
+// happens to match).
+void add_pinched_vertices(const DualMesh& dual, std::set<int>& defect) {
+  // (v, x, triangle) for each edge (v, x) of each triangle, sorted: runs per v, then per x.
+  struct Spoke {
+    int v, x, t;
+    bool operator<(const Spoke& o) const { return std::tie(v, x, t) < std::tie(o.v, o.x, o.t); }
+  };
+  std::vector<Spoke> spokes;
+  spokes.reserve(6 * dual.triangles.size());
+  for (int t = 0; t < static_cast<int>(dual.triangles.size()); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = dual.triangles[t][e], b = dual.triangles[t][(e + 1) % 3];
+      spokes.push_back({a, b, t});
+      spokes.push_back({b, a, t});
+    }
+  std::sort(spokes.begin(), spokes.end());
+  std::vector<int> parent;  // union-find over the triangles around one vertex, by their index in `local`
+  std::vector<int> local;
+  auto find = [&](int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (size_t i = 0, j; i < spokes.size(); i = j) {
+    for (j = i; j < spokes.size() && spokes[j].v == spokes[i].v;) ++j;
+    local.clear();
+    for (size_t k = i; k < j; ++k) local.push_back(spokes[k].t);
+    std::sort(local.begin(), local.end());
+    local.erase(std::unique(local.begin(), local.end()), local.end());
+    parent.resize(local.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto index = [&](int t) { return static_cast<int>(std::lower_bound(local.begin(), local.end(), t) - local.begin()); };
+    int fans = static_cast<int>(local.size());
+    for (size_t k = i + 1; k < j; ++k)
+      if (spokes[k].x == spokes[k - 1].x) {
+        const int a = find(index(spokes[k].t)), b = find(index(spokes[k - 1].t));
+        if (a != b) parent[a] = b, --fans;
+      }
+    if (fans > 1) defect.insert(spokes[i].v);
+  }
+}
+
+// Each boundary loop of the mesh comes back in the dual as a loop of boundary edges through the
+// cells along it. A loop met by fewer than three cells is closed over (a hole inside one cell, or
+// two cells meeting across it), and a cell that meets two loops joins them into one boundary of
+// the dual: those cells are where to act when the Euler characteristic is wrong.
+void add_closed_over_holes(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& hints,
+                           std::vector<int>& closed_over) {
+  const auto& loops = mesh.boundary_loops();
+  std::vector<int> loop_of(mesh.vertex_count(), -1);
+  for (size_t l = 0; l < loops.size(); ++l)
+    for (int v : loops[l]) loop_of[v] = static_cast<int>(l);
+  std::vector<std::pair<int, int>> meets;  // (loop, cell)
+  for (const CellPolygon& poly : diagram.polygons) {
+    const Triangle& tri = mesh.triangle(poly.triangle);
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    for (int e = 0; e < 3; ++e) {
+      if (mesh.neighbor(poly.triangle, e) >= 0) continue;
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      for (int k = 0; k < poly.vertex_count; ++k)
+        if (v[k].on_mesh_edge(a, b) && v[(k + 1) % poly.vertex_count].on_mesh_edge(a, b)) {
+          meets.push_back({loop_of[a], poly.cell});
+          break;
+        }
+    }
+  }
+  std::sort(meets.begin(), meets.end());
+  meets.erase(std::unique(meets.begin(), meets.end()), meets.end());
+  std::vector<int> loop_met(diagram.sample_count, -1);
+  for (size_t i = 0, j; i < meets.size(); i = j) {
+    for (j = i; j < meets.size() && meets[j].first == meets[i].first;) ++j;
+    if (j - i < 3) closed_over.push_back(meets[i].first);
+    for (size_t k = i; k < j; ++k) {
+      const int cell = meets[k].second;
+      if (j - i < 3) hints.insert(cell);
+      if (loop_met[cell] >= 0 && loop_met[cell] != meets[i].first) hints.insert(cell);
+      loop_met[cell] = meets[i].first;
+    }
+  }
+}
+
+// The cornered cells and tip caps among the samples at defects (as find_dual_defects tells), and the
+// tip caps' neighbours among the cell-topology `hints`; `used`: whether each sample is in a triangle.
+void find_cornered_and_tip_caps(const Diagram& diagram, const SurfaceMesh& mesh, const std::set<int>& defect,
+                                const std::set<int>& hints, const std::vector<char>& used, bool input_closed,
+                                std::vector<int>& cornered, std::vector<int>& tip_caps,
+                                std::vector<int>& tip_cap_rings) {
+  std::vector<char> at_defect(used.size(), 0), on_boundary(used.size(), 0);
+  for (int i : defect) at_defect[i] = 1;
+  struct Neighbours {
+    int first = -1, second = -1;
+    bool more = false;
+    int count() const { return more ? 3 : (first >= 0) + (second >= 0); }
+  };
+  std::vector<Neighbours> neighbours(used.size());
+  for (const CellPolygon& poly : diagram.polygons) {
+    if (!at_defect[poly.cell]) continue;
+    const SymbolicVertex* v = diagram.polygon_vertices(poly);
+    Neighbours& n = neighbours[poly.cell];
+    for (int k = 0; k < poly.vertex_count; ++k)
+      for (int a = 0; a < v[k].num_labels(); ++a) {
+        const int l = v[k].label[a];
+        if (l == poly.cell || l == n.first || l == n.second) continue;
+        if (n.first < 0)
+          n.first = l;
+        else if (n.second < 0)
+          n.second = l;
+        else
+          n.more = true;
+      }
+    const unsigned along = polygon_edges(v, poly.vertex_count, mesh.triangle(poly.triangle)).along;
+    for (int e = 0; e < 3; ++e)
+      if ((along >> e & 1u) && mesh.neighbor(poly.triangle, e) < 0) on_boundary[poly.cell] = 1;
+  }
+  std::vector<int> capped;  // candidates: no boundary, one neighbour (unused) or two (at a defect)
+  for (int i = 0; i < static_cast<int>(used.size()); ++i) {
+    const int count = neighbours[i].count();
+    if (used[i]) {
+      if (at_defect[i] && count == 2 && !on_boundary[i]) capped.push_back(i);
+      continue;
+    }
+    if (hints.count(i) || count > 1) continue;
+    if (on_boundary[i] && !input_closed)
+      cornered.push_back(i);
+    else if (!on_boundary[i] && count == 1)
+      capped.push_back(i);
+  }
+  if (!capped.empty()) {
+    // The mesh vertices inside each candidate's cell (corners of its polygons), each counted once.
+    const std::vector<double> deficit = angle_deficits(mesh);
+    std::vector<char> candidate(used.size(), 0);
+    for (int i : capped) candidate[i] = 1;
+    std::vector<std::pair<int, int>> inside;
+    for (const CellPolygon& poly : diagram.polygons) {
+      if (!candidate[poly.cell]) continue;
+      const SymbolicVertex* v = diagram.polygon_vertices(poly);
+      for (int k = 0; k < poly.vertex_count; ++k)
+        if (v[k].type == SymbolicVertex::Type::A) inside.push_back({poly.cell, v[k].v[0]});
+    }
+    std::sort(inside.begin(), inside.end());
+    inside.erase(std::unique(inside.begin(), inside.end()), inside.end());
+    std::vector<double> gathered(used.size(), 0.0);
+    for (const auto& [cell, vertex] : inside) gathered[cell] += deficit[vertex];
+    for (int i : capped)
+      if (gathered[i] > M_PI) {
+        tip_caps.push_back(i);
+        for (const int n : {neighbours[i].first, neighbours[i].second})
+          if (n >= 0 && hints.count(n)) tip_cap_rings.push_back(n);
+      }
+  }
+}
+
+}  // namespace
+
+DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, const SurfaceMesh& mesh,
+                              const Samples& samples, bool input_closed, const InputCrossings& inherited) {
+  // Each edge and each vertex triple with its count, as runs of a sorted list.
+  std::vector<std::pair<int, int>> edge_list;
+  std::vector<Triangle> vertex_sets;
+  edge_list.reserve(3 * dual.triangles.size());
+  vertex_sets.reserve(dual.triangles.size());
+  for (const Triangle& t : dual.triangles) {
+    for (int e = 0; e < 3; ++e) edge_list.push_back({std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])});
+    Triangle sorted = t;
+    std::sort(sorted.begin(), sorted.end());
+    vertex_sets.push_back(sorted);
+  }
+  std::sort(edge_list.begin(), edge_list.end());
+  std::sort(vertex_sets.begin(), vertex_sets.end());
+  std::set<int> defect;
+  int edges = 0;
+  for (size_t i = 0, j; i < edge_list.size(); i = j, ++edges) {
+    for (j = i + 1; j < edge_list.size() && edge_list[j] == edge_list[i];) ++j;
+    const size_t count = j - i;
+    if (count > 2 || (count == 1 && input_closed)) defect.insert({edge_list[i].first, edge_list[i].second});
+  }
+  for (size_t i = 0, j; i < vertex_sets.size(); i = j) {
+    for (j = i + 1; j < vertex_sets.size() && vertex_sets[j] == vertex_sets[i];) ++j;
+    if (j - i > 1) defect.insert(vertex_sets[i].begin(), vertex_sets[i].end());
+  }
+  for (int t : dual.merged_into) defect.insert(dual.triangles[t].begin(), dual.triangles[t].end());
+  add_pinched_vertices(dual, defect);
+  std::set<int> hints;
+  std::vector<std::pair<int, int>> strips;
+  add_cell_topology_defects(diagram, mesh, hints, strips);
+  std::vector<int> closed_over;
+  if (!input_closed) add_closed_over_holes(diagram, mesh, hints, closed_over);
+  // The dual's Euler characteristic against the mesh's: a manifold dual can still have lost a
+  // handle (a cell wrapping a tube) or a hole of an open mesh (a cell around it), which only the
+  // cell-topology hints locate.
+  const bool euler_ok = static_cast<int>(dual.positions.size()) - edges + static_cast<int>(dual.triangles.size()) ==
+                        mesh.euler_characteristic();
+  // A sample in no triangle: its cell meets fewer than two others at a triple point (an island).
+  std::vector<char> used(dual.positions.size(), 0);
+  for (const Triangle& t : dual.triangles)
+    for (int v : t) used[v] = 1;
+  for (size_t i = 0; i < used.size(); ++i)
+    if (!used[i]) defect.insert(static_cast<int>(i));
+  // Unused samples whose disk cells meet one other cell: cornered when they meet the boundary of an
+  // open mesh, tip caps when they hold more than π of angle deficit. (A row of unused cells across
+  // a strip narrower than the cells, each with two neighbours, needs more samples, not fewer.) A
+  // cell at a defect that meets exactly two others and no boundary is a tip cap too when it holds
+  // that much: the two share two arcs round it, and its two triangles repeat each other.
+  std::vector<int> cornered, tip_caps, tip_cap_rings;
+  if (!defect.empty())  // unused samples are among the defects
+    find_cornered_and_tip_caps(diagram, mesh, defect, hints, used, input_closed, cornered, tip_caps, tip_cap_rings);
+  // Two used cells that meet across a strip narrower than them: the dual lacks their edge and comes
+  // apart there (an unused one is a topological defect already, and maybe cornered).
+  for (const auto& [i, j] : strips)
+    if (used[i] && used[j]) hints.insert({i, j});
+  // Triangles that cut through each other (nearby sheets sampled too coarsely).
+  const std::vector<char> testable = proper_triangles(dual.positions, dual.triangles);
+  std::set<int> crossing;
+  const auto pairs = find_self_intersections(dual.positions, dual.triangles, testable);
+  for (const auto& [s, t] : pairs) {
+    if (inherited.inherited(samples, dual.triangles[s], dual.triangles[t])) continue;
+    crossing.insert(dual.triangles[s].begin(), dual.triangles[s].end());
+    crossing.insert(dual.triangles[t].begin(), dual.triangles[t].end());
+  }
+  DualDefects out;
+  out.topological.assign(defect.begin(), defect.end());
+  out.crossing.assign(crossing.begin(), crossing.end());
+  out.cell_topology.assign(hints.begin(), hints.end());
+  out.cornered = std::move(cornered);
+  out.tip_caps = std::move(tip_caps);
+  std::sort(tip_cap_rings.begin(), tip_cap_rings.end());
+  tip_cap_rings.erase(std::unique(tip_cap_rings.begin(), tip_cap_rings.end()), tip_cap_rings.end());
+  out.tip_cap_rings = std::move(tip_cap_rings);
+  out.closed_over_loops = std::move(closed_over);
+  out.euler_ok = euler_ok;
+  out.crossing_pairs = pairs;
+  return out;
+}
+
+std::string DualDefects::describe() const {
+  if (empty()) return "no defect";
+  std::vector<std::string> parts;
+  auto count = [](size_t n, const char* noun) { return fmt::format("{} {}{}", n, noun, n == 1 ? "" : "s"); };
+  if (!topological.empty()) parts.push_back(count(topological.size(), "sample") + " at topological defects");
+  if (!crossing.empty()) parts.push_back(fmt::format("{} at crossing triangles", crossing.size()));
+  if (!euler_ok)
+    parts.push_back(fmt::format("the wrong Euler characteristic ({} {})", count(cell_topology.size(), "cell"),
+                                cell_topology.size() == 1 ? "not a disk or sharing two arcs"  // a strip flags two
+                                                           : "not disks, sharing two arcs or meeting across a strip"));
+  std::string out = parts[0];
+  for (size_t k = 1; k < parts.size(); ++k) out += ", " + parts[k];
+  return out;
+}
+
+}  // namespace lrvd
