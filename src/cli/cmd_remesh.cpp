@@ -34,7 +34,7 @@ std::string inherited_note(const RemeshVerification& check) {
 
 struct RemeshCommandOptions {
   InputOptions input;
-  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance";
+  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance", repair = "local";
   int iterations = 60;
   bool no_fit = false;
   std::string output, report;
@@ -136,6 +136,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.iterations = opt.iterations;
   remesh.fit = !opt.no_fit;
   if (opt.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
+  remesh.repair = opt.repair == "whole" ? RepairScope::Whole : RepairScope::Local;
   remesh.on_progress = [](const std::string& message) { progress(message); };
   reset_predicate_stats();
   progress(fmt::format("CVT of {} samples on the {}", input.samples.size(), opt.kind));
@@ -162,6 +163,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["optimizer"] = opt.optimizer;
   report["density"] = opt.density;
   report["priority"] = opt.priority;
+  report["repair"] = opt.repair;
   // With `--priority shape`: the vertices of the worst triangles moved before the fitting.
   report["relaxed"] = {{"rounds", remesh.relax.rounds},
                        {"moved", remeshed.relax.moved},
@@ -374,6 +376,11 @@ Action add_remesh_command(CLI::App& app) {
                   "the input; shape: the worst triangles' vertices first move towards their neighbours, which "
                   "raises the worst triangle and leaves the fitting less room on the bends")
       ->check(CLI::IsMember({"distance", "shape"}))
+      ->capture_default_str();
+  cmd->add_option("--repair", opt->repair,
+                  "local (default): a repair round re-optimises the samples near the dual's defects, on the part "
+                  "of the surface round them; whole: every sample, a whole CVT per round")
+      ->check(CLI::IsMember({"local", "whole"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,
                 "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "

@@ -733,7 +733,15 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
       const bool moved = keep_to_sheets && !raised.empty() &&
                          relocate_samples(result.cvt.diagram, mesh, again.triangle_density, raised, result.cvt.samples) > 0;
       // The diagram of the samples is the last one computed: the density changed, the diagram not.
-      result.cvt = optimize_cvt(mesh, result.cvt.samples, again, moved ? nullptr : &result.cvt.diagram, &index);
+      // RemeshOptions::repair: every sample, or those near the cells acted on (remesh/local_repair.h).
+      if (options.repair == RepairScope::Whole) {
+        result.cvt = optimize_cvt(mesh, result.cvt.samples, again, moved ? nullptr : &result.cvt.diagram, &index);
+      } else {
+        std::vector<int> acted_on(raised);
+        acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
+        result.cvt = repair_round_cvt(mesh, result.cvt.samples, result.cvt.diagram, acted_on, again,
+                                      options.local_repair, rounds_without_progress, index);
+      }
       result.total_iterations += result.cvt.iterations;
       result.diagram_evaluations += result.cvt.diagram_evaluations;
       result.dual = compute_dual(result.cvt.diagram, mesh, result.cvt.samples);

@@ -9,6 +9,7 @@
 
 #include "remesh/cvt.h"
 #include "remesh/fit.h"
+#include "remesh/local_repair.h"
 #include "remesh/untangle.h"
 #include "voronoi/dual.h"
 
@@ -19,6 +20,10 @@ struct RemeshOptions {
   int repair_rounds = 24;          //!< rounds of "move a sample to a defect, optimise again"
   int repair_iterations = 30;      //!< CVT iterations after each density raise
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
+  //! What a repair round re-optimises (remesh/local_repair.h): the samples within a few cell rings
+  //! of the cells it acts on, on the part of the mesh round them (Local), or every sample (Whole)
+  RepairScope repair = RepairScope::Local;
+  LocalRepairOptions local_repair;
   bool fit = true;                 //!< move the vertices onto their cells' planes (remesh/fit.h)
   FitOptions fit_options;
   //! Before the fitting, move the vertices of the worst triangles towards their neighbours, on the
