@@ -91,3 +91,46 @@ TEST_CASE("A window's CVT moves its own samples only, on its sub-mesh, and retur
     REQUIRE(norm(p - r.samples.positions[i]) < 1e-9 * mesh.bounding_box().diagonal());
   }
 }
+
+TEST_CASE("Local repair rounds alone mend a folded sheet at 100 vertices, a row of many whole rounds", "[cvt][remesh][local]") {
+  // The folded sheet (a slab 0.005 thick whose walls face each other 0.02 apart) at 100 vertices:
+  // its first CVT's dual has defects, which every round here mends on a window of cells (never a
+  // whole CVT); the remesh is valid with exactly 100 vertices.
+  const SurfaceMesh input = make_stress_mesh("folded_sheet", 1.0);
+  const double length = suggested_refinement_length(input, 100);
+  const SurfaceMesh mesh = length > 0 && input.max_edge_length() > length ? refine_long_edges(input, length) : input;
+  RemeshOptions options;
+  options.repair = RepairScope::Local;
+  options.local_repair.whole_first = 0;
+  options.local_repair.whole_after = options.repair_rounds + 1;
+  const RemeshResult r = remesh_cvt(input, mesh, sample_uniform(mesh, 100, 1), options);
+  const RemeshVerification check = verify_remesh(input, r.dual.positions, r.dual.triangles, 100);
+  INFO(check.summary());
+  REQUIRE(r.repair_rounds > 0);
+  REQUIRE(r.dual.positions.size() == 100);
+  REQUIRE(check.passed);
+}
+
+TEST_CASE("A remesh mended within the whole rounds a local repair starts with is the whole repair's: elk at 516", "[cvt][remesh][local]") {
+  // The elk at 516 needs two repair rounds: with LocalRepairOptions::whole_first 2 both are whole
+  // CVTs, and the output is the one of RepairScope::Whole to the last bit.
+  const SurfaceMesh input = cgal_mesh("elk.off");
+  const double length = suggested_refinement_length(input, 516);
+  const SurfaceMesh mesh = length > 0 && input.max_edge_length() > length ? refine_long_edges(input, length) : input;
+  const Samples start = sample_uniform(mesh, 516, 1);
+  RemeshOptions whole, local;
+  whole.repair = RepairScope::Whole;
+  local.repair = RepairScope::Local;
+  local.local_repair.whole_first = 2;
+  const RemeshResult a = remesh_cvt(input, mesh, start, whole);
+  const RemeshResult b = remesh_cvt(input, mesh, start, local);
+  REQUIRE(a.repair_rounds == 2);
+  REQUIRE(b.repair_rounds == 2);
+  REQUIRE(b.dual.positions == a.dual.positions);
+  REQUIRE(b.dual.triangles == a.dual.triangles);
+  // With no whole round first, the rounds are local: the remesh differs, and is valid.
+  local.local_repair.whole_first = 0;
+  const RemeshResult c = remesh_cvt(input, mesh, start, local);
+  REQUIRE_FALSE(c.dual.positions == a.dual.positions);
+  REQUIRE(verify_remesh(input, c.dual.positions, c.dual.triangles, 516).passed);
+}

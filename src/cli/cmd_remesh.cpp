@@ -163,7 +163,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["optimizer"] = opt.optimizer;
   report["density"] = opt.density;
   report["priority"] = opt.priority;
-  report["repair"] = opt.repair;
+  report["repair_scope"] = opt.repair;
   // With `--priority shape`: the vertices of the worst triangles moved before the fitting.
   report["relaxed"] = {{"rounds", remesh.relax.rounds},
                        {"moved", remeshed.relax.moved},
@@ -377,9 +377,10 @@ Action add_remesh_command(CLI::App& app) {
                   "raises the worst triangle and leaves the fitting less room on the bends")
       ->check(CLI::IsMember({"distance", "shape"}))
       ->capture_default_str();
-  cmd->add_option("--repair", opt->repair,
-                  "local (default): a repair round re-optimises the samples near the dual's defects, on the part "
-                  "of the surface round them; whole: every sample, a whole CVT per round")
+  cmd->add_option("--repair-scope", opt->repair,
+                  "local (default): after five repair rounds that re-optimise every sample, a round re-optimises "
+                  "the samples near the dual's defects only, on the part of the surface round them; whole: every "
+                  "round re-optimises every sample")
       ->check(CLI::IsMember({"local", "whole"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,

@@ -179,14 +179,14 @@ CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples
 }
 
 CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                           const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int rounds_without_progress,
+                           const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int round, int rounds_without_progress,
                            const ClosestPointIndex& index) {
   const int n = samples.size();
   std::vector<int> moved;
   for (int i = 0; i < n && i < static_cast<int>(diagram.sites.size()); ++i)
     if (!(diagram.sites[i].p == samples.positions[i])) moved.push_back(i);
   const bool current = moved.empty() && diagram.sample_count == n;
-  if (rounds_without_progress >= local.whole_after || diagram.sample_count != n)
+  if (round < local.whole_first || rounds_without_progress >= local.whole_after || diagram.sample_count != n)
     return optimize_cvt(mesh, samples, options, current ? &diagram : nullptr, &index);
   // Samples moved since the diagram (into defect cells): they and the cells they left move too,
   // on the diagram of where they are now.

@@ -17,6 +17,11 @@ struct LocalRepairOptions {
   //! Cell rings round the cells a round acts on whose samples move; one more ring per round
   //! without a better state (RemeshOptions: the rounds' bookkeeping).
   int rings = 2;
+  //! The first rounds of a run are whole-mesh CVTs: a remesh those mend (CGAL's elk at 516 in 2,
+  //! the armadillo at 2000 in 5) is the one of RepairScope::Whole, whose triangles and distances
+  //! are better than local rounds leave (elk 516 from the first round local: Qmin 0.649 -> 0.515),
+  //! and the local rounds take over where more are needed (docs/performance.md, "Local repair").
+  int whole_first = 5;
   //! Rounds without a better state after which the rounds are whole-mesh CVTs again, until one is
   //! better (0: every round whole).
   int whole_after = 4;
@@ -41,15 +46,16 @@ std::vector<char> repair_window(const Diagram& diagram, const std::vector<int>& 
 CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
                                  const std::vector<char>& window, const CvtOptions& options);
 
-//! The CVT of one local repair round (RepairScope::Local). When the rounds have gone
-//! `local.whole_after` rounds without a better state: optimize_cvt of every sample. Otherwise the window of `acted_on` (the cells whose density the round raised or
+//! The CVT of repair round `round` (from 0) of a run with local repair (RepairScope::Local). In the
+//! first `local.whole_first` rounds, and when the rounds have gone `local.whole_after` rounds
+//! without a better state: optimize_cvt of every sample. Otherwise the window of `acted_on` (the cells whose density the round raised or
 //! lowered) and, when samples were moved since `diagram` was computed (their position differs from
 //! its site), those samples and their former neighbours, grown by `local.rings` rings plus one per
 //! round without progress, optimised with optimize_cvt_in_window; a window too large for that
 //! (LocalRepairOptions::max_window_share) is a whole CVT. `diagram` is the last diagram computed,
 //! of `samples` but for the moved ones.
 CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                           const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int rounds_without_progress,
+                           const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int round, int rounds_without_progress,
                            const ClosestPointIndex& index);
 
 }  // namespace lrvd

@@ -740,7 +740,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
         std::vector<int> acted_on(raised);
         acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
         result.cvt = repair_round_cvt(mesh, result.cvt.samples, result.cvt.diagram, acted_on, again,
-                                      options.local_repair, rounds_without_progress, index);
+                                      options.local_repair, round, rounds_without_progress, index);
       }
       result.total_iterations += result.cvt.iterations;
       result.diagram_evaluations += result.cvt.diagram_evaluations;

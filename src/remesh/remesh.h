@@ -168,7 +168,9 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
 //! After the first CVT, while the dual has defects (a thin part wrapped by too few cells, sheets
 //! that cut through each other), the density is multiplied by `repair_factor` over the defect
 //! cells and their neighbours and the CVT runs again, which moves samples from elsewhere into the
-//! thin part; a state whose only defect is crossings is fitted and untangled first, and the loop
+//! thin part (with RemeshOptions::repair Local, after the first rounds only the samples within a
+//! few cell rings of the defects move: remesh/local_repair.h); a state whose only defect is
+//! crossings is fitted and untangled first, and the loop
 //! stops when that leaves none. The result is the state with the fewest defects (the caller
 //! verifies it). If it still has defects, the whole run is repeated with every sample kept to its
 //! own sheet (CvtOptions::keep_to_sheets: the centroid of a cell wrapping a thin wall must not send
