@@ -378,7 +378,7 @@ Action add_remesh_command(CLI::App& app) {
       ->check(CLI::IsMember({"distance", "shape"}))
       ->capture_default_str();
   cmd->add_option("--repair-scope", opt->repair,
-                  "local (default): after five repair rounds that re-optimise every sample, a round re-optimises "
+                  "local (default): after two repair rounds that re-optimise every sample, a round re-optimises "
                   "the samples near the dual's defects only, on the part of the surface round them; whole: every "
                   "round re-optimises every sample")
       ->check(CLI::IsMember({"local", "whole"}))
