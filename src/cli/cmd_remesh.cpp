@@ -181,7 +181,8 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["polished"] = remeshed.polished;
   // The kept state took RemeshOptions::ease_iterations with the repair's raised density eased back.
   report["density_eased"] = remeshed.eased;
-  // A run stopped because every cell was at a defect or next to one (docs/results.md, "Session 27").
+  // A run stopped because every cell was at a defect or next to one (docs/reference/metrics.md,
+  // "What the repair left").
   report["repair_saturated"] = remeshed.repair_saturated;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;
@@ -244,7 +245,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
                                                             : fmt::format("{} of them", holes.fillable);
     const std::string advice =
         holes.fillable == 0
-            ? fmt::format("--fill-holes cannot close {} (docs/input.md), give more vertices",
+            ? fmt::format("--fill-holes cannot close {} (docs/guide/input.md), give more vertices",
                           holes.count == 1 ? "it" : "them")
             : fmt::format("--fill-holes {:.2g} closes {} and {} other hole{}{}, or give more vertices", holes.fraction,
                           which, holes.others, holes.others == 1 ? "" : "s",

@@ -20,7 +20,7 @@ struct LocalRepairOptions {
   //! The first rounds of a run are whole-mesh CVTs: a remesh those mend (CGAL's elk at 516 in 2)
   //! is the one of RepairScope::Whole, whose triangles and distances are better than local rounds
   //! leave (elk 516 with every round local: Qmin 0.649 -> 0.515), and the local rounds take over
-  //! where more are needed (docs/performance.md, "Local repair rounds").
+  //! where more are needed (docs/results.md, "Local repair rounds").
   int whole_first = 2;
   //! Rounds without a better state after which the rounds are whole-mesh CVTs again, until one is
   //! better (0: every round whole).
