@@ -34,7 +34,7 @@ std::string inherited_note(const RemeshVerification& check) {
 
 struct RemeshCommandOptions {
   InputOptions input;
-  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance";
+  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance", repair = "whole";
   int iterations = 60;
   bool no_fit = false;
   std::string output, report;
@@ -128,6 +128,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   cvt.iterations = opt.iterations;
   remesh.fit = !opt.no_fit;
   if (opt.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
+  remesh.repair = opt.repair == "local" ? RepairScope::Local : RepairScope::Whole;
   remesh.on_progress = [](const std::string& message) { progress(message); };
   // The samples drawn per component unless given (--points), both renumbered: remesh_from.
   RemeshStart start;
@@ -164,6 +165,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["optimizer"] = opt.optimizer;
   report["density"] = opt.density;
   report["priority"] = opt.priority;
+  report["repair_scope"] = opt.repair;
   // With `--priority shape`: the vertices of the worst triangles moved before the fitting.
   report["relaxed"] = {{"rounds", remesh.relax.rounds},
                        {"moved", remeshed.relax.moved},
@@ -377,6 +379,12 @@ Action add_remesh_command(CLI::App& app) {
                   "the input; shape: the worst triangles' vertices first move towards their neighbours, which "
                   "raises the worst triangle and leaves the fitting less room on the bends")
       ->check(CLI::IsMember({"distance", "shape"}))
+      ->capture_default_str();
+  cmd->add_option("--repair-scope", opt->repair,
+                  "whole (default): every repair round re-optimises every sample; local: after two whole rounds, "
+                  "a round re-optimises only the samples near the dual's defects, on the part of the surface round "
+                  "them (faster where many rounds are needed, with worse triangles where it ends the repair)")
+      ->check(CLI::IsMember({"local", "whole"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,
                 "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "

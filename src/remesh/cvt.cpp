@@ -98,6 +98,16 @@ void project(const ClosestPointIndex& index, const std::vector<Vec3>& points, Sa
   });
 }
 
+// The samples `movable` marks 0 back to where they are in `from`, exactly.
+void restore_frozen(const Samples& from, const std::vector<char>& movable, Samples& samples) {
+  for (size_t i = 0; i < movable.size(); ++i)
+    if (!movable[i]) {
+      samples.positions[i] = from.positions[i];
+      samples.triangles[i] = from.triangles[i];
+      samples.barycentric[i] = from.barycentric[i];
+    }
+}
+
 std::vector<Vec3> to_points(const Eigen::VectorXd& x) {
   std::vector<Vec3> points(x.size() / 3);
   for (size_t i = 0; i < points.size(); ++i) points[i] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
@@ -180,6 +190,9 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
                                  options.iterations, options.lloyd_warmup));
   if (!(options.relative_gradient >= 0) || !(options.relative_energy_change >= 0))
     throw InputError("the CVT's stopping thresholds must be numbers of at least 0");
+  if (!options.movable.empty() && options.movable.size() != static_cast<size_t>(initial.size()))
+    throw InputError(fmt::format("the CVT's movable mask has {} entries for {} samples: it needs one per sample",
+                                 options.movable.size(), initial.size()));
   if (diagram_of_initial && (diagram_of_initial->sample_count != initial.size() ||
                              diagram_of_initial->triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1))
     throw InputError("optimize_cvt: the diagram given is not of these samples on this mesh");
@@ -224,6 +237,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     const double before = current.energy;
     const CellTriangles cells = options.keep_to_sheets ? cell_triangles(current.diagram) : CellTriangles();
     project(index, current.cells.centroid, samples, true, &mesh, &cells);
+    restore_frozen(initial, options.movable, samples);
     current = cvt_energy(mesh, samples, options.diagram, density);
     ++result.diagram_evaluations;
     ++iteration;
@@ -264,12 +278,15 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
       const std::vector<Vec3> points = to_points(x * unit);
       const bool at_start = lbfgs_evaluations == 1 && points == start_points;
       project(index, points, samples, false, &mesh, &cells);
+      restore_frozen(initial, options.movable, samples);
       const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh, samples, options.diagram, density);
       const CvtEnergy& e = at_start ? current : evaluated;
       if (!at_start) ++result.diagram_evaluations;
       grad.resize(3 * n);
-      for (int i = 0; i < n; ++i)
-        for (int c = 0; c < 3; ++c) grad[3 * i + c] = scale * unit * e.gradient[i][c];
+      for (int i = 0; i < n; ++i) {
+        const bool moves = options.movable.empty() || options.movable[i];
+        for (int c = 0; c < 3; ++c) grad[3 * i + c] = moves ? scale * unit * e.gradient[i][c] : 0.0;
+      }
       if (e.energy < best_energy) {
         best_energy = e.energy;
         best = samples;
@@ -300,6 +317,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     }
     iteration += lbfgs_iterations;
     project(index, best.positions, samples, true, &mesh, &cells);
+    restore_frozen(initial, options.movable, samples);
     current = cvt_energy(mesh, samples, options.diagram, density);
     ++result.diagram_evaluations;
     report(current.energy);

@@ -28,6 +28,11 @@ struct CvtOptions {
   //! the sample goes to the closest point of its own cell instead (remesh/remesh.h: the repair
   //! rounds).
   bool keep_to_sheets = false;
+  //! If not empty (one entry per sample): only the samples with a nonzero entry move; the others
+  //! keep their position, triangle and barycentric coordinates exactly (their gradient is left out
+  //! of L-BFGS's, they skip the Lloyd steps). For a repair round that re-optimises the samples
+  //! near a defect only (remesh/local_repair.h).
+  std::vector<char> movable;
   //! Called after every iteration with (iteration, energy); for progress output.
   std::function<void(int, double)> on_iteration;
 };

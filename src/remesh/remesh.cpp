@@ -122,7 +122,7 @@ class RemeshDriver {
   void begin_rounds(Run& r);
   bool repair_round(Run& r, int round);
   std::vector<int> cells_to_lower(Run& r) const;
-  void optimise_round(Run& r, const std::vector<int>& raised, int round);
+  void optimise_round(Run& r, const std::vector<int>& raised, const std::vector<int>& lowered, int round);
   RemeshResult end_run(Run& r);
   void polish(RemeshResult& state, const std::vector<double>& density, Run& r);
   void ease(Run& r);
@@ -304,7 +304,7 @@ bool RemeshDriver::repair_round(Run& r, int round) {
                              "{} cells at sharp corners or tips",
                              round + 1, options_.repair_rounds, options_.repair_factor, raised.size(),
                              options_.repair_factor, lowered.size()));
-  optimise_round(r, raised, round);
+  optimise_round(r, raised, lowered, round);
   return true;
 }
 
@@ -327,7 +327,8 @@ std::vector<int> RemeshDriver::cells_to_lower(Run& r) const {
 
 // The round's CVT with the changed density, from the state the last round left; its dual and
 // defects, settled; the state kept as the best when it has fewer defects.
-void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, int round) {
+void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const std::vector<int>& lowered,
+                                  int round) {
   RemeshResult& result = r.result;
   // The second run also moves samples into the defect cells (the first, whose raised density
   // suffices on the 20 rows of docs/results.md, leaves them to the CVT: moving them there too took
@@ -335,7 +336,15 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, int ro
   const bool moved = r.keep_to_sheets && !raised.empty() &&
                      relocate_samples(result.cvt.diagram, mesh_, r.again.triangle_density, raised, result.cvt.samples) > 0;
   // The diagram of the samples is the last one computed: the density changed, the diagram not.
-  result.cvt = optimize_cvt(mesh_, result.cvt.samples, r.again, moved ? nullptr : &result.cvt.diagram, &index_);
+  // RemeshOptions::repair: every sample, or those near the cells acted on (remesh/local_repair.h).
+  if (options_.repair == RepairScope::Whole) {
+    result.cvt = optimize_cvt(mesh_, result.cvt.samples, r.again, moved ? nullptr : &result.cvt.diagram, &index_);
+  } else {
+    std::vector<int> acted_on(raised);
+    acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
+    result.cvt = repair_round_cvt(mesh_, result.cvt.samples, result.cvt.diagram, acted_on, r.again,
+                                  options_.local_repair, round, r.rounds_without_progress, index_);
+  }
   result.total_iterations += result.cvt.iterations;
   result.diagram_evaluations += result.cvt.diagram_evaluations;
   result.dual = compute_dual(result.cvt.diagram, mesh_, result.cvt.samples);
