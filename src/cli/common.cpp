@@ -18,7 +18,6 @@
 #include <unistd.h>
 
 #include "common/error.h"
-#include "common/text.h"
 #include "mesh/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
@@ -178,40 +177,6 @@ CLI::Validator path_validator() {
       [](std::string& text) -> std::string { return text.empty() ? "a file name may not be empty" : std::string(); },
       "PATH");
 }
-
-namespace {
-
-std::vector<double> read_weights(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
-  std::vector<double> weights;
-  std::string line;
-  // One weight a line, as the points it goes with; blank lines and '#' comments as in point files.
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (number == 1) skip_byte_order_mark(line);
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    std::string token, more;
-    fields >> token;
-    try {
-      size_t used = 0;
-      weights.push_back(std::stod(token, &used));
-      if (used != token.size() || !std::isfinite(weights.back())) throw std::invalid_argument(token);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("{}:{}: '{}' is not a finite number", path, number, shown(token)));
-    }
-    if (fields >> more)
-      throw InputError(fmt::format("{}:{}: expected one weight a line, got '{}' after it", path, number, shown(more)));
-  }
-  if (weights.empty()) throw InputError(fmt::format("weight file '{}' holds no weights", path));
-  return weights;
-}
-
-
-}  // namespace
 
 LoadedMesh load_mesh(const InputOptions& opt) {
   LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
@@ -469,6 +434,19 @@ void check_diagram_samples(const Input& input, const std::string& kind) {
 }
 
 void write_json(const std::string& path, const nlohmann::json& report) { write_text_file(path, report.dump(2) + '\n'); }
+
+void write_report(const std::string& path, const nlohmann::json& report, const std::vector<std::string>& written) {
+  try {
+    write_json(path, report);
+  } catch (const std::exception&) {
+    for (const std::string& output : written) {
+      std::error_code error;
+      if (!output.empty() && std::filesystem::is_regular_file(written_file(output), error))
+        std::filesystem::remove(written_file(output), error);
+    }
+    throw;
+  }
+}
 
 void print_quality(const QualityMetrics* quality, bool of_angles) {
   if (!quality) {
