@@ -1127,6 +1127,61 @@ TEST_CASE("An output that cannot be written whole fails with one line and leaves
   CHECK_FALSE(std::filesystem::exists(std::filesystem::symlink_status(json_report + ".lrvd-part")));
 }
 
+TEST_CASE("A report that cannot be written exits 1 and removes the outputs it went with", "[cli]") {
+  // A failed write is not bad input (exit 2): exit 1, one line; the -o file written before the
+  // report is removed, not left without its report.
+  const std::string tetra = kOut + "report_full.off";
+  std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const std::string remeshed = kOut + "report_full_remesh.off", samples = kOut + "report_full.xyz",
+                    lrrt = kOut + "report_full_lrrt.off";
+  const Run remesh = run("remesh " + kData + "/ellipsoid.off -n 60 -o " + remeshed + " --report /dev/full");
+  CHECK(remesh.status == 1);
+  CHECK(remesh.err == "lrvd: error: /dev/full: write failed\n");
+  CHECK_FALSE(std::filesystem::exists(remeshed));
+  const Run mps = run("mps " + kData + "/ellipsoid.off --radius 0.3 -o " + samples + " --remesh " + lrrt +
+                      " --report /dev/full");
+  CHECK(mps.status == 1);
+  CHECK(mps.err == "lrvd: error: /dev/full: write failed\n");
+  CHECK_FALSE(std::filesystem::exists(samples));
+  CHECK_FALSE(std::filesystem::exists(lrrt));
+  // An output that is a device stays (it is not the run's to remove).
+  const Run device = run("remesh " + kData + "/ellipsoid.off -n 60 -o /dev/null --report /dev/full");
+  CHECK(device.status == 1);
+  CHECK(std::filesystem::exists("/dev/null"));
+}
+
+TEST_CASE("lrvd refuses inputs that are not regular files at once, with one line and exit 2", "[cli]") {
+  // A FIFO blocked for ever, /dev/zero grew memory without bound: refused before they are opened.
+  const std::string fifo = kOut + "input_fifo.off", zero = kOut + "input_zero.stl";
+  std::filesystem::remove(fifo);
+  std::filesystem::remove(zero);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::filesystem::create_symlink("/dev/zero", zero);
+  for (const std::string& mesh : {fifo, zero}) {
+    const Run r = run("compute " + mesh + " -n 10");
+    CHECK(r.status == 2);
+    CHECK(r.err == "lrvd: error: " + mesh +
+                       ": is not a regular file but a device, a pipe or a socket; lrvd reads its inputs from regular "
+                       "files\n");
+  }
+  const Run points = run("compute " + kData + "/ellipsoid.off --points /dev/urandom");
+  CHECK(points.status == 2);
+  CHECK(lines(points.err) == 1);
+  CHECK(points.err.find("point file '/dev/urandom' is not a regular file") != std::string::npos);
+}
+
+TEST_CASE("lrvd reads a PLY with integer coordinates (CGAL's reader crashed on it)", "[cli]") {
+  const std::string ply = kOut + "int_tetra.ply";
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 4\nproperty int x\nproperty int y\nproperty int z\n"
+                        "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n10 0 0\n0 10 0\n"
+                        "0 0 10\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  for (const std::string command : {"compute", "mps"}) {
+    const Run r = run(command + " " + ply + (command == "mps" ? " --radius 2 -o " + kOut + "int_tetra.xyz" : " -n 10"));
+    INFO(r.err);
+    CHECK(r.status == 0);
+  }
+}
+
 TEST_CASE("lrvd refuses a --weld that leaves no faces in one line with exit 2", "[cli]") {
   const std::string tetra = kOut + "weld_all.off";
   std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
