@@ -1182,6 +1182,48 @@ TEST_CASE("lrvd reads a PLY with integer coordinates (CGAL's reader crashed on i
   }
 }
 
+TEST_CASE("An outlier vertex costs bounded work: refused with one line naming it", "[cli]") {
+  // An octahedron with one vertex drawn to (-1e6, 0, 0): its four needle triangles split into 2.1
+  // million triangles for 20 samples (7-11 s, 1.1 GB), and remesh -n 12 ran for minutes.
+  const std::string needle = kOut + "outlier_octahedron.off";
+  std::ofstream(needle) << "OFF\n6 8 0\n-1e6 0 0\n1 0 0\n0 -1 0\n0 1 0\n0 0 -1\n0 0 1\n3 0 2 5\n3 0 5 3\n3 0 3 4\n"
+                           "3 0 4 2\n3 1 5 2\n3 1 3 5\n3 1 4 3\n3 1 2 4\n";
+  for (const std::string command : {"compute " + needle + " -n 20", "remesh " + needle + " -n 12 -o " + kOut +
+                                                                         "outlier_remesh.off"}) {
+    const Run r = run(command);
+    INFO(command << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(lines(r.err) == 1);
+    CHECK(r.err.find("far from the others") != std::string::npos);
+    CHECK(r.err.find("(-1e+06, 0, 0)") != std::string::npos);
+  }
+  // Without the refinement the diagram is made at once.
+  CHECK(run("compute " + needle + " -n 20 --refine off").status == 0);
+  // Distances to a vertex 1e24 away: every closest-point query visited every triangle (77 s).
+  const std::string tetra = kOut + "outlier_tetra.off", far = kOut + "outlier_tetra_far.off";
+  std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  std::ofstream(far) << "OFF\n4 4 0\n-1e24 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const Run quality = run("quality " + tetra + " " + far);
+  CHECK(quality.status == 2);
+  CHECK(quality.err.rfind("lrvd: error: vertex 0 of the remesh at (-1e+24, 0, 0) is ", 0) == 0);
+  const Run reverse = run("quality " + far + " " + tetra);
+  CHECK(reverse.status == 2);
+  CHECK(reverse.err.rfind("lrvd: error: vertex 0 of the reference at (-1e+24, 0, 0) is ", 0) == 0);
+}
+
+TEST_CASE("The remesh of issue 51's pulled cube corner ends as documented (its fitting read out of bounds)", "[cli]") {
+  // A cube with one corner of one triangle pulled out to (-1, -1, -1): the fitting's closest-point
+  // query found no triangle for an input sample and indexed -1 (silent in a release build; the
+  // sanitized build, make sanitize, aborts on it).
+  const std::string cube = kOut + "pulled_cube.off";
+  std::ofstream(cube) << "OFF 9 12 0\n0 0 0\n0 1 0\n1 1 0\n1 0 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n-1 -1 -1\n3 0 1 2\n"
+                         "3 0 2 3\n3 4 5 6\n3 4 6 7\n3 0 3 5\n3 0 5 4\n3 3 2 6\n3 3 8 5\n3 2 1 7\n3 2 7 6\n3 1 0 4\n"
+                         "3 1 4 7\n";
+  const Run r = run("--threads 1 remesh " + cube + " -n 12 --seed 2 -o " + kOut + "pulled_cube_remesh.off");
+  INFO(r.err);
+  CHECK((r.status == 0 || r.status == 3));
+}
+
 TEST_CASE("lrvd refuses a --weld that leaves no faces in one line with exit 2", "[cli]") {
   const std::string tetra = kOut + "weld_all.off";
   std::ofstream(tetra) << "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";

@@ -230,9 +230,17 @@ Input load_input(const InputOptions& opt) {
                                    opt.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
     progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
     input.refined_from = input.loaded.mesh.triangle_count();
+    // The automatic refinement stops far beyond its estimate: there triangles far longer than wide
+    // (a vertex drawn away from the surface) split into many more pieces than their area asks for.
+    const double most = opt.refine == "auto" ? auto_refinement_limit(expected) : kMaxRefinedTriangles;
     try {
-      input.mesh = refine_long_edges(input.loaded.mesh, length);
+      input.mesh = refine_long_edges(input.loaded.mesh, length, nullptr, RefineOrder::Input, most);
     } catch (const RefinementLimitError& e) {
+      if (most < kMaxRefinedTriangles)
+        throw InputError(fmt::format("{}: refining to edges of {:.6g} for {} would make more than {:.3g} triangles, "
+                                     "{:.0f} times the estimate from its area: {}; fix the mesh, or use --refine off",
+                                     opt.mesh_path, length, counted(n, "sample", "samples"), most, most / expected,
+                                     thinnest_long_triangle(input.loaded.mesh, length)));
       throw InputError(fmt::format("{}: {}: use {}", opt.mesh_path, e.what(),
                                    opt.refine == "auto" ? "--refine off (a triangle may then hold several samples)"
                                                         : "a longer --refine length or 'off'"));

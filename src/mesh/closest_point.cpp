@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -229,6 +231,14 @@ ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, in
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);
+  if (state.best.triangle < 0 && hint >= 0 && std::getenv("LRVD_DEBUG_FIT")) {
+    const auto& tri = impl_->triangles[hint];
+    const auto& pos = impl_->positions;
+    const ClosestPoint c = closest_point_on_triangle(moved, pos[tri[0]], pos[tri[1]], pos[tri[2]]);
+    std::fprintf(stderr, "query: hint %d distance %.17g radius %.9g scale %g p %.17g %.17g %.17g point %.17g %.17g %.17g\n", hint, c.distance, q.radius, impl_->scale, moved.x, moved.y, moved.z, c.point.x, c.point.y, c.point.z);
+    for (int v : tri) std::fprintf(stderr, "  %.17g %.17g %.17g\n", pos[v].x, pos[v].y, pos[v].z);
+  }
+  if (state.best.triangle < 0 && hint >= 0) return query_within(p, group, g);  // a radius that reached nothing
   if (impl_->origin != Vec3{} && state.best.triangle >= 0) state.best.point = state.best.point + impl_->origin;
   return state.best;
 }

@@ -174,6 +174,9 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   // a vertex no triangle uses is not on the surface and does not count.
   std::vector<Vec3> remesh_points = used_vertices(positions, triangles);
   require_workable_size(remesh_points, "the remesh", "measuring the quality");
+  require_within_reach(reference.bounding_box(), positions, triangles, "the remesh", "the reference", "measuring the quality");
+  require_within_reach(bounding_box(remesh_points), reference.positions(), reference.triangles(), "the reference",
+                       "the remesh", "measuring the quality");
 
   // Zero-area triangles are left out of sampling and of the index: they add no surface, and a
   // triangle with coincident corners has no well-defined closest-point regions.

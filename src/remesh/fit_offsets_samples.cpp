@@ -1,6 +1,8 @@
 // The samples of balance_offsets on both surfaces and their measured distances (see fit_offsets_detail.h).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -110,6 +112,17 @@ double OffsetBalancer::measure(double floor) {
       } else {
         Sample& s = input_[i - nr];
         const ClosestPoint c = remesh_index->query(input_points_[i - nr], s.hint >= 0 ? s.hint : last_on_remesh);
+        if (std::getenv("LRVD_DEBUG_FIT") && c.triangle < 0) {
+          const Vec3& q = input_points_[i - nr];
+          std::fprintf(stderr, "fit: input sample %d at (%g %g %g) hint %d last %d: no triangle (%zu proper)\n", i - nr,
+                       q.x, q.y, q.z, s.hint, last_on_remesh, proper_triangles_.size());
+          if (s.hint >= 0) {
+            const Triangle& f = proper_triangles_[s.hint];
+            for (int v : f) std::fprintf(stderr, "  %d: %.17g %.17g %.17g\n", v, dual_.positions[v].x, dual_.positions[v].y, dual_.positions[v].z);
+            const ClosestPoint again = remesh_index->query(q);
+            std::fprintf(stderr, "  without hint: %d\n", again.triangle);
+          }
+        }
         s.hint = last_on_remesh = c.triangle;
         s.triangle = dual_triangle_[c.triangle];
         s.barycentric = c.barycentric;
