@@ -75,9 +75,10 @@ TEST_CASE("read_mesh reads PLY coordinates of every scalar type as doubles", "[h
   const int corners[4][3] = {{0, 0, 0}, {-300, 0, 0}, {0, 300, 0}, {0, 0, 300}};
   for (const auto& p : corners)
     for (int c : p) bytes += {static_cast<char>((c >> 8) & 0xff), static_cast<char>(c & 0xff)};
-  for (const int* f : {(const int[]){0, 1, 2}, (const int[]){0, 3, 1}, (const int[]){0, 2, 3}, (const int[]){1, 3, 2}}) {
+  const int faces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  for (const auto& f : faces) {
     bytes += '\3';
-    for (int k = 0; k < 3; ++k) bytes += std::string("\0\0\0", 3) + static_cast<char>(f[k]);
+    for (int v : f) bytes += std::string("\0\0\0", 3) + static_cast<char>(v);
   }
   const SurfaceMesh mesh = read_mesh(written("tet_short_be.ply", bytes)).mesh;
   CHECK(mesh.position(1) == Vec3{-300, 0, 0});

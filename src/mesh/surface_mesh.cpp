@@ -495,8 +495,8 @@ void require_within_reach(const BoundingBox& box, const std::vector<Vec3>& posit
       const double away = std::hypot(outside.x, outside.y, outside.z);
       if (away > reach)
         throw InputError(fmt::format("vertex {} of {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} bounding-box diagonals of "
-                                     "{} away from it; {} measures up to {:.3g}: is it an outlier, or are the two in "
-                                     "different frames?",
+                                     "{} away from it, farther than {} reaches ({:.3g}): is it an outlier, or are the "
+                                     "two in different frames?",
                                      v, what, p.x, p.y, p.z, away / box.diagonal(), other, task, kFarthestMeasured));
     }
 }

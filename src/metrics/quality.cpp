@@ -174,9 +174,6 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   // a vertex no triangle uses is not on the surface and does not count.
   std::vector<Vec3> remesh_points = used_vertices(positions, triangles);
   require_workable_size(remesh_points, "the remesh", "measuring the quality");
-  require_within_reach(reference.bounding_box(), positions, triangles, "the remesh", "the reference", "measuring the quality");
-  require_within_reach(bounding_box(remesh_points), reference.positions(), reference.triangles(), "the reference",
-                       "the remesh", "measuring the quality");
 
   // Zero-area triangles are left out of sampling and of the index: they add no surface, and a
   // triangle with coincident corners has no well-defined closest-point regions.
@@ -184,6 +181,9 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   for (const Triangle& f : triangles)
     if (!predicates::collinear(positions[f[0]], positions[f[1]], positions[f[2]])) proper.push_back(f);
   if (proper.empty()) throw InputError("every triangle of the remesh has collinear corners: it has no surface");
+  require_within_reach(reference.bounding_box(), positions, triangles, "the remesh", "the reference", "measuring the quality");
+  require_within_reach(bounding_box(remesh_points), reference.positions(), reference.triangles(), "the reference",
+                       "the remesh", "measuring the quality");
 
   // Then samples by area. The reference gets a different seed so that its points are not drawn
   // with the same random sequence.
