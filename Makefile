@@ -3,14 +3,15 @@ BUILD ?= build
 JOBS ?= 2
 PREFIX ?= /usr/local
 CMAKE_FLAGS ?=
-# make sanitize: the unit tests built with ASan + UBSan (gcc), those matching SANITIZE_TESTS (a
-# ctest -R pattern; empty: all). make fuzz: each libFuzzer target of fuzz/ for FUZZ_SECONDS.
+# make sanitize: the unit tests built with ASan + UBSan (gcc); SANITIZE_TESTS, when given, a Catch2
+# test spec that picks some (file names are tags: [#test_mesh_io],[#test_hostile_inputs]).
+# make fuzz: each libFuzzer target of fuzz/ for FUZZ_SECONDS.
 SANITIZE_BUILD ?= build-sanitize
 SANITIZE_TESTS ?=
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build test sanitize fuzz demo bench images install clean
+.PHONY: all setup configure build test unit sanitize fuzz demo bench images install clean
 
 all: build
 
@@ -23,7 +24,16 @@ configure: setup
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-test: build
+# The unit tests, then (CI, .ci/run) the sanitized subset CI_SANITIZE_TESTS and each fuzz target
+# for CI_FUZZ_SECONDS (docs/input.md, "Fuzzing and sanitizers", says why this subset).
+CI_SANITIZE_TESTS ?= [\#test_mesh_io],[\#test_hostile_inputs],[\#test_samples],*outlier*,*pulled*,*regular*
+CI_FUZZ_SECONDS ?= 60
+test: unit
+	$(MAKE) sanitize SANITIZE_TESTS='$(CI_SANITIZE_TESTS)'
+	$(MAKE) fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS)
+
+# The unit tests alone.
+unit: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
 
 # Every unit test under AddressSanitizer and UndefinedBehaviorSanitizer; any report fails its test.
@@ -31,8 +41,8 @@ sanitize: setup
 	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DLRVD_SANITIZE=ON \
 	  -DLRVD_CGAL_DATA_DIR=$(abspath $(BUILD))/cgal-data $(CMAKE_FLAGS)
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target lrvd lrvd_tests
-	cd $(SANITIZE_BUILD) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --output-on-failure -j $(JOBS) --timeout 1800 $(if $(SANITIZE_TESTS),-R '$(SANITIZE_TESTS)')
+	cd $(SANITIZE_BUILD) && export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 && \
+	  $(if $(SANITIZE_TESTS),./lrvd_tests -# '$(SANITIZE_TESTS)',ctest --output-on-failure -j $(JOBS) --timeout 1800)
 
 # The libFuzzer targets (clang 14, ASan + UBSan), each run for FUZZ_SECONDS from the generated seeds
 # and its corpus; a crashing input is kept in tests/data/fuzz/TARGET/, which the unit tests replay.
