@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -225,20 +223,18 @@ ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, in
     // without a hint. The radius is the one visit_triangle would set after meeting the hint.
     const auto& tri = impl_->triangles[hint];
     const auto& pos = impl_->positions;
+    // Embree compares its boxes' distances in floats: the margin is float-sized (16 units in the
+    // last place), so the hint's own box is always within reach. With 1e-12, a point whose closest
+    // point is a corner of its hint (a box corner) could find the box an ulp too far and get no
+    // triangle at all (issue #51's pulled cube corner: index -1 read in the remesh's fitting).
     const double d = closest_point_on_triangle(moved, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
-    q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 1e-12));
+    q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 0x1p-20));
   }
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);
-  if (state.best.triangle < 0 && hint >= 0 && std::getenv("LRVD_DEBUG_FIT")) {
-    const auto& tri = impl_->triangles[hint];
-    const auto& pos = impl_->positions;
-    const ClosestPoint c = closest_point_on_triangle(moved, pos[tri[0]], pos[tri[1]], pos[tri[2]]);
-    std::fprintf(stderr, "query: hint %d distance %.17g radius %.9g scale %g p %.17g %.17g %.17g point %.17g %.17g %.17g\n", hint, c.distance, q.radius, impl_->scale, moved.x, moved.y, moved.z, c.point.x, c.point.y, c.point.z);
-    for (int v : tri) std::fprintf(stderr, "  %.17g %.17g %.17g\n", pos[v].x, pos[v].y, pos[v].z);
-  }
-  if (state.best.triangle < 0 && hint >= 0) return query_within(p, group, g);  // a radius that reached nothing
+  // A guard: a hint whose radius reached no box answers as a plain query, never -1.
+  if (state.best.triangle < 0 && hint >= 0) return query_within(p, group, g);
   if (impl_->origin != Vec3{} && state.best.triangle >= 0) state.best.point = state.best.point + impl_->origin;
   return state.best;
 }

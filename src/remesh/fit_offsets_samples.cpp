@@ -1,8 +1,6 @@
 // The samples of balance_offsets on both surfaces and their measured distances (see fit_offsets_detail.h).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <optional>
 
 #include <tbb/parallel_for.h>
@@ -112,16 +110,9 @@ double OffsetBalancer::measure(double floor) {
       } else {
         Sample& s = input_[i - nr];
         const ClosestPoint c = remesh_index->query(input_points_[i - nr], s.hint >= 0 ? s.hint : last_on_remesh);
-        if (std::getenv("LRVD_DEBUG_FIT") && c.triangle < 0) {
-          const Vec3& q = input_points_[i - nr];
-          std::fprintf(stderr, "fit: input sample %d at (%g %g %g) hint %d last %d: no triangle (%zu proper)\n", i - nr,
-                       q.x, q.y, q.z, s.hint, last_on_remesh, proper_triangles_.size());
-          if (s.hint >= 0) {
-            const Triangle& f = proper_triangles_[s.hint];
-            for (int v : f) std::fprintf(stderr, "  %d: %.17g %.17g %.17g\n", v, dual_.positions[v].x, dual_.positions[v].y, dual_.positions[v].z);
-            const ClosestPoint again = remesh_index->query(q);
-            std::fprintf(stderr, "  without hint: %d\n", again.triangle);
-          }
+        if (c.triangle < 0) {  // the remesh has no proper triangle to measure against: not measured
+          s.triangle = -1, s.d = 0;
+          continue;
         }
         s.hint = last_on_remesh = c.triangle;
         s.triangle = dual_triangle_[c.triangle];
@@ -202,6 +193,10 @@ void OffsetBalancer::index_samples() {
     int i = 0;  // the sample's index: remesh_ then input_
     for (const std::vector<Sample>* list : {&remesh_, &input_})
       for (const Sample& s : *list) {
+        if (s.triangle < 0) {  // an input sample not measured
+          ++i;
+          continue;
+        }
         const Triangle& f = dual_.triangles[s.triangle];
         const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
         for (int k = 0; k < 3; ++k)
