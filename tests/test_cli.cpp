@@ -1144,10 +1144,6 @@ TEST_CASE("A report that cannot be written exits 1 and removes the outputs it we
   CHECK(mps.err == "lrvd: error: /dev/full: write failed\n");
   CHECK_FALSE(std::filesystem::exists(samples));
   CHECK_FALSE(std::filesystem::exists(lrrt));
-  // An output that is a device stays (it is not the run's to remove).
-  const Run device = run("remesh " + kData + "/ellipsoid.off -n 60 -o /dev/null --report /dev/full");
-  CHECK(device.status == 1);
-  CHECK(std::filesystem::exists("/dev/null"));
 }
 
 TEST_CASE("lrvd refuses inputs that are not regular files at once, with one line and exit 2", "[cli]") {
