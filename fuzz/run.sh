@@ -21,11 +21,11 @@ for target in mesh_file point_files compute; do
     -print_final_stats=1 -close_fd_mask=1 -artifact_prefix="$findings/" \
     "$corpus" "$build/fuzz-seeds/$target" > "$log" 2>&1
   rc=$?
-  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
+  runs=$(grep -ao 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$')
   echo "fuzz $target: ${runs:-?} runs in ${seconds} s, exit $rc (log: $log)"
   if [ "$rc" -ne 0 ]; then
     status=1
-    grep -E '^(==[0-9]+==ERROR|SUMMARY|artifact_prefix|Test unit written)' "$log" | head -5
+    grep -aE '^(==[0-9]+==ERROR|SUMMARY|artifact_prefix|Test unit written)' "$log" | head -5
   fi
 done
 exit $status
