@@ -238,7 +238,8 @@ Input load_input(const InputOptions& opt) {
     } catch (const RefinementLimitError& e) {
       if (most < kMaxRefinedTriangles)
         throw InputError(fmt::format("{}: refining to edges of {:.6g} for {} would make more than {:.3g} triangles, "
-                                     "{:.0f} times the estimate from its area: {}; fix the mesh, or use --refine off",
+                                     "{:.0f} times the estimate from its area: the mesh has triangles far longer than they are "
+                                     "wide: {}; fix the mesh, or use --refine off",
                                      opt.mesh_path, length, counted(n, "sample", "samples"), most, most / expected,
                                      thinnest_long_triangle(input.loaded.mesh, length)));
       throw InputError(fmt::format("{}: {}: use {}", opt.mesh_path, e.what(),
