@@ -3,8 +3,15 @@ BUILD ?= build
 JOBS ?= 2
 PREFIX ?= /usr/local
 CMAKE_FLAGS ?=
+# make sanitize: the unit tests built with ASan + UBSan (gcc); SANITIZE_TESTS, when given, a Catch2
+# test spec that picks some (file names are tags: [#test_mesh_io],[#test_hostile_inputs]).
+# make fuzz: each libFuzzer target of fuzz/ for FUZZ_SECONDS.
+SANITIZE_BUILD ?= build-sanitize
+SANITIZE_TESTS ?=
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build test demo bench images install clean
+.PHONY: all setup configure build test sanitize fuzz demo bench images install clean
 
 all: build
 
@@ -17,8 +24,25 @@ configure: setup
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# Every unit test (what CI runs, .ci/run). `make sanitize` and `make fuzz` are run apart.
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
+
+# Every unit test under AddressSanitizer and UndefinedBehaviorSanitizer; any report fails its test.
+sanitize: setup
+	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DLRVD_SANITIZE=ON \
+	  -DLRVD_CGAL_DATA_DIR=$(abspath $(BUILD))/cgal-data $(CMAKE_FLAGS)
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target lrvd lrvd_tests
+	cd $(SANITIZE_BUILD) && export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 && \
+	  $(if $(SANITIZE_TESTS),./lrvd_tests -# '$(SANITIZE_TESTS)',ctest --output-on-failure -j $(JOBS) --timeout 1800)
+
+# The libFuzzer targets (clang 14, ASan + UBSan), each run for FUZZ_SECONDS from the generated seeds
+# and its corpus; a crashing input is kept in tests/data/fuzz/TARGET/, which the unit tests replay.
+fuzz: setup
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DLRVD_FUZZ=ON -DLRVD_BUILD_TESTS=OFF $(CMAKE_FLAGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_mesh_file fuzz_point_files fuzz_compute lrvd_fuzz_seeds
+	bash fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 # Remesh CGAL's elk (genus 1, thin legs and antlers) to exactly 516 vertices with a CVT on the
 # LRVD, check the result, and write the LRVD cells of 300 random samples beside it; a picture of each.
@@ -46,4 +70,4 @@ install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)

@@ -88,7 +88,7 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
   } else {
     report["verification"] = nullptr;
   }
-  if (!opt.report.empty()) write_json(opt.report, report);
+  if (!opt.report.empty()) write_report(opt.report, report, {write_cells ? opt.output : std::string()});
 
   std::printf("%s: %s on %s, %s, %s in several pieces, %.3f s\n", opt.kind.c_str(),
               counted(input.samples.size(), "sample", "samples").c_str(),

@@ -162,7 +162,7 @@ int run_mps(const MpsCommandOptions& opt) {
     print_quality(measurable ? &quality : nullptr, true);
   }
   report["predicates"] = predicates_json();
-  if (!opt.report.empty()) write_json(opt.report, report);
+  if (!opt.report.empty()) write_report(opt.report, report, {opt.output, opt.remesh});
 
   std::printf("mps (%s, r = %g): %s (%d by dart throwing, %d in gaps), %.3f s "
               "(init %.3f, darts %.3f, gaps %.3f) -> %s\n",

@@ -213,7 +213,7 @@ int run_remesh(const RemeshCommandOptions& opt) {
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
   report["predicates"] = predicates_json();
-  if (!opt.report.empty()) write_json(opt.report, report);
+  if (!opt.report.empty()) write_report(opt.report, report, {opt.output});
 
   std::printf("remesh (%s): %s, %s, %s, %.3f s -> %s\n", opt.kind.c_str(),
               counted(dual.positions.size(), "vertex", "vertices").c_str(),

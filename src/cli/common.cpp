@@ -18,7 +18,6 @@
 #include <unistd.h>
 
 #include "common/error.h"
-#include "common/text.h"
 #include "mesh/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
@@ -179,40 +178,6 @@ CLI::Validator path_validator() {
       "PATH");
 }
 
-namespace {
-
-std::vector<double> read_weights(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
-  std::vector<double> weights;
-  std::string line;
-  // One weight a line, as the points it goes with; blank lines and '#' comments as in point files.
-  for (int number = 1; std::getline(in, line); ++number) {
-    if (number == 1) skip_byte_order_mark(line);
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    std::istringstream fields(line);
-    std::string token, more;
-    fields >> token;
-    try {
-      size_t used = 0;
-      weights.push_back(std::stod(token, &used));
-      if (used != token.size() || !std::isfinite(weights.back())) throw std::invalid_argument(token);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("{}:{}: '{}' is not a finite number", path, number, shown(token)));
-    }
-    if (fields >> more)
-      throw InputError(fmt::format("{}:{}: expected one weight a line, got '{}' after it", path, number, shown(more)));
-  }
-  if (weights.empty()) throw InputError(fmt::format("weight file '{}' holds no weights", path));
-  return weights;
-}
-
-
-}  // namespace
-
 LoadedMesh load_mesh(const InputOptions& opt) {
   LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
@@ -265,9 +230,18 @@ Input load_input(const InputOptions& opt) {
                                    opt.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
     progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
     input.refined_from = input.loaded.mesh.triangle_count();
+    // The automatic refinement stops far beyond its estimate: there triangles far longer than wide
+    // (a vertex drawn away from the surface) split into many more pieces than their area asks for.
+    const double most = opt.refine == "auto" ? auto_refinement_limit(expected) : kMaxRefinedTriangles;
     try {
-      input.mesh = refine_long_edges(input.loaded.mesh, length);
+      input.mesh = refine_long_edges(input.loaded.mesh, length, nullptr, RefineOrder::Input, most);
     } catch (const RefinementLimitError& e) {
+      if (most < kMaxRefinedTriangles)
+        throw InputError(fmt::format("{}: refining to edges of {:.6g} for {} would make more than {:.3g} triangles, "
+                                     "{:.0f} times the estimate from its area: the mesh has triangles far longer than they are "
+                                     "wide: {}; fix the mesh, or use --refine off",
+                                     opt.mesh_path, length, counted(n, "sample", "samples"), most, most / expected,
+                                     thinnest_long_triangle(input.loaded.mesh, length)));
       throw InputError(fmt::format("{}: {}: use {}", opt.mesh_path, e.what(),
                                    opt.refine == "auto" ? "--refine off (a triangle may then hold several samples)"
                                                         : "a longer --refine length or 'off'"));
@@ -469,6 +443,19 @@ void check_diagram_samples(const Input& input, const std::string& kind) {
 }
 
 void write_json(const std::string& path, const nlohmann::json& report) { write_text_file(path, report.dump(2) + '\n'); }
+
+void write_report(const std::string& path, const nlohmann::json& report, const std::vector<std::string>& written) {
+  try {
+    write_json(path, report);
+  } catch (const std::exception&) {
+    for (const std::string& output : written) {
+      std::error_code error;
+      if (!output.empty() && std::filesystem::is_regular_file(written_file(output), error))
+        std::filesystem::remove(written_file(output), error);
+    }
+    throw;
+  }
+}
 
 void print_quality(const QualityMetrics* quality, bool of_angles) {
   if (!quality) {

@@ -82,6 +82,10 @@ nlohmann::json predicates_json();
 //! self_intersections from the remesh check.
 nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check);
 void write_json(const std::string& path, const nlohmann::json& report);
+//! write_json for a command's --report, after its outputs `written` (empty paths skipped): when the
+//! report cannot be written whole, the regular files among them are removed first (an output
+//! without its report is not kept), then the error goes on.
+void write_report(const std::string& path, const nlohmann::json& report, const std::vector<std::string>& written);
 
 //! An output file a command will write, with the option that names it and the extensions it may
 //! have (none listed: any but those of `refused`).

@@ -153,6 +153,9 @@ int main(int argc, char** argv) {
   } catch (const lrvd::InputError& e) {
     std::fprintf(stderr, "lrvd: error: %s\n", printable(e.what()).c_str());
     return kBadInput;
+  } catch (const lrvd::WriteError& e) {
+    std::fprintf(stderr, "lrvd: error: %s\n", printable(e.what()).c_str());
+    return kWriteFailed;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "lrvd: error: out of memory\n");
     return kInternalError;

@@ -2,6 +2,7 @@
 // that quote them.
 #pragma once
 
+#include <filesystem>
 #include <string>
 
 namespace lrvd {
@@ -22,6 +23,18 @@ inline std::string shown(const std::string& token) {
       out += c;
   }
   return out;
+}
+
+//! When `path` exists but is neither a regular file nor a folder (a device such as /dev/zero, a
+//! pipe, a socket): why lrvd does not read it (such an input has no end, or blocks); else "".
+//! (/dev/stdin is read when the shell redirects a file to it, which makes it a regular file.)
+inline std::string special_file_problem(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status) || std::filesystem::is_regular_file(status) ||
+      std::filesystem::is_directory(status))
+    return "";
+  return "is not a regular file but a device, a pipe or a socket; lrvd reads its inputs from regular files";
 }
 
 }  // namespace lrvd

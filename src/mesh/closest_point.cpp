@@ -223,12 +223,18 @@ ClosestPoint ClosestPointIndex::query_within(const Vec3& p, const int* group, in
     // without a hint. The radius is the one visit_triangle would set after meeting the hint.
     const auto& tri = impl_->triangles[hint];
     const auto& pos = impl_->positions;
+    // Embree compares its boxes' distances in floats: the margin is float-sized (16 units in the
+    // last place), so the hint's own box is always within reach. With 1e-12, a point whose closest
+    // point is a corner of its hint (a box corner) could find the box an ulp too far and get no
+    // triangle at all (issue #51's pulled cube corner: index -1 read in the remesh's fitting).
     const double d = closest_point_on_triangle(moved, pos[tri[0]], pos[tri[1]], pos[tri[2]]).distance;
-    q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 1e-12));
+    q.radius = round_up((impl_->scale * d + state.query_offset) * (1 + 0x1p-20));
   }
   RTCPointQueryContext context;
   rtcInitPointQueryContext(&context);
   rtcPointQuery(impl_->scene, &q, &context, visit_triangle, &state);
+  // A guard: a hint whose radius reached no box answers as a plain query, never -1.
+  if (state.best.triangle < 0 && hint >= 0) return query_within(p, group, g);
   if (impl_->origin != Vec3{} && state.best.triangle >= 0) state.best.point = state.best.point + impl_->origin;
   return state.best;
 }

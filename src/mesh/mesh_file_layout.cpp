@@ -65,6 +65,14 @@ bool next_header_token(std::istream& in, std::string& token) {
   return false;
 }
 
+// The header's third count (edges), which OFF readers ignore but CGAL doubles in an int: from 2^30
+// on, that overflows.
+constexpr long long kMostOffEdges = 1LL << 30;
+
+std::string edge_count_problem(const std::string& count) {
+  return fmt::format("has an invalid OFF header: its edge count {} is out of range (it is unused; write 0)", count);
+}
+
 std::int64_t big_endian_int32(const std::string& bytes, std::size_t at) {
   std::uint32_t v = 0;
   for (int i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + i]);
@@ -78,6 +86,8 @@ std::string binary_off_layout(const std::string& path, const std::string& magic)
   if (pos == std::string::npos || bytes.size() < pos + 1 + 12) return "";
   pos += 1;
   const std::int64_t nv = big_endian_int32(bytes, pos), nf = big_endian_int32(bytes, pos + 4);
+  const std::int64_t edges = big_endian_int32(bytes, pos + 8);
+  if (edges >= kMostOffEdges || edges <= -kMostOffEdges) return edge_count_problem(std::to_string(edges));
   if (nv < 0 || nf < 0) return "";
   pos += 12;
   const double need = 12.0 * nv + 16.0 * nf;  // 3 floats a vertex; a count and 3 indices a triangle
@@ -124,8 +134,13 @@ std::string off_layout(const std::string& path) {
     vertex_bytes = 2.0 * std::max(1LL, dimension);
   }
   long long counts[3];
-  for (long long& count : counts)
-    if (!next_header_token(in, token) || !parse_count(token, count)) return "";
+  for (int i = 0; i < 3; ++i) {
+    if (!next_header_token(in, token)) return "";
+    long long edges = 0;
+    if (i == 2 && parse_count(token.front() == '-' ? token.substr(1) : token, edges) && edges >= kMostOffEdges)
+      return edge_count_problem(token);
+    if (!parse_count(token, counts[i])) return "";
+  }
   const long long nv = counts[0], nf = counts[1];
   const std::streamoff header = in.tellg();
   if (header < 0) return "";
@@ -291,7 +306,7 @@ std::string ply_layout(const std::string& path) {
   bool ended = false;
   for (int line_number = 1; !ended && pos < bytes.size(); ++line_number) {
     std::size_t eol = bytes.find('\n', pos);
-    if (eol == std::string::npos) return "";  // no end_header: the diagnosis says so
+    if (eol == std::string::npos) eol = bytes.size();  // the last line (no end_header: the diagnosis says so)
     std::istringstream words(bytes.substr(pos, eol - pos));
     pos = eol + 1;
     std::string key;
@@ -308,7 +323,9 @@ std::string ply_layout(const std::string& path) {
       elements.push_back({name, 0, {}});
       if (!parse_count(count, elements.back().count)) return "";
     } else if (key == "property") {
-      if (elements.empty()) return "";
+      if (elements.empty())  // CGAL's reader would add it to the last of no elements
+        return fmt::format("has an invalid PLY header: line {} declares a property before any 'element' line",
+                           line_number);
       std::string type, name;
       words >> type;
       PlyProperty p;

@@ -34,6 +34,7 @@
 #include <unordered_map>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "mesh/mesh_file_diagnosis.h"
 #include "mesh/mesh_file_layout.h"
 #include "mesh/weld.h"
@@ -71,8 +72,10 @@ void check_readable(const std::string& path) {
   const fs::file_status status = fs::status(path, ec);
   if (!fs::exists(status)) fail(path, "no such file");
   if (fs::is_directory(status)) fail(path, "is a directory, not a mesh file");
+  // Before opening it: a pipe blocks the opening until a writer comes.
+  if (std::string problem = special_file_problem(path); !problem.empty()) fail(path, problem);
   if (!std::ifstream(path, std::ios::binary)) fail(path, "cannot be opened for reading (check its permissions)");
-  if (fs::is_regular_file(status) && fs::file_size(path, ec) == 0) fail(path, "is empty");
+  if (fs::file_size(path, ec) == 0) fail(path, "is empty");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -89,9 +92,35 @@ bool read_ply_faces(std::istream& in, CGAL::IO::internal::PLY_element& element, 
   return true;
 }
 
+// The value of the scalar property `name` of the item `element` holds now, of any PLY type, as a
+// double (CGAL's point reader takes float and double only, and calls through a null pointer on an
+// integer coordinate); 0 when there is no such property (find_missing_ply_coordinates refuses that).
+template <class Type>
+bool ply_number_as(const CGAL::IO::internal::PLY_read_number* property, double& value) {
+  const auto* typed = dynamic_cast<const CGAL::IO::internal::PLY_read_typed_number<Type>*>(property);
+  if (typed) value = static_cast<double>(typed->buffer());
+  return typed != nullptr;
+}
+
+template <class... Types>
+double ply_number_of(const CGAL::IO::internal::PLY_read_number* property) {
+  double value = 0;
+  (ply_number_as<Types>(property, value) || ...);
+  return value;
+}
+
+double ply_number(CGAL::IO::internal::PLY_element& element, const char* name) {
+  for (std::size_t k = 0; k < element.number_of_properties(); ++k)
+    if (element.property(k)->name() == name)
+      return ply_number_of<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t, std::uint32_t, float,
+                           double>(element.property(k));
+  return 0;
+}
+
 // CGAL's read_PLY (5.5), reading face indices of every integer type PLY has: CGAL's own takes
-// int and uint only, and refused the char, uchar, short and ushort that some writers use. With
-// `colors`, also the faces' uchar red, green, blue (none when the faces have no such properties).
+// int and uint only, and refused the char, uchar, short and ushort that some writers use; and vertex
+// coordinates of every scalar type (ply_number). With `colors`, also the faces' uchar red, green,
+// blue (none when the faces have no such properties).
 bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<Polygon>& polygons,
               std::vector<CGAL::IO::Color>* colors = nullptr) {
   namespace ply = CGAL::IO::internal;
@@ -122,12 +151,7 @@ bool read_ply(const std::string& path, std::vector<Point>& points, std::vector<P
         element.property(k)->get(in);
         if (in.fail()) return false;
       }
-      if (vertices) {
-        std::tuple<Point> vertex;
-        ply::process_properties(element, vertex,
-                                CGAL::IO::make_ply_point_reader(CGAL::make_nth_of_tuple_property_map<0>(vertex)));
-        points.push_back(std::get<0>(vertex));
-      }
+      if (vertices) points.push_back(Point(ply_number(element, "x"), ply_number(element, "y"), ply_number(element, "z")));
     }
   }
   return !in.fail();

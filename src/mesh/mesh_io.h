@@ -90,7 +90,8 @@ PolygonSoup read_polygon_soup(const std::string& path, bool allow_no_faces = fal
 
 //! Writes a triangle mesh as OFF, OBJ (ascii, %.17g so doubles round-trip exactly) or PLY
 //! (binary little-endian, double coordinates), chosen by the extension.
-//! \throw InputError on an unknown extension or a path that cannot be written;
+//! \throw InputError on an unknown extension or a path that cannot be opened for writing; WriteError
+//!        when the write or the replacement fails (a full disk);
 //!        std::invalid_argument when a triangle index is out of range or a coordinate is not finite
 //!        (nothing is written then).
 //! The extensions read_mesh reads and write_mesh writes (lower case, with the dot).
@@ -110,16 +111,16 @@ struct PolygonMesh {
 
 //! Writes binary little-endian PLY: vertex (double x, y, z); face (list uchar int vertex_indices,
 //! int cell, uchar red, green, blue) — cell / colour properties only when given.
-//! \throw InputError when the path cannot be written; std::invalid_argument when face_cell or
-//!        face_color has neither 0 nor faces.size() entries, a face has more than 255 vertices
-//!        or an index is out of range.
+//! \throw InputError when the path cannot be opened for writing, WriteError when the write fails;
+//!        std::invalid_argument when face_cell or face_color has neither 0 nor faces.size()
+//!        entries, a face has more than 255 vertices or an index is out of range.
 void write_cells_ply(const std::string& path, const PolygonMesh& mesh);
 
 //! Writes `text` to `path` whole or not at all (as every writer here: into a file beside it that
 //! replaces it when complete, with the permissions of the file it replaces; a device or a pipe is
 //! written in place; through a symbolic link, the file the link leads to is replaced so, and the
 //! link stays).
-//! \throw InputError when the path cannot be written.
+//! \throw InputError when the path cannot be opened for writing, WriteError when the write fails.
 void write_text_file(const std::string& path, std::string_view text);
 
 //! Installs handlers for SIGINT, SIGTERM and SIGHUP (unless the process ignores them) that remove

@@ -86,7 +86,7 @@ class OutputFile {
     unregister_part(slot_);
   }
   void write(const char* data, std::size_t size) {
-    if (std::fwrite(data, 1, size, file_) != size) fail(path_, "write failed");
+    if (std::fwrite(data, 1, size, file_) != size) throw WriteError(path_ + ": write failed");
   }
   void write(const fmt::memory_buffer& buffer) { write(buffer.data(), buffer.size()); }
   void close() {
@@ -98,7 +98,7 @@ class OutputFile {
       const std::string reason = ok ? fmt::format("cannot replace it ({})", std::strerror(errno)) : "write failed";
       if (!in_place_) std::remove(part_.c_str());
       unregister_part(slot_);
-      fail(path_, reason);
+      throw WriteError(path_ + ": " + reason);
     }
     unregister_part(slot_);
   }

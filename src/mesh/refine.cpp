@@ -337,6 +337,35 @@ double suggested_refinement_length(const SurfaceMesh& mesh, int n) {
   return std::sqrt(kSplitAreaDivisor * mesh.area() / (4.0 * n));
 }
 
+double auto_refinement_limit(double expected) {
+  return std::min(kMaxRefinedTriangles, std::max(8 * kRefinedTriangleMargin * expected, 1e5));
+}
+
+std::string thinnest_long_triangle(const SurfaceMesh& mesh, double max_length) {
+  int thinnest = -1;
+  double ratio = 0, longest = 0, width = 0;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    double edge = 0;
+    for (int e = 0; e < 3; ++e) edge = std::max(edge, distance(mesh.position(tri[e]), mesh.position(tri[(e + 1) % 3])));
+    if (!(edge > max_length)) continue;
+    const double w = 2 * mesh.triangle_area(t) / edge;
+    if (thinnest < 0 || edge / w > ratio) thinnest = t, ratio = edge / w, longest = edge, width = w;
+  }
+  if (thinnest < 0) return "";
+  const Triangle& tri = mesh.triangle(thinnest);
+  int tip = 0;  // the corner opposite the shortest edge
+  double shortest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double edge = distance(mesh.position(tri[(k + 1) % 3]), mesh.position(tri[(k + 2) % 3]));
+    if (edge < shortest) shortest = edge, tip = k;
+  }
+  const Vec3& p = mesh.position(tri[tip]);
+  return fmt::format("triangle {} (vertices {}, {}, {}) is {:.3g} long and {:.3g} wide; its corner {} is at ({:.6g}, "
+                     "{:.6g}, {:.6g}), far from the others",
+                     thinnest, tri[0], tri[1], tri[2], longest, width, tri[tip], p.x, p.y, p.z);
+}
+
 SurfaceMesh spatially_ordered(const SurfaceMesh& mesh, std::vector<int>* new_triangle) {
   std::vector<int> rank;
   Refinement r = split_long_edges(mesh, std::numeric_limits<double>::infinity(), nullptr, false, RefineOrder::Spatial, &rank);

@@ -483,6 +483,24 @@ void require_workable_size(const SurfaceMesh& mesh, const char* task) {
   require_workable_size(mesh.bounding_box(), "the model", task);
 }
 
+void require_within_reach(const BoundingBox& box, const std::vector<Vec3>& positions,
+                          const std::vector<Triangle>& triangles, const char* what, const char* other,
+                          const char* task) {
+  const double reach = kFarthestMeasured * box.diagonal();
+  for (const Triangle& t : triangles)
+    for (int v : t) {
+      const Vec3& p = positions[v];
+      const Vec3 outside{std::max({box.min.x - p.x, p.x - box.max.x, 0.0}), std::max({box.min.y - p.y, p.y - box.max.y, 0.0}),
+                         std::max({box.min.z - p.z, p.z - box.max.z, 0.0})};
+      const double away = std::hypot(outside.x, outside.y, outside.z);
+      if (away > reach)
+        throw InputError(fmt::format("vertex {} of {} at ({:.6g}, {:.6g}, {:.6g}) is {:.3g} bounding-box diagonals of "
+                                     "{} away from it, farther than {} reaches ({:.3g}): is it an outlier, or are the "
+                                     "two in different frames?",
+                                     v, what, p.x, p.y, p.z, away / box.diagonal(), other, task, kFarthestMeasured));
+    }
+}
+
 void require_workable_model(const SurfaceMesh& mesh, const char* task) {
   require_triangles(mesh, task);
   const BoundingBox box = mesh.bounding_box();

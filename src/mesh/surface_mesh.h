@@ -181,6 +181,18 @@ void require_workable_size(const SurfaceMesh& mesh, const char* task);
 //! ("the remesh").
 void require_workable_size(const std::vector<Vec3>& positions, const char* what, const char* task);
 
+//! How far, in bounding-box diagonals of one surface, the vertices of another may lie from that
+//! box for distances between the two (the Hausdorff distance of quality_metrics). The closest-point
+//! index prunes with float boxes: from a point 2^24 diagonals away they all look equally far, and
+//! each query visits every triangle (the elk against itself with one vertex drawn to 1e8, 3.7e5
+//! diagonals: 0.4 s; to 1e10: over 16 s; to 1e24: 77 s).
+constexpr double kFarthestMeasured = 1 << 20;
+//! \throw InputError naming the first vertex of `triangles` (of `what`) farther than
+//! kFarthestMeasured diagonals of `box` (the bounding box of `other`) from it; `task` names the work.
+void require_within_reach(const BoundingBox& box, const std::vector<Vec3>& positions,
+                          const std::vector<Triangle>& triangles, const char* what, const char* other,
+                          const char* task);
+
 //! The fewest steps of the doubles across a model (its bounding-box diagonal over the unit in the
 //! last place of its largest coordinate) that sampling, the CVT and the metrics work with. Their
 //! points are constructed in doubles: a unit cube at 1e15, where doubles step by 0.125, remeshed to
@@ -206,5 +218,16 @@ double expected_refined_triangle_count(const SurfaceMesh& mesh, double max_lengt
 //! every triangle splits into quarters of about equilateral shape and side max_length / 2, of area
 //! max_length^2 / 9.24 against the estimate's max_length^2 / 6.5.
 constexpr double kRefinedTriangleMargin = 9.24 / 6.5;
+
+//! The most triangles the automatic refinement (to suggested_refinement_length) may make when
+//! `expected` are expected: 8 times the margin over the estimate, at least 100,000. Triangles far
+//! longer than wide split into far more pieces than their area tells (an octahedron with one
+//! vertex drawn to 1e6: 2.1 million triangles for an estimate of 88).
+double auto_refinement_limit(double expected);
+
+//! Of the triangles with an edge longer than `max_length`, the one longest for its width, in words
+//! with its corner opposite its shortest edge ("triangle 0 (vertices 0, 2, 5) is 1e+06 long and
+//! 1.41 wide; its corner 0 is at (-1e+06, 0, 0), far from the others"); "" when none is longer.
+std::string thinnest_long_triangle(const SurfaceMesh& mesh, double max_length);
 
 }  // namespace lrvd

@@ -181,6 +181,9 @@ QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<V
   for (const Triangle& f : triangles)
     if (!predicates::collinear(positions[f[0]], positions[f[1]], positions[f[2]])) proper.push_back(f);
   if (proper.empty()) throw InputError("every triangle of the remesh has collinear corners: it has no surface");
+  require_within_reach(reference.bounding_box(), positions, triangles, "the remesh", "the reference", "measuring the quality");
+  require_within_reach(bounding_box(remesh_points), reference.positions(), reference.triangles(), "the reference",
+                       "the remesh", "measuring the quality");
 
   // Then samples by area. The reference gets a different seed so that its points are not drawn
   // with the same random sequence.

@@ -110,6 +110,10 @@ double OffsetBalancer::measure(double floor) {
       } else {
         Sample& s = input_[i - nr];
         const ClosestPoint c = remesh_index->query(input_points_[i - nr], s.hint >= 0 ? s.hint : last_on_remesh);
+        if (c.triangle < 0) {  // the remesh has no proper triangle to measure against: not measured
+          s.triangle = -1, s.d = 0;
+          continue;
+        }
         s.hint = last_on_remesh = c.triangle;
         s.triangle = dual_triangle_[c.triangle];
         s.barycentric = c.barycentric;
@@ -189,6 +193,10 @@ void OffsetBalancer::index_samples() {
     int i = 0;  // the sample's index: remesh_ then input_
     for (const std::vector<Sample>* list : {&remesh_, &input_})
       for (const Sample& s : *list) {
+        if (s.triangle < 0) {  // an input sample not measured
+          ++i;
+          continue;
+        }
         const Triangle& f = dual_.triangles[s.triangle];
         const double w[3] = {s.barycentric.x, s.barycentric.y, s.barycentric.z};
         for (int k = 0; k < 3; ++k)

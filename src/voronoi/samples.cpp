@@ -247,6 +247,8 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
 PointFile read_xyz(const std::string& path) {
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("point file '{}' is a folder", path));
+  if (std::string problem = special_file_problem(path); !problem.empty())
+    throw InputError(fmt::format("point file '{}' {}", path, problem));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("cannot read point file '{}'", path));
   PointFile file;
@@ -279,6 +281,37 @@ PointFile read_xyz(const std::string& path) {
   }
   if (file.points.empty()) throw InputError(fmt::format("point file '{}' holds no points", path));
   return file;
+}
+
+std::vector<double> read_weights(const std::string& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
+  if (std::string problem = special_file_problem(path); !problem.empty())
+    throw InputError(fmt::format("weight file '{}' {}", path, problem));
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
+  std::vector<double> weights;
+  std::string line;
+  // One weight a line, as the points it goes with; blank lines and '#' comments as in point files.
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1) skip_byte_order_mark(line);
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    std::string token, more;
+    fields >> token;
+    try {
+      size_t used = 0;
+      weights.push_back(std::stod(token, &used));
+      if (used != token.size() || !std::isfinite(weights.back())) throw std::invalid_argument(token);
+    } catch (const std::exception&) {
+      throw InputError(fmt::format("{}:{}: '{}' is not a finite number", path, number, shown(token)));
+    }
+    if (fields >> more)
+      throw InputError(fmt::format("{}:{}: expected one weight a line, got '{}' after it", path, number, shown(more)));
+  }
+  if (weights.empty()) throw InputError(fmt::format("weight file '{}' holds no weights", path));
+  return weights;
 }
 
 void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights) {

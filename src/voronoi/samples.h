@@ -58,6 +58,11 @@ struct PointFile {
 //! Reads `x y z [w]` lines (blank lines and lines starting with '#' are skipped).
 //! \throw InputError on an unreadable file, a malformed line, or a mix of 3- and 4-column lines.
 PointFile read_xyz(const std::string& path);
+
+//! Reads one finite weight a line (blank lines and lines starting with '#' are skipped), as
+//! --weights gives them.
+//! \throw InputError on an unreadable file, a malformed line or a file without weights.
+std::vector<double> read_weights(const std::string& path);
 void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights = {});
 
 //! Reproducible uniform doubles in [0, 1) from a 64-bit seed (same on every platform).
