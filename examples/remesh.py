@@ -12,7 +12,7 @@ V2, F2, report = lrvd.remesh(V, F, 516, seed=1)
 q = report["quality"]
 print(f"{len(V2)} vertices, {len(F2)} triangles, verification "
       f"{'passed' if report['verification']['passed'] else 'FAILED'}")
-print(f"Qmin {q['q_min']:.3f}, Qavg {q['q_avg']:.3f}, smallest angle {q['theta_min']:.1f} deg, "
+print(f"Qmin {q['Qmin']:.3f}, Qavg {q['Qavg']:.3f}, smallest angle {q['theta_min']:.1f} deg, "
       f"Hausdorff {q['hausdorff_pct']:.3f} % of the diagonal, {report['time_s']:.2f} s")
 lrvd.write_mesh(os.path.join(out, "remesh.off"), V2, F2)
 image = lrvd.render(V2, F2, edges=True, size=(600, 450))

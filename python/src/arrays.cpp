@@ -1,6 +1,7 @@
 // Checked NumPy conversions of the lrvd module (arrays.h).
 #include "arrays.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -127,6 +128,13 @@ long long whole_number(const py::object& value, const char* name, const char* wh
   }
 }
 
+int sample_count(const py::object& n, const char* what) {
+  const long long count = whole_number(n, "n", what);
+  if (count > kMaxSamples)
+    throw InputError(fmt::format("{} samples are more than lrvd takes (limit {})", count, kMaxSamples));
+  return static_cast<int>(std::max<long long>(count, std::numeric_limits<int>::min()));
+}
+
 std::uint64_t to_seed(const py::object& seed) {
   const char* what = "a seed is a whole number from 0 to 18446744073709551615";
   if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed))
@@ -159,8 +167,7 @@ Input diagram_input(const py::handle& V, const py::handle& F, const py::object& 
   request.points_given = !points.is_none();
   if (request.points_given && !n.is_none()) throw InputError("give points or n, not both");
   if (request.points_given) request.points.points = to_points(points, "points");
-  if (!n.is_none()) request.count = static_cast<int>(std::min<long long>(
-      whole_number(n, "n", "a sample count is a whole number"), kMaxSamples + 1LL));
+  if (!n.is_none()) request.count = sample_count(n, "a sample count is a whole number");
   if (!weights.is_none()) {
     request.points.weights = to_values(weights, "weights");
     if (request.points_given && request.points.weights.size() != request.points.points.size())

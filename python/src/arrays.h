@@ -55,6 +55,8 @@ class ThreadLimit {
 };
 //! A Python int (not a bool) as a long long. \throw py::type_error, InputError beyond its range.
 long long whole_number(const py::object& value, const char* name, const char* what);
+//! `n`: a whole number up to kMaxSamples. \throw py::type_error, InputError above it.
+int sample_count(const py::object& n, const char* what);
 //! A seed, 0 to 2^64 - 1. \throw InputError
 std::uint64_t to_seed(const py::object& seed);
 //! The valid mesh of the arrays, as a file read without --repair gives it. \throw InputError

@@ -159,8 +159,7 @@ py::tuple remesh(const py::object& V, const py::object& F, const py::object& n, 
   Input input;
   input.loaded = loaded_mesh(V, F);
   SampleRequest request;
-  request.count = static_cast<int>(std::min<long long>(
-      whole_number(n, "n", "a vertex count is a whole number"), kMaxSamples + 1LL));
+  request.count = sample_count(n, "a vertex count is a whole number");
   request.seed = to_seed(seed);
   request.refine = refine;
   request.mesh_name = "the mesh";
