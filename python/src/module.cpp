@@ -64,6 +64,7 @@ class PyDiagram {
   // Polygons: vertices (p, 3), the polygons' corners one after the other, offsets into them, and per
   // polygon its cell, its triangle of mesh() and its piece of the cell.
   py::dict cells() const {
+    if (cells_) return *cells_;
     PolygonMesh polygons;
     {
       py::gil_scoped_release release;
@@ -84,6 +85,7 @@ class PyDiagram {
     d["polygon_triangle"] = values_array(std::move(triangle));
     d["polygon_component"] = values_array(std::vector<int>(components_.polygon_component));
     d["cell_components"] = values_array(std::vector<int>(components_.count));
+    cells_ = d;
     return d;
   }
 
@@ -94,6 +96,7 @@ class PyDiagram {
   CellComponents components_;
   nlohmann::json report_;
   std::optional<bool> passed_;
+  mutable std::optional<py::dict> cells_;  //!< made on first use
 };
 
 std::shared_ptr<PyDiagram> compute(const py::object& V, const py::object& F, const py::object& points,
