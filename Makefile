@@ -41,7 +41,8 @@ bench: build
 images: build
 	bash scripts/docs_images.sh $(BUILD)
 
-# The lrvd command, the libraries, their headers and the CMake package (docs/library.md).
+# The lrvd command, the libraries, their headers and the CMake package (docs/library.md), and the
+# Python module under the prefix's site-packages (docs/python.md).
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 

@@ -29,6 +29,13 @@ namespace {
 
 using py::arg;
 
+// A real number, or a TypeError naming the argument.
+double number(const py::object& value, const char* name) {
+  if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value))
+    throw py::type_error(fmt::format("{} must be a number, not {}", name, py::repr(value).cast<std::string>()));
+  return value.cast<double>();
+}
+
 // A diagram of samples on a mesh, its cells as arrays, its report.
 class PyDiagram {
  public:
@@ -120,7 +127,7 @@ py::tuple read_mesh_py(const std::string& path, bool repair, const py::object& w
   ReadOptions read;
   read.repair = repair;
   auto fraction = [](const py::object& value, const char* name) {
-    const double x = value.cast<double>();
+    const double x = number(value, name);
     if (!(x > 0) || !std::isfinite(x))
       throw InputError(fmt::format("{}: a positive fraction of the bounding-box diagonal, not '{}'", name, x));
     return x;
@@ -191,9 +198,9 @@ py::tuple mps(const py::object& V, const py::object& F, double radius, bool adap
   settings.split_to = split_to;
   settings.exact = exact;
   settings.features = features;
-  if ((settings.max_radius_ratio_given = !max_radius_ratio.is_none())) settings.max_radius_ratio = max_radius_ratio.cast<double>();
-  if ((settings.split_factor_given = !split_factor.is_none())) settings.split_factor = split_factor.cast<double>();
-  if ((settings.feature_angle_given = !feature_angle.is_none())) settings.feature_angle = feature_angle.cast<double>();
+  if ((settings.max_radius_ratio_given = !max_radius_ratio.is_none())) settings.max_radius_ratio = number(max_radius_ratio, "max_radius_ratio");
+  if ((settings.split_factor_given = !split_factor.is_none())) settings.split_factor = number(split_factor, "split_factor");
+  if ((settings.feature_angle_given = !feature_angle.is_none())) settings.feature_angle = number(feature_angle, "feature_angle");
   check_mps_settings(settings);
   ThreadLimit limit(threads);
   const LoadedMesh loaded = loaded_mesh(V, F);

@@ -141,6 +141,10 @@ def test_bad_arguments(cube):
         lrvd.quality(V, F, V, np.array([[0, 1, 99]]))
     with pytest.raises(ValueError, match="weld"):
         lrvd.read_mesh("x.off", weld=-1.0)
+    with pytest.raises(TypeError, match="split_factor must be a number"):
+        lrvd.mps(V, F, 0.1, split_factor="big")
+    with pytest.raises(ValueError, match="--split-factor is 1 to 64"):
+        lrvd.mps(V, F, 0.1, split_factor=100)
 
 
 def test_a_failed_check_is_no_exception(cube):
