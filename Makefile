@@ -37,12 +37,12 @@ bench: build
 	mkdir -p $(BUILD)/bench
 	$(BUILD)/bench_remesh --lrvd-only --threads 1 --out $(BUILD)/bench/remesh.md --json $(BUILD)/bench/remesh.json
 
-# The pictures of docs/render.md (lrvd render on the elk and the comb stress mesh).
+# The pictures of docs/reference/render.md (lrvd render on the elk and the comb stress mesh).
 images: build
 	bash scripts/docs_images.sh $(BUILD)
 
-# The lrvd command, the libraries, their headers and the CMake package (docs/library.md), and the
-# Python module under the prefix's site-packages (docs/python.md).
+# The lrvd command, the libraries, their headers and the CMake package (docs/guide/library.md), and
+# the Python module under the prefix's site-packages (docs/guide/python.md).
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 

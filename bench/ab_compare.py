@@ -6,7 +6,7 @@ apart say little; runs of the two builds interleaved, one after the other, can b
 run is a fresh process (as a user runs it). For each build the script reports the median and
 minimum of the command's own `time_s` (from its --report JSON: the remesh, the MPS sampler's
 total, or compute's diagram), the ratio of the medians, and the process's minor page faults and kernel time (fresh
-pages cost about 1.7 us each on this project's VM: docs/performance.md, "Sixth session"). With
+pages cost about 1.7 us each on this project's VM). With
 --same-output it also checks that both builds wrote byte-identical outputs.
 
     bench/ab_compare.py --base /tmp/lrvd_old --new build/lrvd --runs 5 -- \\

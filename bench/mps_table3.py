@@ -2,7 +2,8 @@
 """Table 3 of the paper against `lrvd mps`, in fresh processes, the best of several runs.
 
 `bench_mps` runs every model in one process, where the late runs are slower than the same runs
-alone (docs/mps.md, session 11), and this project's VM drifts by tens of percent within an hour.
+alone (feline 1.14-1.41 s per 50k samples in bench_mps against 0.93-0.95 s alone), and this
+project's VM drifts by tens of percent within an hour.
 This script runs `lrvd mps --threads 1` as a user would, one process per run, the models taken in
 turn so that a slow spell hits them all, and keeps for each (model, radius, seed) the run with the
 least sampler total (`time_s.total`: init, dart throwing and gap filling; the checks that follow

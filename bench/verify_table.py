@@ -4,8 +4,8 @@
 For each sample count and thread count, one fresh `lrvd compute MESH -n N --threads T` process
 (no cells written) reports the diagram's `time_s` and the verification's; the script adds the
 process's peak memory and whether the verification passed, and prints a Markdown table. It exits
-1 if any verification failed or any run did not finish. docs/verification.md, "Cost", and
-docs/performance.md, "Thirty-third session", hold its numbers.
+1 if any verification failed or any run did not finish. docs/reference/verification.md, "Cost",
+holds its numbers.
 
     bench/verify_table.py --lrvd build/lrvd                       # the elk, 20k to 200k samples
     bench/verify_table.py --lrvd build/lrvd --mesh build/cgal-data/bones.off --counts 10000,50000 --threads 2

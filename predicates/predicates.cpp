@@ -1,6 +1,6 @@
 // Filtered exact side1/side2/side3 (paper §3.6): a forward-error filter in doubles, an interval
 // filter, CGAL::Mpzf exact fallback and symbolic perturbation of the weights on exact zeros.
-// Derivations are in docs/predicates.md.
+// Derivations are in docs/algorithms/predicates.md.
 #include "predicates/predicates.h"
 
 #include <CGAL/FPU.h>
@@ -109,7 +109,7 @@ inline bool in_range(const Site& s) { return in_range(s.p) && std::fabs(s.w) <= 
 
 // ---------------------------------------------------------------------------------------------
 // The double filter, run before the intervals: the same templates evaluated in plain doubles (no
-// rounding-mode switch) with a forward error bound (docs/predicates.md has the derivation). Fpf
+// rounding-mode switch) with a forward error bound (docs/algorithms/predicates.md has the derivation). Fpf
 // carries the rounded value v, a magnitude m (the expression on |inputs| with - turned into +,
 // plus T per product) and the number d of roundings on the deepest path. Any rounding mode,
 // u = 2^-52, gamma_k = k u / (1 - k u), T = 2^-1021, no overflow (in_range):
@@ -389,7 +389,7 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistan
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            const BoundedPowerDistance& i1, const BoundedPowerDistance& j1, const BoundedPowerDistance& l1,
            const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2) {
-  // Each value with a bound on its distance to the exact one (docs/predicates.md, "Shared power
+  // Each value with a bound on its distance to the exact one (docs/algorithms/predicates.md, "Shared power
   // distances"): a difference adds 2u of its rounded value, a product |a| e_b + (|b| + e_b) e_a
   // and 2u of itself; 2^-1000 covers every underflow. The bounds themselves are rounded: the
   // 2^-40 margin of the final tests covers that.

@@ -1,6 +1,6 @@
 // Filtered exact predicates that classify restricted power/Voronoi vertices against a bisector
 // (paper §3.6), with one symbolic perturbation of the weights for every predicate.
-// Formulas, degrees and the perturbation rule: docs/predicates.md.
+// Formulas, degrees and the perturbation rule: docs/algorithms/predicates.md.
 #pragma once
 
 #include <cstdint>
@@ -77,7 +77,7 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, bool inputs_in_range = f
 
 //! q's power distance to a site in doubles, with a bound on its rounding error: what side1 needs of
 //! each side, computed once where one point is tested against several sites (a triangle's corners
-//! against its candidate cells). Derivation: docs/predicates.md, "Shared power distances".
+//! against its candidate cells). Derivation: docs/algorithms/predicates.md, "Shared power distances".
 struct BoundedPowerDistance {
   double value = 0;  //!< fl(|q - p|^2 - w), each coordinate difference, square and sum rounded
   double error = 0;  //!< >= |value - (|q - p|^2 - w)|

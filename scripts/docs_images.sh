@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Draws the pictures of docs/render.md with the built lrvd: CGAL's elk and the comb stress mesh,
+# Draws the pictures of docs/reference/render.md with the built lrvd: CGAL's elk and the comb stress mesh,
 # their LRVD and RVD cells, the elk remeshed to 516 vertices, and the open cup stress mesh remeshed
 # to 300 by CGAL's isotropic remeshing and by lrvd. `make images` runs it.
 # Usage: scripts/docs_images.sh [BUILD_DIR]   (BUILD_DIR defaults to build)

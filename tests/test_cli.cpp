@@ -614,9 +614,9 @@ TEST_CASE("remesh_to (the library call) gives the mesh that lrvd remesh writes a
   REQUIRE_THROWS_WITH(lrvd::remesh_to(two, std::numeric_limits<int>::max()), Catch::Contains("use fewer vertices"));
 }
 
-TEST_CASE("docs/library.md shows docs/library_example.cpp as it is", "[cli]") {
+TEST_CASE("docs/guide/library.md shows docs/guide/library_example.cpp as it is", "[cli]") {
   auto read = [](const std::string& name) {  // (take_file would delete it)
-    std::ifstream in(std::string(LRVD_SOURCE_DIR) + "/docs/" + name);
+    std::ifstream in(std::string(LRVD_SOURCE_DIR) + "/docs/guide/" + name);
     std::stringstream text;
     text << in.rdbuf();
     return text.str();

@@ -361,7 +361,7 @@ TEST_CASE("A CVT that keeps samples to their sheets does not drain one side of a
 
 TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's topology at low N", "[cvt][remesh]") {
   // The stress meshes where the remesh is valid today; comb (n = 100: too few samples for three
-  // cells around every finger) is an open problem, listed in docs/results.md ("Stress meshes").
+  // cells around every finger) fails: docs/results.md, "Seeds 1–3 on the hard rows".
   // folded_sheet 300 is valid through the second run that keeps samples on their own sheets
   // (RemeshOptions::keep_to_sheets_retry).
   const std::pair<const char*, int> cases[] = {{"thin_plate", 100},     {"thin_plate", 300}, {"open_cup", 100},

@@ -127,7 +127,7 @@ TEST_CASE("Cells with stray pieces in each other's regions are restored one roun
   // CGAL's diplodocus, 80,000 samples (seed 1) on the refined mesh. With every stray piece removed
   // in one round, two cells stayed in two pieces each, as the elk's did at 500,000 samples, where
   // two cells with stray pieces in each other's regions grew back onto their forbidden triangles
-  // and were pinned there (docs/verification.md). Taken in separate rounds, they end connected.
+  // and were pinned there (docs/algorithms/lrvd.md, "Connectivity restoration"). Taken in separate rounds, they end connected.
   const SurfaceMesh mesh = for_samples(cgal_mesh("diplodocus.off"), 80000);
   const Samples samples = sample_uniform(mesh, 80000, 1);
   const Diagram d = compute_lrvd(mesh, samples);

@@ -189,7 +189,7 @@ TEST_CASE("MPS of CGAL's elk, uniform and adaptive, is maximal and remeshes vali
   const SurfaceMesh elk = cgal_mesh("elk.off");
   SECTION("uniform r = 0.02: a few thousand samples on thin antlers and legs") {
     // The LRRT is not valid for every seed: where the elk is thinner than r, samples on both sides
-    // can make three cells meet twice (a pair of duplicate triangles). Seeds 1-8: 6 valid (docs/mps.md,
+    // can make three cells meet twice (a pair of duplicate triangles). Seeds 1-8: 6 valid (docs/algorithms/mps.md,
     // "Known limits"). Seed 2 is one of them; the maximal sampling holds for all.
     MpsOptions options;
     options.radius = 0.02;
@@ -291,7 +291,7 @@ TEST_CASE("Adaptive MPS fills a spot past a sharp fold that a sample's ball hold
 TEST_CASE("MPS with features samples the corners and feature lines first, and its LRRT keeps them", "[mps][features]") {
   // Without features a sample near a boundary corner can have a cell that borders one other cell
   // only (a vertex in no LRRT triangle), and three cells around a sharp edge can meet once on each
-  // face (the same triangle twice): docs/mps.md, "Features".
+  // face (the same triangle twice): docs/algorithms/mps.md, "Features".
   const SurfaceMesh square = test::grid(1, 1);
   const SurfaceMesh right_triangle({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
   const SurfaceMesh cube({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},

@@ -140,8 +140,9 @@ TEST_CASE("Angle deficits: 2π/3 at each corner of an octahedron and 2π times t
 }
 
 TEST_CASE("The suggested refinement gives about four triangles a sample") {
-  // README promises it for --refine auto: a mesh with fewer than two triangles a sample is split to
-  // about four (splitting to length L leaves triangles of about L^2 / 6.5, not equilateral ones).
+  // docs/guide/command-line.md promises it for --refine auto: a mesh with fewer than two triangles
+  // a sample is split to about four (splitting to length L leaves triangles of about L^2 / 6.5, not
+  // equilateral ones).
   const std::pair<SurfaceMesh, int> cases[] = {{test::octahedron(), 100},
                                                {test::icosphere(1), 500},
                                                {test::grid(4, 3), 1000},

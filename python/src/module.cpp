@@ -1,5 +1,5 @@
 // The `lrvd` Python module: the command's subcommands as functions of NumPy arrays, returning
-// arrays and the command's JSON reports as dicts (docs/python.md).
+// arrays and the command's JSON reports as dicts (docs/guide/python.md).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -259,7 +259,7 @@ PYBIND11_MODULE(lrvd, m) {
   using namespace lrvd::python;
   namespace py = pybind11;
   m.doc() = "Localized restricted Voronoi diagrams of points on triangle meshes, CVT remeshing and maximal "
-            "Poisson-disk sampling, every result checked (docs/python.md).";
+            "Poisson-disk sampling, every result checked (docs/guide/python.md).";
   m.attr("__version__") = LRVD_VERSION;
   py::register_exception_translator([](std::exception_ptr p) {
     try {

@@ -74,7 +74,7 @@ int run_mps_command(const MpsCommandOptions& opt) {
                                 : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
-  // Closer pairs the disk condition does not cover (docs/mps.md, "Conflict rule"): said, not hidden.
+  // Closer pairs the disk condition does not cover (docs/algorithms/mps.md, "Conflict rule"): said, not hidden.
   if (check.close_pairs_not_local > 0)
     std::printf("  %s of samples closer than their radius %s not local to each other (another component, "
                 "the other side of a sheet, or past a turn of the surface of 90 degrees or more): allowed\n",

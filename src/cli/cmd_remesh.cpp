@@ -96,7 +96,7 @@ int run_remesh_command(const RemeshCommandOptions& opt) {
                                                             : fmt::format("{} of them", holes.fillable);
     const std::string advice =
         holes.fillable == 0
-            ? fmt::format("--fill-holes cannot close {} (docs/input.md), give more vertices",
+            ? fmt::format("--fill-holes cannot close {} (docs/guide/input.md), give more vertices",
                           holes.count == 1 ? "it" : "them")
             : fmt::format("--fill-holes {:.2g} closes {} and {} other hole{}{}, or give more vertices", holes.fraction,
                           which, holes.others, holes.others == 1 ? "" : "s",

@@ -53,7 +53,7 @@ int write_stress_report(const std::string& dir, double scale, int seeds) {
         const Diagram rvd = compute_rvd(mesh, samples);
         const Diagram lrvd = compute_lrvd(mesh, samples);
         if (n == kPictureSamples && seed == 1) {
-          // The two diagrams side by side, stray pieces hatched (docs/render.md).
+          // The two diagrams side by side, stray pieces hatched (docs/reference/render.md).
           RenderOptions view;
           view.width = 480;
           view.height = 360;

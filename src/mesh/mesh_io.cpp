@@ -299,7 +299,7 @@ int drop_unreferenced(std::vector<Vec3>& positions, std::vector<Triangle>& trian
 }
 
 // Boundary corners closer than this fraction of the bounding-box diagonal, yet not at the same
-// point, are a seam written with rounding noise (docs/input.md, "Near-coincident corners"): a
+// point, are a seam written with rounding noise (docs/guide/input.md, "Near-coincident corners"): a
 // float's rounding at the model's size is about 6e-8 of it, a coordinate printed with six digits
 // about 1e-6 of its value.
 constexpr double kNearTwinFraction = 1e-6;

@@ -1,6 +1,6 @@
 // Mesh files in and out: reading OFF/OBJ/PLY/STL through CGAL's IO into a validated SurfaceMesh
 // (with optional CGAL polygon-soup repair), and writing meshes and Voronoi-cell polygons.
-// What is checked, the error messages and what repair does: docs/input.md.
+// What is checked, the error messages and what repair does: docs/guide/input.md.
 #pragma once
 
 #include <array>
@@ -50,7 +50,7 @@ struct LoadedMesh {
 //! Reads OFF, OBJ, PLY (ascii or binary) or STL (ascii or binary), chosen by the extension
 //! (any letter case). Polygons are triangulated (ear clipping with exact orientation tests);
 //! unreferenced vertices are dropped. With options.repair the soup is welded, cleaned, oriented
-//! and stitched first (see docs/input.md).
+//! and stitched first (see docs/guide/input.md).
 //! \throw InputError "<path>: <reason>" for a missing/unreadable file, an unknown extension, an
 //!        empty, truncated or unparsable file, non-finite coordinates, out-of-range indices, an
 //!        unwelded triangle soup (suggests --repair), boundary corners within 1e-6 of the bounding-box

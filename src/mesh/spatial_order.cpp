@@ -44,7 +44,7 @@ std::vector<int> morton_order(const std::vector<Vec3>& points) {
     keyed[i] = {code, i};
   }
   // A radix sort on the code, ties by index: the order std::sort gives the pairs, in less time (the
-  // quality metrics sort 400k points: docs/performance.md, "Twenty-ninth session").
+  // quality metrics sort 400k points on elk 516's remesh, where std::sort took 11 % of lrvd quality).
   using Keyed = std::pair<std::uint64_t, int>;
   boost::sort::spreadsort::integer_sort(
       keyed.begin(), keyed.end(), [](const Keyed& p, unsigned shift) { return p.first >> shift; },

@@ -1,5 +1,5 @@
 // Points that nearly coincide: welding a soup whose shared corners were written with rounding
-// noise (`--weld`), and finding seams a weld would close (docs/input.md, "Near-coincident corners").
+// noise (`--weld`), and finding seams a weld would close (docs/guide/input.md, "Near-coincident corners").
 // The tolerance is a distance chosen by the user or the reader, not a topological decision: the
 // exact predicates decide everything about the welded mesh afterwards.
 #pragma once

@@ -34,7 +34,7 @@ double triangle_min_angle(const Vec3& a, const Vec3& b, const Vec3& c);
 QualityMetrics shape_metrics(const std::vector<Vec3>& positions, const std::vector<Triangle>& triangles);
 
 //! Shape metrics plus distances between the triangles and the reference surface. The triangles
-//! may be non-manifold; formulas and sampling: docs/metrics.md.
+//! may be non-manifold; formulas and sampling: docs/reference/metrics.md.
 //! \throw InputError as shape_metrics, and when no triangle has three non-collinear corners.
 QualityMetrics quality_metrics(const SurfaceMesh& reference, const std::vector<Vec3>& positions,
                                const std::vector<Triangle>& triangles, const DistanceOptions& options = {});

@@ -45,7 +45,7 @@ struct CvtResult {
 
 //! Per-triangle density for the curvature-adaptive CVT: larger where the surface bends, so that
 //! more samples go there; smoothed over about the width of a cell of `sample_count` samples, and
-//! normalised to mean 1 by area (README, "What `lrvd remesh` does", has the formula).
+//! normalised to mean 1 by area (docs/algorithms/cvt-remeshing.md, "The CVT", has the formula).
 std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count);
 
 //! CVT energy and its gradient 2 m_i (x_i - c_i) at the given samples (for tests and optimisers).

@@ -1,7 +1,7 @@
 // Maximal Poisson-disk sampling (paper §4.2): initialisation (radius field, edge splitting to
 // twice the radius or, as the paper does, to r_min; area table), dart throwing with
 // triangle-based conflict checks, then gap detection with the LRPD and darts into the gaps until
-// none is left. The conflict rule is in docs/mps.md.
+// none is left. The conflict rule is in docs/algorithms/mps.md.
 #include "remesh/mps.h"
 
 #include <algorithm>
@@ -222,7 +222,7 @@ class Sampler {
 
 //! Feature-first sampling: samples on the mesh's corners and along its feature lines (boundary
 //! edges, and edges whose triangles' normals are more than `angle` apart) before any dart on the
-//! surface (docs/mps.md, "Features"). Along a line between corners the samples are spread evenly
+//! surface (docs/algorithms/mps.md, "Features"). Along a line between corners the samples are spread evenly
 //! at kFeatureSpacing times the local radius: two neighbours on a line less than √2 r apart meet
 //! at their midpoint whatever sample lies off the line (one at least r from both is farther from
 //! it), so each feature sample's cell reaches its neighbours' along the line and the LRRT follows

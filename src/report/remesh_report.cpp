@@ -156,7 +156,8 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   report["polished"] = remeshed.polished;
   // The kept state took RemeshOptions::ease_iterations with the repair's raised density eased back.
   report["density_eased"] = remeshed.eased;
-  // A run stopped because every cell was at a defect or next to one (docs/results.md, "Session 27").
+  // A run stopped because every cell was at a defect or next to one (docs/reference/metrics.md,
+  // "What the repair left").
   report["repair_saturated"] = remeshed.repair_saturated;
   report["defects_left"] = defects_json(remeshed.defects, result.samples);
   report["line_search_stopped"] = result.line_search_stopped;

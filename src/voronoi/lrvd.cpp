@@ -1,7 +1,6 @@
 // LRVD computation (paper §3): cell-to-vertex assignment by region growing (§3.2), triangle label
 // lists (§3.3, §3.5), exact clipping with local propagation (§3.4), and the connectivity
-// restoration the fixpoint alone does not give (docs/verification.md, "Conflicts at a cell's own
-// triangle" and "A removal the neighbours did not see").
+// restoration the fixpoint alone does not give (docs/algorithms/lrvd.md, "Connectivity restoration").
 #include "voronoi/lrvd.h"
 
 #include <algorithm>
