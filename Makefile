@@ -30,7 +30,7 @@ test: build
 
 # Every unit test under AddressSanitizer and UndefinedBehaviorSanitizer; any report fails its test.
 sanitize: setup
-	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DLRVD_SANITIZE=ON \
+	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DLRVD_SANITIZE=ON -DLRVD_BUILD_PYTHON=OFF \
 	  -DLRVD_CGAL_DATA_DIR=$(abspath $(BUILD))/cgal-data $(CMAKE_FLAGS)
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target lrvd lrvd_tests
 	cd $(SANITIZE_BUILD) && export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 && \
@@ -40,7 +40,7 @@ sanitize: setup
 # and its corpus; a crashing input is kept in tests/data/fuzz/TARGET/, which the unit tests replay.
 fuzz: setup
 	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++-14 \
-	  -DLRVD_FUZZ=ON -DLRVD_BUILD_TESTS=OFF $(CMAKE_FLAGS)
+	  -DLRVD_FUZZ=ON -DLRVD_BUILD_TESTS=OFF -DLRVD_BUILD_PYTHON=OFF $(CMAKE_FLAGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_mesh_file fuzz_point_files fuzz_compute lrvd_fuzz_seeds
 	bash fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
@@ -65,7 +65,8 @@ bench: build
 images: build
 	bash scripts/docs_images.sh $(BUILD)
 
-# The lrvd command, the libraries, their headers and the CMake package (docs/guide/library.md).
+# The lrvd command, the libraries, their headers and the CMake package (docs/guide/library.md), and
+# the Python module under the prefix's site-packages (docs/guide/python.md).
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
 

@@ -6,7 +6,8 @@ set -euo pipefail
 
 packages=(cmake ninja-build ccache g++ libcgal-dev libgmp-dev libmpfr-dev libembree-dev
   libeigen3-dev liblbfgspp-dev libtbb-dev libcli11-dev nlohmann-json3-dev libfmt-dev libstb-dev
-  libnanoflann-dev catch2 libbenchmark-dev libcgal-demo clang-14 libfuzzer-14-dev)
+  libnanoflann-dev catch2 libbenchmark-dev libcgal-demo clang-14 libfuzzer-14-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do

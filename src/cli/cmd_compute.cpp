@@ -53,22 +53,9 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
   reset_predicate_stats();
   progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
   const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
-  nlohmann::json report;
-  report["input"] = input_json(input);
-  report["input"]["path"] = opt.input.mesh_path;
   const CellComponents components = cell_components(diagram, input.mesh);
-  int multiple = 0;
-  for (int c : components.count) multiple += c > 1;
-  report["diagram"] = {{"kind", opt.kind},
-                       {"samples", input.samples.size()},
-                       {"polygons", diagram.polygons.size()},
-                       {"cells_with_multiple_components", multiple},
-                       {"time_s", diagram.stats.time_s},
-                       {"clipped_triangles", diagram.stats.clipped_triangles},
-                       {"connectivity_rounds", diagram.stats.connectivity_rounds},
-                       {"forbidden_labels", diagram.stats.forbidden_labels},
-                       {"pinned_labels", diagram.stats.pinned_labels}};
-  report["predicates"] = predicates_json();
+  const int multiple = cells_in_pieces(components);
+  nlohmann::json report = compute_report(input, opt.input.mesh_path, opt.kind, diagram, components);
 
   if (write_cells && !opt.output.empty()) write_cells_ply(opt.output, diagram_polygon_mesh(diagram, input.mesh));
 

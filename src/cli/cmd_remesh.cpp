@@ -15,7 +15,8 @@
 #include "common/error.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
-#include "remesh/remesh_pipeline.h"
+#include "remesh/remesh.h"
+#include "report/remesh_report.h"
 #include "verification/remesh_check.h"
 #include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
@@ -34,188 +35,36 @@ std::string inherited_note(const RemeshVerification& check) {
 
 struct RemeshCommandOptions {
   InputOptions input;
-  std::string kind = "lrvd", optimizer = "lbfgs", density = "uniform", priority = "distance", repair = "whole";
-  int iterations = 60;
+  RemeshSettings settings;
   bool no_fit = false;
   std::string output, report;
 };
 
-// What the repair left (RemeshResult::defects), by kind: the count and the first few samples, each
-// the output's vertex of the same index, with its place on the input surface (where a thin part or
-// a handle was not caught).
-nlohmann::json defects_json(const DualDefects& defects, const Samples& samples) {
-  constexpr size_t kListed = 10;
-  auto kind = [&](const std::vector<int>& ids) {
-    nlohmann::json first = nlohmann::json::array();
-    for (size_t k = 0; k < ids.size() && k < kListed; ++k) {
-      const Vec3& p = samples.positions[ids[k]];
-      first.push_back({{"vertex", ids[k]}, {"position", {p.x, p.y, p.z}}});
-    }
-    return nlohmann::json{{"count", ids.size()}, {"first", first}};
-  };
-  return {{"summary", defects.describe()},
-          {"euler_characteristic_ok", defects.euler_ok},
-          {"topological", kind(defects.topological)},
-          {"crossing", kind(defects.crossing)},
-          {"cell_topology", kind(defects.cell_topology)}};
-}
-
-// The holes the kept dual closes over (fewer than three cells meet their loop), the longest's length,
-// and the smallest --fill-holes fraction of two significant digits above it: tried on the input,
-// how many of those holes it fills (fill_small_holes leaves some open) and how many other holes.
-struct ClosedOverHoles {
-  int count = 0;
-  double longest = 0;
-  double fraction = 0;
-  int fillable = 0;  //!< of the `count`, filled by --fill-holes `fraction`
-  int others = 0;    //!< other holes it fills
-};
-
-ClosedOverHoles closed_over_holes(const DualDefects& defects, const SurfaceMesh& mesh, const SurfaceMesh& input,
-                                  double diagonal) {
-  ClosedOverHoles holes;
-  holes.count = static_cast<int>(defects.closed_over_loops.size());
-  if (holes.count == 0) return holes;
-  for (int l : defects.closed_over_loops) holes.longest = std::max(holes.longest, mesh.boundary_loop_length(l));
-  const double ratio = 1.05 * holes.longest / diagonal;  // a margin over the rounding of the lengths
-  const double unit = std::pow(10.0, std::floor(std::log10(ratio)) - 1);
-  holes.fraction = std::stod(fmt::format("{:.2g}", std::ceil(ratio / unit) * unit));  // as printed
-  RepairReport trial;
-  SurfaceMesh filled;
-  try {
-    filled = fill_small_holes(input, holes.fraction * diagonal, &trial);
-  } catch (const InputError&) {
-    return holes;  // the fill would not give a valid mesh: nothing to suggest
-  }
-  // `mesh` is `input`, maybe refined and renumbered (remesh_from): each of its loops runs
-  // through the input loop's own vertices, at the same positions, with midpoints between them.
-  std::vector<char> still_open(input.vertex_count(), 0);
-  for (const std::vector<int>& loop : filled.boundary_loops())
-    for (int v : loop) still_open[v] = 1;
-  std::map<std::array<double, 3>, int> input_vertex_at;
-  for (const std::vector<int>& loop : input.boundary_loops())
-    for (int v : loop) input_vertex_at[{input.position(v).x, input.position(v).y, input.position(v).z}] = v;
-  for (int l : defects.closed_over_loops)
-    for (int v : mesh.boundary_loops()[l]) {
-      const auto at = input_vertex_at.find({mesh.position(v).x, mesh.position(v).y, mesh.position(v).z});
-      if (at == input_vertex_at.end()) continue;  // a midpoint of the refinement
-      holes.fillable += !still_open[at->second];
-      break;
-    }
-  holes.others = std::max(0, trial.filled_holes - holes.fillable);
-  return holes;
-}
-
-int run_remesh(const RemeshCommandOptions& opt) {
-  const DiagramKind kind = diagram_kind_from_string(opt.kind);
-  if (is_power(kind)) throw InputError("remesh uses a Voronoi diagram: --diagram lrvd or rvd");
+int run_remesh_command(const RemeshCommandOptions& opt) {
+  RemeshSettings settings = opt.settings;
+  settings.fit = !opt.no_fit;
+  check_remesh_settings(settings);
   if (opt.output.empty()) throw InputError("give an output file with -o");
   check_outputs({{opt.output, "-o", kMeshWriteExtensions}, {opt.report, "--report", {}, kMeshReadExtensions}},
                 read_files(opt.input));
   InputOptions read = opt.input;
   read.check_count = require_remesh_vertex_count;  // before sampling, which asks one per component
   Input input = load_input(read);
-  if (input.samples.weighted())
-    throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
-  if (input.refined_from >= 0)
-    progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
-
-  RemeshOptions remesh;
-  CvtOptions& cvt = remesh.cvt;
-  cvt.diagram = kind;
-  cvt.optimizer = opt.optimizer == "lloyd" ? CvtOptimizer::Lloyd : CvtOptimizer::Lbfgs;
-  cvt.density = opt.density == "curvature" ? CvtDensity::Curvature : CvtDensity::Uniform;
-  cvt.iterations = opt.iterations;
-  remesh.fit = !opt.no_fit;
-  if (opt.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
-  remesh.repair = opt.repair == "local" ? RepairScope::Local : RepairScope::Whole;
-  remesh.on_progress = [](const std::string& message) { progress(message); };
-  // The samples drawn per component unless given (--points), both renumbered: remesh_from.
-  RemeshStart start;
-  start.n = input.samples.size();
-  start.seed = opt.input.seed;
-  start.mesh = std::move(input.mesh);
-  if (!opt.input.points_path.empty()) start.samples = std::move(input.samples);
-  start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
-    reset_predicate_stats();
-    progress(fmt::format("CVT of {} samples on the {}", samples.size(), opt.kind));
-  };
-  const RemeshResult remeshed = remesh_from(input.loaded.mesh, start, remesh);
-  input.mesh = std::move(*start.mesh);
-  input.samples = std::move(*start.samples);
+  const RemeshRun run = run_remesh(input, settings, opt.input.points_path.empty(), opt.input.seed, opt.input.mesh_path,
+                             opt.output, progress,
+                             [&](const DualMesh& dual) { write_mesh(opt.output, dual.positions, dual.triangles); });
+  const RemeshResult& remeshed = run.result;
   const CvtResult& result = remeshed.cvt;
   const DualMesh& dual = remeshed.dual;
-  write_mesh(opt.output, dual.positions, dual.triangles);
-
-  progress("checking the remesh");
-  const RemeshVerification check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
-  // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
-  // is nothing to measure.
-  const bool measurable = !dual.triangles.empty();
-  const QualityMetrics quality =
-      measurable ? quality_metrics(input.loaded.mesh, dual.positions, dual.triangles) : QualityMetrics{};
-
-  nlohmann::json report;
-  report["input"] = input_json(input);
-  report["input"]["path"] = opt.input.mesh_path;
-  report["output"] = {{"path", opt.output}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
-  report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
-  report["verification"] = check.to_json();
-  report["diagram"] = opt.kind;
-  report["optimizer"] = opt.optimizer;
-  report["density"] = opt.density;
-  report["priority"] = opt.priority;
-  report["repair_scope"] = opt.repair;
-  // With `--priority shape`: the vertices of the worst triangles moved before the fitting.
-  report["relaxed"] = {{"rounds", remesh.relax.rounds},
-                       {"moved", remeshed.relax.moved},
-                       {"reverted", remeshed.relax.reverted}};
-  report["iterations"] = remeshed.total_iterations;
-  report["repair_rounds"] = remeshed.repair_rounds;
-  report["diagram_evaluations"] = remeshed.diagram_evaluations;
-  // The repair ended with defects and the second run, samples kept to their own sheets, did better.
-  report["kept_to_sheets"] = remeshed.path.kept_to_sheets;
-  report["tip_caps_lowered"] = remeshed.path.tip_caps_lowered;
-  report["samples_reallocated"] = remeshed.path.samples_reallocated;
-  report["reallocation_tried"] = remeshed.path.reallocation_tried;
-  report["runs"] = remeshed.path.runs;
-  // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
-  report["polished"] = remeshed.path.polished;
-  // The kept state took RemeshOptions::ease_iterations with the repair's raised density eased back.
-  report["density_eased"] = remeshed.path.eased;
-  // A run stopped because every cell was at a defect or next to one (docs/reference/metrics.md,
-  // "What the repair left").
-  report["repair_saturated"] = remeshed.path.repair_saturated;
-  report["defects_left"] = defects_json(remeshed.defects, result.samples);
-  report["line_search_stopped"] = result.line_search_stopped;
-  // Lengths in % of the input's bounding-box diagonal, as the distances are.
-  const double diagonal = input.loaded.mesh.bounding_box().diagonal();
-  const ClosedOverHoles holes = closed_over_holes(remeshed.defects, input.mesh, input.loaded.mesh, diagonal);
-  report["defects_left"]["closed_over_holes"] = {{"count", holes.count}};
-  if (holes.count > 0) {
-    report["defects_left"]["closed_over_holes"]["longest"] = holes.longest;
-    report["defects_left"]["closed_over_holes"]["fillable"] = holes.fillable;
-    if (holes.fillable > 0) report["defects_left"]["closed_over_holes"]["fill_holes"] = holes.fraction;
-  }
-  auto percent = [diagonal](double length) { return 100.0 * length / diagonal; };
-  report["fit"] = {{"enabled", remesh.fit},
-                   {"moved", remeshed.fit.moved},
-                   {"reverted", remeshed.fit.reverted},
-                   {"max_displacement_pct", percent(remeshed.fit.max_displacement)},
-                   {"balanced_distance_pct_before", percent(remeshed.fit.offsets.max_before)},
-                   {"balanced_distance_pct_after", percent(remeshed.fit.offsets.max_after)}};
-  report["untangle"] = {{"crossings_before", remeshed.untangle.crossings_before},
-                        {"crossings_after", remeshed.untangle.crossings_after},
-                        {"moved", remeshed.untangle.moved},
-                        {"flipped", remeshed.untangle.flipped},
-                        {"max_displacement_pct", percent(remeshed.untangle.max_displacement)}};
-  report["energy"] = result.energy;
-  report["initial_energy"] = result.energy_history.front();
-  report["time_s"] = remeshed.time_s;
-  report["predicates"] = predicates_json();
+  const RemeshVerification& check = run.check;
+  const bool measurable = run.measurable;
+  const QualityMetrics& quality = run.quality;
+  const ClosedOverHoles& holes = run.holes;
+  const double diagonal = run.diagonal;
+  const nlohmann::json& report = run.report;
   if (!opt.report.empty()) write_report(opt.report, report, {opt.output});
 
-  std::printf("remesh (%s): %s, %s, %s, %.3f s -> %s\n", opt.kind.c_str(),
+  std::printf("remesh (%s): %s, %s, %s, %.3f s -> %s\n", settings.kind.c_str(),
               counted(dual.positions.size(), "vertex", "vertices").c_str(),
               counted(dual.triangles.size(), "triangle", "triangles").c_str(),
               counted(remeshed.total_iterations, "iteration", "iterations").c_str(), remeshed.time_s, opt.output.c_str());
@@ -283,21 +132,7 @@ struct QualityOptions {
   ReadOptions read;  //!< of the reference, as the remesh's input was
 };
 
-// A mesh measured against a reference of another size or place: its bounding box's diagonal more
-// than 1.5 times the reference's or less than 1/1.5 of it, or its centre further from the
-// reference's than half the reference's diagonal. "" when neither holds.
-std::string frame_mismatch(const BoundingBox& reference, const BoundingBox& mesh) {
-  constexpr double kSizeRatio = 1.5;
-  const double size = mesh.diagonal() / reference.diagonal();
-  const double offset = distance(0.5 * (mesh.min + mesh.max), 0.5 * (reference.min + reference.max));
-  if (size <= kSizeRatio && size >= 1 / kSizeRatio && offset <= 0.5 * reference.diagonal()) return std::string();
-  return fmt::format("the mesh's bounding box has {:.3g} times the reference's diagonal ({:.4g} against {:.4g}) and "
-                     "its centre is {:.3g} reference diagonals away: the distances measure that; are both in one unit "
-                     "and frame?",
-                     size, mesh.diagonal(), reference.diagonal(), offset / reference.diagonal());
-}
-
-int run_quality(const QualityOptions& opt) {
+int run_quality_command(const QualityOptions& opt) {
   if (opt.mesh.empty()) throw InputError("give the mesh to measure after the reference: lrvd quality REFERENCE MESH");
   check_outputs({{opt.report, "--report", {}, kMeshReadExtensions}},
                 {{opt.reference, "the reference mesh"}, {opt.mesh, "the measured mesh"}});
@@ -305,30 +140,12 @@ int run_quality(const QualityOptions& opt) {
   print_repair(loaded.repair, opt.read);
   const SurfaceMesh& reference = loaded.mesh;
   const PolygonSoup soup = read_polygon_soup(opt.mesh, true);
-  // A mesh of vertices only (what remesh writes when its dual has no triangle) is checked, not measured.
-  const bool measurable = !soup.triangles.empty();
-  const QualityMetrics quality =
-      measurable ? quality_metrics(reference, soup.positions, soup.triangles) : QualityMetrics{};
-  const RemeshVerification check = verify_remesh(reference, soup.positions, soup.triangles, -1);
-  nlohmann::json report = {{"reference", opt.reference}, {"mesh", opt.mesh}};
-  if (opt.read.repair) report["reference_repair_changes"] = repair_changes(loaded.repair);
-  if (!loaded.repair.notes.empty()) report["reference_repair"] = loaded.repair.notes;
-  // Two meshes in different units or frames give distances that measure that, not the remesh. The
-  // distances read the triangles only, so does the frame: a vertex no triangle uses does not count.
-  std::vector<Vec3> used;
-  {
-    std::vector<char> in_triangle(soup.positions.size(), 0);
-    for (const Triangle& t : soup.triangles)
-      for (int v : t)
-        if (v >= 0 && static_cast<std::size_t>(v) < in_triangle.size()) in_triangle[v] = 1;
-    for (std::size_t v = 0; v < soup.positions.size(); ++v)
-      if (in_triangle[v]) used.push_back(soup.positions[v]);
-  }
-  const std::string frame =
-      measurable && !used.empty() ? frame_mismatch(reference.bounding_box(), bounding_box(used)) : std::string();
-  if (!frame.empty()) report["frame_warning"] = frame;
-  report["quality"] = measurable ? remesh_quality_json(quality, check) : nlohmann::json(nullptr);
-  report["verification"] = check.to_json();
+  const QualityRun run = run_quality(loaded, opt.read.repair, soup, opt.reference, opt.mesh);
+  const bool measurable = run.measurable;
+  const QualityMetrics& quality = run.quality;
+  const RemeshVerification& check = run.check;
+  const std::string& frame = run.frame_warning;
+  const nlohmann::json& report = run.report;
   if (!opt.report.empty()) write_json(opt.report, report);
   std::printf("%s: %s, %s\n", opt.mesh.c_str(),
               counted(static_cast<long long>(soup.positions.size()), "vertex", "vertices").c_str(),
@@ -358,40 +175,40 @@ Action add_remesh_command(CLI::App& app) {
   auto opt = std::make_shared<RemeshCommandOptions>();
   CLI::App* cmd = app.add_subcommand("remesh", "Remesh to exactly N vertices with a CVT on the LRVD, check the output");
   add_input_options(cmd, opt->input, true, false);
-  cmd->add_option("--diagram", opt->kind, "Diagram of the CVT: lrvd (default) or rvd (the baseline)")
+  cmd->add_option("--diagram", opt->settings.kind, "Diagram of the CVT: lrvd (default) or rvd (the baseline)")
       ->check(CLI::IsMember({"lrvd", "rvd"}))
       ->capture_default_str();
-  cmd->add_option("--optimizer", opt->optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
-  cmd->add_option("--iterations", opt->iterations,
+  cmd->add_option("--optimizer", opt->settings.optimizer, "lbfgs or lloyd")->check(CLI::IsMember({"lbfgs", "lloyd"}))->capture_default_str();
+  cmd->add_option("--iterations", opt->settings.iterations,
                   "Iteration cap of the first CVT, which usually stops there: more iterations give better "
                   "triangles, for more time (each repair round of a dual with defects runs up to 30 more, and 10 "
                   "more try the rounds' density eased back; with L-BFGS, a state without defects then takes one "
                   "Lloyd step)")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  cmd->add_option("--density", opt->density,
+  cmd->add_option("--density", opt->settings.density,
                   "uniform, or curvature: smaller cells where the surface bends (at a few hundred vertices "
                   "uniform does better)")
       ->check(CLI::IsMember({"uniform", "curvature"}))
       ->capture_default_str();
-  cmd->add_option("--priority", opt->priority,
+  cmd->add_option("--priority", opt->settings.priority,
                   "distance (default): the fitting spends what the CVT's worst triangle allows on the distance to "
                   "the input; shape: the worst triangles' vertices first move towards their neighbours, which "
                   "raises the worst triangle and leaves the fitting less room on the bends")
       ->check(CLI::IsMember({"distance", "shape"}))
       ->capture_default_str();
-  cmd->add_option("--repair-scope", opt->repair,
+  cmd->add_option("--repair-scope", opt->settings.repair_scope,
                   "whole (default): every repair round re-optimises every sample; local: after two whole rounds, "
                   "a round re-optimises only the samples near the dual's defects, on the part of the surface round "
                   "them (faster where many rounds are needed, with worse triangles where it ends the repair)")
-      ->check(CLI::IsMember({"local", "whole"}))
+      ->check(CLI::IsMember({"whole", "local"}))
       ->capture_default_str();
   cmd->add_flag("--no-fit", opt->no_fit,
                 "Keep the vertices at the CVT samples (default: fit them to the planes of their cells, "
                 "never lowering the CVT's worst triangle)");
   cmd->add_option("-o,--output", opt->output, "Output mesh (.off, .obj, .ply)")->required()->check(path_validator());
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
-  return [opt]() { return run_remesh(*opt); };
+  return [opt]() { return run_remesh_command(*opt); };
 }
 
 Action add_quality_command(CLI::App& app) {
@@ -402,7 +219,7 @@ Action add_quality_command(CLI::App& app) {
   cmd->add_option("mesh", opt->mesh, "The remesh to measure (required; may be non-manifold)")->check(path_validator());
   add_repair_options(cmd, opt->read, "the reference (as for the remesh)");
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
-  return [opt]() { return run_quality(*opt); };
+  return [opt]() { return run_quality_command(*opt); };
 }
 
 }  // namespace lrvd::cli

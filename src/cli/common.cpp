@@ -18,20 +18,13 @@
 #include <unistd.h>
 
 #include "common/error.h"
+#include "common/text.h"
 #include "mesh/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
 namespace lrvd::cli {
 
 namespace {
-
-// A point given with --points that its closest point moves by no more than this fraction of the
-// bounding-box diagonal was on the surface but for rounding.
-constexpr double kRoundingMove = 1e-9;
-
-// The most samples a command takes; the refinement they call for is bounded by
-// kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
-constexpr int kMaxSamples = 5'000'000;
 
 // -n: a whole number; CLI11 alone says "Could not convert: --samples = abc". Zero and negative
 // counts pass here and get their own message with the other sample checks.
@@ -51,10 +44,6 @@ CLI::Validator count_validator() {
 }
 
 }  // namespace
-
-std::string counted(long long count, const char* one, const char* many) {
-  return fmt::format("{} {}", count, count == 1 ? one : many);
-}
 
 CLI::Validator seed_validator() {
   // CLI11 would take "-1" as 2^64 - 1 and clamp a longer number: only decimal digits that fit.
@@ -101,33 +90,6 @@ void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& wha
                               "diagonal long (e.g. 0.05); the other holes are kept",
                               what))
       ->check(fraction_validator());
-}
-
-std::vector<std::string> repair_changes(const RepairReport& r) {
-  std::vector<std::string> changes;
-  const int merged = r.welded_vertices + r.merged_vertices;
-  if (merged > 0)
-    changes.push_back(fmt::format("merged {}{}", counted(merged, "vertex", "vertices"),
-                                  r.welded_vertices > 0 ? fmt::format(" ({} within --weld)", r.welded_vertices)
-                                                        : std::string()));
-  if (r.removed_degenerate_faces > 0)
-    changes.push_back("removed " + counted(r.removed_degenerate_faces, "degenerate face", "degenerate faces"));
-  if (r.removed_internal_faces > 0)
-    changes.push_back("removed " + counted(r.removed_internal_faces, "internal wall face", "internal wall faces"));
-  if (r.removed_duplicate_faces > 0)
-    changes.push_back("removed " + counted(r.removed_duplicate_faces, "duplicate face", "duplicate faces"));
-  if (r.removed_unreferenced_vertices > 0)
-    changes.push_back("removed " +
-                      counted(r.removed_unreferenced_vertices, "unreferenced vertex", "unreferenced vertices"));
-  if (r.reoriented_faces > 0) changes.push_back("reoriented " + counted(r.reoriented_faces, "face", "faces"));
-  if (r.stitched_edges > 0) changes.push_back("stitched " + counted(r.stitched_edges, "edge", "edges"));
-  if (r.split_edges > 0) changes.push_back("split " + counted(r.split_edges, "edge at T-junctions", "edges at T-junctions"));
-  if (r.duplicated_nonmanifold_vertices > 0)
-    changes.push_back("copied " + counted(r.duplicated_nonmanifold_vertices, "non-manifold vertex",
-                                          "non-manifold vertices"));
-  if (r.triangulated_faces > 0)
-    changes.push_back("triangulated " + counted(r.triangulated_faces, "polygon", "polygons"));
-  return changes;
 }
 
 void print_repair(const RepairReport& r, const ReadOptions& read) {
@@ -178,6 +140,7 @@ CLI::Validator path_validator() {
       "PATH");
 }
 
+
 LoadedMesh load_mesh(const InputOptions& opt) {
   LoadedMesh loaded = read_mesh(opt.mesh_path, opt.read);
   // Before any point is located on it: distances of a model outside this range overflow or vanish.
@@ -201,123 +164,28 @@ Input load_input(const InputOptions& opt) {
       throw InputError(fmt::format("{}: {} weights were given for the {} points of {}", opt.weights_path,
                                    points.weights.size(), points.points.size(), opt.points_path));
   }
-  const int n = opt.points_path.empty() ? opt.count : static_cast<int>(points.points.size());
-  if (opt.points_path.empty() && n < 1)
-    throw InputError(opt.count == 0 ? std::string("give a sample count -n >= 1 or a point file --points")
-                                    : fmt::format("give a sample count -n >= 1 or a point file --points (got -n {})", opt.count));
-  if (n > kMaxSamples)
-    throw InputError(fmt::format("{} samples are more than lrvd takes (limit {})", n, kMaxSamples));
-  if (opt.check_count) opt.check_count(input.loaded.mesh, n);
-
-  double length = 0;
-  if (opt.refine == "auto") {
-    length = suggested_refinement_length(input.loaded.mesh, n);
-  } else if (opt.refine != "off") {
-    try {
-      size_t used = 0;
-      length = std::stod(opt.refine, &used);
-      if (used != opt.refine.size() || !(length > 0)) throw std::invalid_argument(opt.refine);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("--refine takes 'auto', 'off' or a positive edge length, not '{}'", opt.refine));
-    }
-  }
-  if (length > 0 && input.loaded.mesh.max_edge_length() > length) {
-    const double expected = expected_refined_triangle_count(input.loaded.mesh, length);
-    if (kRefinedTriangleMargin * expected > kMaxRefinedTriangles)
-      throw InputError(fmt::format("refining to edges of {:.6g} would make about {:.3g} triangles, up to {:.3g} (limit "
-                                   "{:.3g}): use {}",
-                                   length, expected, kRefinedTriangleMargin * expected, kMaxRefinedTriangles,
-                                   opt.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
-    progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
-    input.refined_from = input.loaded.mesh.triangle_count();
-    // The automatic refinement stops far beyond its estimate: there triangles far longer than wide
-    // (a vertex drawn away from the surface) split into many more pieces than their area asks for.
-    const double most = opt.refine == "auto" ? auto_refinement_limit(expected) : kMaxRefinedTriangles;
-    try {
-      input.mesh = refine_long_edges(input.loaded.mesh, length, nullptr, RefineOrder::Input, most);
-    } catch (const RefinementLimitError& e) {
-      if (most < kMaxRefinedTriangles)
-        throw InputError(fmt::format("{}: refining to edges of {:.6g} for {} would make more than {:.3g} triangles, "
-                                     "{:.0f} times the estimate from its area: the mesh has triangles far longer than they are "
-                                     "wide: {}; fix the mesh, or use --refine off",
-                                     opt.mesh_path, length, counted(n, "sample", "samples"), most, most / expected,
-                                     thinnest_long_triangle(input.loaded.mesh, length)));
-      throw InputError(fmt::format("{}: {}: use {}", opt.mesh_path, e.what(),
-                                   opt.refine == "auto" ? "--refine off (a triangle may then hold several samples)"
-                                                        : "a longer --refine length or 'off'"));
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", opt.mesh_path, e.what()));
-    }
-  } else {
-    input.mesh = input.loaded.mesh;
-  }
-
-  if (opt.points_path.empty()) {
-    input.samples = sample_uniform(input.mesh, n, opt.seed);
-    if (!points.weights.empty()) {
-      if (static_cast<int>(points.weights.size()) != n)
-        throw InputError(fmt::format("{}{} weights were given for {} samples",
-                                     opt.weights_path.empty() ? std::string() : opt.weights_path + ": ",
-                                     points.weights.size(), n));
-      input.samples.weights = points.weights;
-    }
-  } else {
-    try {
-      input.samples = locate_points(input.mesh, points.points, points.weights, points.lines);
-    } catch (const InputError& e) {
-      throw InputError(fmt::format("{}: {}", opt.points_path, e.what()));
-    }
-    input.points_given = true;
-    // The diagram is of the moved points: say so when a move is more than rounding (a point
-    // written on a triangle comes back from its closest point a few ulps away).
+  SampleRequest request;
+  request.points_given = !opt.points_path.empty();
+  request.points = std::move(points);
+  request.count = opt.count;
+  request.seed = opt.seed;
+  request.refine = opt.refine;
+  request.mesh_name = opt.mesh_path;
+  request.points_name = opt.points_path;
+  request.weights_name = opt.weights_path;
+  request.check_count = opt.check_count;
+  request.on_progress = progress;
+  prepare_samples(input, request);
+  // The diagram is of the moved points: say so when a move is more than rounding (a point
+  // written on a triangle comes back from its closest point a few ulps away).
+  if (input.points_moved > 0) {
     const double diagonal = input.mesh.bounding_box().diagonal();
-    for (std::size_t i = 0; i < points.points.size(); ++i) {
-      const double move = distance(points.points[i], input.samples.positions[i]);
-      input.points_max_move = std::max(input.points_max_move, move);
-      if (move > kRoundingMove * diagonal) ++input.points_moved;
-    }
-    if (input.points_moved > 0)
-      std::printf("points: %d of %s moved onto the surface, the farthest by %.3g (%.2g of the bounding-box "
-                  "diagonal); the diagram is of the moved points\n",
-                  input.points_moved, counted(static_cast<long long>(points.points.size()), "point", "points").c_str(),
-                  input.points_max_move, input.points_max_move / diagonal);
+    std::printf("points: %d of %s moved onto the surface, the farthest by %.3g (%.2g of the bounding-box "
+                "diagonal); the diagram is of the moved points\n",
+                input.points_moved, counted(input.samples.size(), "point", "points").c_str(), input.points_max_move,
+                input.points_max_move / diagonal);
   }
   return input;
-}
-
-nlohmann::json input_json(const Input& input) {
-  const SurfaceMesh& mesh = input.loaded.mesh;
-  nlohmann::json j = {{"path", ""},
-                      {"vertices", mesh.vertex_count()},
-                      {"triangles", mesh.triangle_count()},
-                      {"area", mesh.area()},
-                      {"bbox_diagonal", mesh.bounding_box().diagonal()},
-                      {"components", mesh.component_count()},
-                      {"closed", mesh.is_closed()},
-                      {"euler_characteristic", mesh.euler_characteristic()}};
-  if (input.refined_from >= 0)
-    j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
-  if (input.repair_requested) j["repair_changes"] = repair_changes(input.loaded.repair);
-  if (!input.loaded.repair.notes.empty()) j["repair"] = input.loaded.repair.notes;
-  if (input.points_given)
-    j["points"] = {{"count", input.samples.size()}, {"moved", input.points_moved}, {"max_move", input.points_max_move}};
-  return j;
-}
-
-nlohmann::json predicates_json() {
-  const PredicateStats s = predicate_stats();
-  return {{"calls", s.total.calls},
-          {"filter_failures", s.total.filter_failures},
-          {"exact", s.total.exact},
-          {"perturbations", s.total.perturbations}};
-}
-
-nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check) {
-  nlohmann::json q = quality.to_json();
-  q["closed_manifold"] = check.manifold.passed && check.closed.passed;
-  q["genus_preserved"] = check.topology.passed;
-  q["self_intersections"] = check.self_intersecting_pairs;
-  return q;
 }
 
 std::vector<ReadFile> read_files(const InputOptions& input) {
@@ -433,11 +301,7 @@ std::string shell_word(const std::string& text) {
 }
 
 void check_diagram_samples(const Input& input, const std::string& kind) {
-  const bool power = is_power(diagram_kind_from_string(kind));
-  if (power && !input.samples.weighted())
-    throw InputError(fmt::format("--diagram {} needs weights: give --weights or a 4th column in --points", kind));
-  if (!power && input.samples.weighted())
-    throw InputError(fmt::format("weights were given but --diagram {} is not a power diagram (use lrpd or rpd)", kind));
+  check_diagram_weights(input.samples, kind);
   if (input.refined_from >= 0)
     progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
 }

@@ -12,6 +12,7 @@
 #include "mesh/mesh_io.h"
 #include "metrics/quality.h"
 #include "verification/remesh_check.h"
+#include "report/report.h"
 #include "voronoi/samples.h"
 
 namespace lrvd::cli {
@@ -30,9 +31,6 @@ struct InputOptions {
   std::function<void(const SurfaceMesh&, int)> check_count;
 };
 
-//! "1 vertex", "3 vertices": a count with its noun in the right number.
-std::string counted(long long count, const char* one, const char* many);
-
 //! A path as a shell reads it back as one word: as it is when it holds only letters, digits and
 //! _ . / + - = : , @ %, else in single quotes (a quote inside as '\'').
 std::string shell_word(const std::string& text);
@@ -42,27 +40,12 @@ std::string shell_word(const std::string& text);
 void add_input_options(CLI::App* cmd, InputOptions& opt, bool allow_count, bool allow_weights = true);
 //! --repair, --weld (which implies --repair) and --fill-holes for the mesh file called `what`.
 void add_repair_options(CLI::App* cmd, ReadOptions& read, const std::string& what = "the mesh");
-//! What --repair changed, as the console's "repair: ..." line lists it ("merged 8 vertices", ...).
-std::vector<std::string> repair_changes(const RepairReport& report);
 //! What --repair, --weld and --fill-holes changed, one "repair: ..." line each (nothing when none is given).
 void print_repair(const RepairReport& report, const ReadOptions& read);
 //! --seed: decimal digits that fit in 64 bits (CLI11 alone wraps "-1" and clamps longer numbers).
 CLI::Validator seed_validator();
 //! Refuses an empty file name (`-o ""`), which would otherwise read as "not given".
 CLI::Validator path_validator();
-
-struct Input {
-  LoadedMesh loaded;          //!< as read (and repaired)
-  bool repair_requested = false;  //!< --repair (or --weld) was given
-  SurfaceMesh mesh;           //!< after refinement
-  int refined_from = -1;      //!< triangle count before refinement, -1 if not refined
-  Samples samples;
-  //! --points: how many points moved onto the surface by more than rounding (1e-9 of the
-  //! bounding-box diagonal), and the farthest move
-  bool points_given = false;
-  int points_moved = 0;
-  double points_max_move = 0;
-};
 
 //! Reads (and with the repair options repairs) the mesh, checks that doubles can measure it and
 //! prints what the repair changed. \throw InputError on any bad input.
@@ -76,11 +59,6 @@ Input load_input(const InputOptions& opt);
 //! line when the mesh was refined. \throw InputError otherwise.
 void check_diagram_samples(const Input& input, const std::string& kind);
 
-nlohmann::json input_json(const Input& input);
-nlohmann::json predicates_json();
-//! The `quality` object of a remesh report: the metrics plus closed_manifold, genus_preserved and
-//! self_intersections from the remesh check.
-nlohmann::json remesh_quality_json(const QualityMetrics& quality, const RemeshVerification& check);
 void write_json(const std::string& path, const nlohmann::json& report);
 //! write_json for a command's --report, after its outputs `written` (empty paths skipped): when the
 //! report cannot be written whole, the regular files among them are removed first (an output

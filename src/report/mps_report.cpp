@@ -1,0 +1,141 @@
+// The sampling the `lrvd mps` command and the Python module share (mps_report.h).
+#include "report/mps_report.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "predicates/predicates.h"
+
+namespace lrvd {
+
+void check_mps_settings(const MpsSettings& settings) {
+  // A radius of the model's size already leaves one sample per sheet; far beyond it, squared
+  // distances overflow.
+  if (!(settings.radius > 0) || !(settings.radius <= kMaxMpsRadius))
+    throw InputError(fmt::format("--radius must be a positive number up to {:g} (relative to the longest bounding-box "
+                                 "side), got {}",
+                                 kMaxMpsRadius, settings.radius));
+  if (settings.max_radius_ratio_given && !settings.adaptive) throw InputError("--max-radius-ratio applies to --adaptive");
+  // The command's parser checks these ranges and names first, in its own words.
+  auto range = [](double value, const char* option, double low, double high) {
+    if (!(value >= low && value <= high)) throw InputError(fmt::format("{} is {:g} to {:g}, not {}", option, low, high, value));
+  };
+  range(settings.max_radius_ratio, "--max-radius-ratio", 1, 100);
+  range(settings.split_factor, "--split-factor", 1, 64);
+  range(settings.feature_angle, "--feature-angle", 1, 179);
+  if (settings.gap_update != "local" && settings.gap_update != "lrpd")
+    throw InputError(fmt::format("--gap-update is local or lrpd, not '{}'", settings.gap_update));
+  if (settings.split_to != "field" && settings.split_to != "rmin")
+    throw InputError(fmt::format("--split-to is field or rmin, not '{}'", settings.split_to));
+}
+
+MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
+               const std::string& mesh_path, const std::string& output_path, bool lrrt,
+               const std::string& remesh_path, const ProgressFn& on_progress,
+               const std::function<void(const Samples&)>& on_samples,
+               const std::function<void(const DualMesh&)>& on_dual) {
+  MpsRun run;
+  MpsOptions& options = run.options;
+  const SurfaceMesh& input = loaded.mesh;
+  options.radius = settings.radius;
+  options.adaptive = settings.adaptive;
+  options.max_radius_ratio = settings.max_radius_ratio;
+  options.seed = settings.seed;
+  options.gap_update = settings.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
+  options.refinement = settings.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
+  if (settings.split_factor_given && options.refinement == MpsRefinement::MinRadius)
+    throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
+  options.split_factor = settings.split_factor;
+  if (settings.feature_angle_given && !settings.features) throw InputError("--feature-angle applies to --features");
+  options.sample_features = settings.features;
+  options.feature_angle = settings.feature_angle;
+  options.on_progress = on_progress;
+  reset_predicate_stats();
+  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
+  // message names the file, as the loader's do.
+  try {
+    run.result = maximal_poisson_disk_sampling(input, options);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", mesh_path, e.what()));
+  }
+  const MpsResult& result = run.result;
+  const Samples& samples = result.samples;
+  if (on_samples) on_samples(samples);
+
+  // The checks start from the samples alone: a new LRPD, new local regions.
+  if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
+  MpsVerifyOptions verify_options;
+  verify_options.exact_maximality = settings.exact;
+  Diagram lrpd;
+  run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
+  const MpsVerification& check = run.check;
+  const bool maximal = run.maximal = check.maximal.passed && check.diagram_covers.passed;
+  const bool min_distance_ok = run.min_distance_ok = check.min_distance.passed;
+
+  nlohmann::json& report = run.report;
+  report["input"] = {{"path", mesh_path},
+                     {"vertices", input.vertex_count()},
+                     {"triangles", input.triangle_count()},
+                     {"area", input.area()},
+                     {"components", input.component_count()},
+                     {"closed", input.is_closed()},
+                     {"euler_characteristic", input.euler_characteristic()},
+                     {"longest_bbox_side", result.scale}};
+  if (repair_requested) report["input"]["repair_changes"] = repair_changes(loaded.repair);
+  if (!loaded.repair.notes.empty()) report["input"]["repair"] = loaded.repair.notes;
+  report["refined"] = {{"triangles", result.mesh.triangle_count()},
+                       {"max_edge_length", result.mesh.max_edge_length()},
+                       {"rule", options.refinement == MpsRefinement::MinRadius ? "r_min" : "radius field"},
+                       {"split_factor", options.refinement == MpsRefinement::MinRadius ? 1.0 : options.split_factor}};
+  report["radius"] = {{"relative", settings.radius},
+                      {"absolute", result.radius},
+                      {"max_absolute", result.max_radius},
+                      {"adaptive", settings.adaptive}};
+  report["seed"] = settings.seed;
+  report["gap_update"] = settings.gap_update;
+  report["samples"] = samples.size();
+  report["features"] = settings.features ? nlohmann::json{{"angle_deg", settings.feature_angle}, {"samples", result.feature_samples}}
+                                     : nlohmann::json(nullptr);
+  report["dart_samples"] = result.dart_samples;
+  report["gap_samples"] = result.gap_samples;
+  report["darts"] = result.darts;
+  report["lrpd_evaluations"] = result.lrpd_evaluations;
+  report["part_lrpd_triangles"] = result.part_lrpd_triangles;
+  report["gap_pieces"] = result.gap_pieces;
+  report["dropped_gap_pieces"] = result.dropped_gap_pieces;
+  report["dust_samples"] = result.dust_samples;
+  report["clamped_radii"] = result.clamped_radii;
+  report["power_cell_exceptions"] = result.power_cell_exceptions;
+  report["gaps_closed"] = result.gaps_closed;
+  report["maximal"] = maximal;
+  report["min_distance_ok"] = min_distance_ok;
+  report["mps_verification"] = check.to_json();
+  report["time_s"] = {{"init", result.time_s.init},
+                      {"dart_throwing", result.time_s.dart_throwing},
+                      {"gap_filling", result.time_s.gap_filling},
+                      {"total", result.time_s.total},
+                      {"verification_lrpd", lrpd.stats.time_s},
+                      {"verification", check.time_s}};
+  report["output"] = output_path;
+
+  run.lrrt = lrrt;
+  if (lrrt) {
+    if (on_progress) on_progress("remeshing: the LRRT of the samples");
+    run.dual = compute_dual(lrpd, result.mesh, samples);
+    const DualMesh& dual = run.dual;
+    if (on_dual) on_dual(dual);
+    run.remesh_check = verify_remesh(input, dual.positions, dual.triangles, samples.size());
+    // An LRRT without triangles (a sample or two on the whole surface) fails the checks and has
+    // nothing to measure.
+    run.measurable = !dual.triangles.empty();
+    if (run.measurable) run.quality = quality_metrics(input, dual.positions, dual.triangles);
+    report["quality"] = run.measurable ? remesh_quality_json(run.quality, run.remesh_check) : nlohmann::json(nullptr);
+    report["verification"] = run.remesh_check.to_json();
+    report["remesh"] = {{"path", remesh_path}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
+  }
+  return run;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,61 @@
+// The maximal Poisson-disk sampling of `lrvd mps` and of the Python module's mps: the sampler, its
+// check on a fresh LRPD, the optional LRRT remesh and the JSON report, one path for both.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "remesh/mps.h"
+#include "report/report.h"
+#include "verification/mps_check.h"
+#include "voronoi/dual.h"
+
+namespace lrvd {
+
+//! The choices of a sampling, as the command's options name them (`*_given`: the option was set).
+struct MpsSettings {
+  double radius = 0;
+  bool adaptive = false;
+  double max_radius_ratio = MpsOptions{}.max_radius_ratio;
+  bool max_radius_ratio_given = false;
+  std::uint64_t seed = 1;
+  std::string gap_update = "local";  //!< local | lrpd
+  std::string split_to = "field";    //!< field | rmin
+  double split_factor = MpsOptions{}.split_factor;
+  bool split_factor_given = false;
+  bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
+  bool features = false;
+  double feature_angle = MpsOptions{}.feature_angle;
+  bool feature_angle_given = false;
+};
+
+//! What can be refused before the mesh is read: the radius, the ranges and names of the options,
+//! --max-radius-ratio without --adaptive. \throw InputError
+void check_mps_settings(const MpsSettings& settings);
+
+struct MpsRun {
+  MpsOptions options;
+  MpsResult result;
+  MpsVerification check;
+  bool maximal = false, min_distance_ok = false;
+  bool lrrt = false;  //!< the LRRT was asked for; then:
+  DualMesh dual;
+  RemeshVerification remesh_check;
+  bool measurable = false;  //!< the LRRT has triangles
+  QualityMetrics quality;
+  nlohmann::json report;  //!< complete but for `predicates`, taken when the caller is done
+};
+
+//! Samples loaded.mesh, `on_samples` with them (to write them), checks them, and with `lrrt`
+//! computes, `on_dual` (to write it), checks and measures their LRRT. The paths go into the report.
+//! \throw InputError for options that contradict each other, or a mesh the sampler refuses.
+MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
+               const std::string& mesh_path, const std::string& output_path, bool lrrt,
+               const std::string& remesh_path, const ProgressFn& on_progress,
+               const std::function<void(const Samples&)>& on_samples,
+               const std::function<void(const DualMesh&)>& on_dual);
+
+}  // namespace lrvd

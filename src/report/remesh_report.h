@@ -1,0 +1,61 @@
+// The remesh of `lrvd remesh` and of the Python module's remesh: the samples' preparation, the CVT,
+// the check, the quality and the JSON report, one path for both.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "remesh/remesh_pipeline.h"
+#include "report/report.h"
+
+namespace lrvd {
+
+//! The choices of a remesh, as the command's options name them.
+struct RemeshSettings {
+  std::string kind = "lrvd";          //!< lrvd | rvd
+  std::string optimizer = "lbfgs";    //!< lbfgs | lloyd
+  std::string density = "uniform";    //!< uniform | curvature
+  std::string priority = "distance";  //!< distance | shape
+  std::string repair_scope = "whole"; //!< whole | local (RemeshOptions::repair)
+  int iterations = 60;
+  bool fit = true;
+};
+
+//! \throw InputError for a power diagram, or a name the options do not know.
+void check_remesh_settings(const RemeshSettings& settings);
+
+//! The holes the kept dual closes over (fewer than three cells meet their loop), the longest's length,
+//! and the smallest --fill-holes fraction of two significant digits above it: tried on the input,
+//! how many of those holes it fills (fill_small_holes leaves some open) and how many other holes.
+struct ClosedOverHoles {
+  int count = 0;
+  double longest = 0;
+  double fraction = 0;
+  int fillable = 0;  //!< of the `count`, filled by --fill-holes `fraction`
+  int others = 0;    //!< other holes it fills
+};
+
+struct RemeshRun {
+  RemeshOptions options;
+  RemeshResult result;
+  RemeshVerification check;
+  bool measurable = false;  //!< the dual has triangles
+  QualityMetrics quality;
+  ClosedOverHoles holes;
+  double diagonal = 0;  //!< of the input's bounding box
+  nlohmann::json report;
+};
+
+//! Remeshes input.loaded.mesh to one vertex per sample of `input` (prepared with
+//! require_remesh_vertex_count as the count check): random samples (`random_samples`) are drawn
+//! again per component when there are several; both are renumbered for the CVT; then remesh_cvt,
+//! `on_dual` with the output (to write it), verify_remesh, the quality and the report, whose output
+//! path is `output_path`. \throw InputError for weighted samples.
+RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_samples, std::uint64_t seed,
+                     const std::string& mesh_path, const std::string& output_path, const ProgressFn& on_progress,
+                     const std::function<void(const DualMesh&)>& on_dual);
+
+}  // namespace lrvd
