@@ -3,6 +3,7 @@
 // polygons and the exact parameters of their vertices along the edge, independently of the
 // diagram's own helpers (cell_components), so a bug there shows up.
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <tuple>
 
@@ -95,7 +96,57 @@ class EdgeChecker {
     });
   }
 
+  // The segments of triangle t's polygons along its edge e, as (lower exact id, higher exact id,
+  // cell, polygon), sorted: no geometry, only the vertex ids.
+  void collect_ids(int t, int e, std::vector<std::array<int, 4>>& out) const {
+    out.clear();
+    const Triangle& tri = mesh_.triangle(t);
+    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
+    auto on_edge = [&](const SymbolicVertex& q) {
+      return q.type == SymbolicVertex::Type::A ? q.v[0] == a || q.v[0] == b
+                                               : q.type == SymbolicVertex::Type::B && q.v[0] == lo && q.v[1] == hi;
+    };
+    for (int p = diagram_.triangle_offsets[t]; p < diagram_.triangle_offsets[t + 1]; ++p) {
+      if (!polygon_ok_[p]) continue;
+      const CellPolygon& poly = diagram_.polygons[p];
+      const SymbolicVertex* verts = diagram_.polygon_vertices(poly);
+      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const int k1 = (k + 1) % poly.vertex_count;
+        if (on_edge(verts[k]) && on_edge(verts[k1]))
+          out.push_back({std::min(ids[k], ids[k1]), std::max(ids[k], ids[k1]), poly.cell, p});
+      }
+    }
+    std::sort(out.begin(), out.end());
+  }
+
+  // Both sides have the same segments, by their ends' exact vertex ids and their cells: then they
+  // split the edge alike, (6) holds, and for (2) each segment of positive length joins its twin's
+  // polygon. (A join the full comparison below would add besides, between segments of one cell
+  // overlapping but not twins, needs two polygons of one side overlapping along the edge, which
+  // (4) reports: without it (2) can only find more pieces, never fewer.)
+  bool same_ids(int t, int e, int across, int e_across, int lo) {
+    collect_ids(t, e, mine_ids_);
+    collect_ids(across, e_across, theirs_ids_);
+    if (mine_ids_.size() != theirs_ids_.size()) return false;
+    for (std::size_t k = 0; k < mine_ids_.size(); ++k)
+      for (int c = 0; c < 3; ++c)
+        if (mine_ids_[k][c] != theirs_ids_[k][c]) return false;
+    ++conforming_.checked;
+    for (std::size_t k = 0; k < mine_ids_.size(); ++k) {
+      const auto& [from, to, cell, p] = mine_ids_[k];
+      const int q = theirs_ids_[k][3];
+      if (piece_[p] && piece_[q] && compare(parameter(from, lo), parameter(to, lo)) != Sign::Zero)
+        joins_.emplace_back(p, q);
+    }
+    return true;
+  }
+
   void check_edge(int t, int e, int across, int e_across) {
+    {
+      const Triangle& tri = mesh_.triangle(t);
+      if (same_ids(t, e, across, e_across, std::min(tri[e], tri[(e + 1) % 3]))) return;
+    }
     collect(t, e, mine_);
     collect(across, e_across, theirs_);
     const Triangle& tri = mesh_.triangle(t);
@@ -163,6 +214,7 @@ class EdgeChecker {
   PropertyResult& conforming_;
   std::vector<std::pair<int, int>>& joins_;
   std::vector<Segment> mine_, theirs_;
+  std::vector<std::array<int, 4>> mine_ids_, theirs_ids_;
 };
 
 // (2) from the polygons joined along mesh edges (union-find over `parent`).
