@@ -324,6 +324,10 @@ class DiagramChecker {
       }
       if (!inside) return fmt::format("has vertex {} outside the triangle", describe(q));
     }
+    if (strictly_convex(fv, n, f)) {
+      area_sign_[p] = Sign::Positive;
+      return {};
+    }
     bool strictly_left = false;
     for (int k = 0; k < n; ++k) {
       const int k1 = (k + 1) % n;
@@ -339,6 +343,28 @@ class DiagramChecker {
     }
     area_sign_[p] = strictly_left ? Sign::Positive : Sign::Zero;
     return {};
+  }
+
+  // Whether the interval filters alone show the polygon strictly convex and counterclockwise:
+  // every turn strictly left, and its edges' directions turning once around (two changes of the
+  // sign of their v component, each decided; a turn is less than a half turn, so the directions
+  // cross v = 0 twice per round). Such a polygon has every vertex strictly left of every edge it
+  // does not end, which is what polygon_problem checks; false leaves the decision to that check.
+  // \pre the rounding mode is upward.
+  static bool strictly_convex(const FrameVertex* fv, int n, const Frame& f) {
+    int changes = 0;
+    Sign previous = filtered_sign(fv[0].v - fv[n - 1].v);
+    if (previous == Sign::Zero) return false;
+    for (int k = 0; k < n; ++k) {
+      const FrameVertex &a = fv[(k + n - 1) % n], &b = fv[k], &c = fv[(k + 1) % n];
+      const Sign turn = filtered_sign((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u));
+      if (turn == Sign::Zero || (f.sign > 0) != (turn == Sign::Positive)) return false;
+      const Sign direction = filtered_sign(c.v - b.v);
+      if (direction == Sign::Zero) return false;
+      changes += direction != previous;
+      previous = direction;
+    }
+    return changes == 2;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
