@@ -120,7 +120,9 @@ struct Checked {
     for (size_t k = 0; k < d.vertices.size(); ++k) {
       const SymbolicVertex& q = d.vertices[k];
       if (!well_formed(q, mesh.vertex_count(), n)) continue;
-      const bool corner = q.type == SymbolicVertex::Type::A && q == SymbolicVertex::mesh_vertex(q.v[0]);
+      // Equal to SymbolicVertex::mesh_vertex(q.v[0]), field by field (no call, no memcmp).
+      const bool corner = q.type == SymbolicVertex::Type::A && q.v[1] == -1 && q.v[2] == -1 && q.label[0] == -1 &&
+                          q.label[1] == -1 && q.label[2] == -1;
       vertices.of_diagram_vertex[k] = corner ? mesh_vertex[q.v[0]] : vertices.exact.add(q);
     }
     vertices.exact.make_points();
