@@ -58,9 +58,10 @@ class EdgeChecker {
     return EdgePosition::of(id, vertices_.exact.symbolic(id), vertices_.exact[id], lo);
   }
 
-  // The segments of triangle t's polygons along its edge e, sorted from lo to hi.
-  void collect(int t, int e, std::vector<Segment>& out) const {
-    out.clear();
+  // visit(from, to, cell, polygon) for each edge of triangle t's usable polygons along the
+  // triangle's edge e (from, to: its ends' exact vertex ids, in the polygon's order).
+  template <class Visit>
+  void for_each_segment(int t, int e, Visit visit) const {
     const Triangle& tri = mesh_.triangle(t);
     const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
     // As SymbolicVertex::on_mesh_edge(a, b), inline.
@@ -75,18 +76,27 @@ class EdgeChecker {
       const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = (k + 1) % poly.vertex_count;
-        if (!on_edge(verts[k]) || !on_edge(verts[k1])) continue;
-        Segment s{ids[k], ids[k1], parameter(ids[k], lo), parameter(ids[k1], lo), poly.cell, p};
-        // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
-        const Sign order = compare(s.s1, s.s0);
-        if (order == Sign::Negative ||
-            (order == Sign::Zero && symbolic_less(vertices_.exact.symbolic(s.end), vertices_.exact.symbolic(s.start)))) {
-          std::swap(s.start, s.end);
-          std::swap(s.s0, s.s1);
-        }
-        out.push_back(s);
+        if (on_edge(verts[k]) && on_edge(verts[k1])) visit(ids[k], ids[k1], poly.cell, p);
       }
     }
+  }
+
+  // The segments of triangle t's polygons along its edge e, sorted from lo to hi.
+  void collect(int t, int e, std::vector<Segment>& out) const {
+    out.clear();
+    const Triangle& tri = mesh_.triangle(t);
+    const int lo = std::min(tri[e], tri[(e + 1) % 3]);
+    for_each_segment(t, e, [&](int from, int to, int cell, int p) {
+      Segment s{from, to, parameter(from, lo), parameter(to, lo), cell, p};
+      // Zero-length segments (degenerate input) are ordered by identity, alike from both sides.
+      const Sign order = compare(s.s1, s.s0);
+      if (order == Sign::Negative ||
+          (order == Sign::Zero && symbolic_less(vertices_.exact.symbolic(s.end), vertices_.exact.symbolic(s.start)))) {
+        std::swap(s.start, s.end);
+        std::swap(s.s0, s.s1);
+      }
+      out.push_back(s);
+    });
     std::sort(out.begin(), out.end(), [&](const Segment& x, const Segment& y) {
       if (const Sign c = compare(x.s0, y.s0); c != Sign::Zero) return c == Sign::Negative;
       if (const Sign c = compare(x.s1, y.s1); c != Sign::Zero) return c == Sign::Negative;
@@ -100,23 +110,9 @@ class EdgeChecker {
   // cell, polygon), sorted: no geometry, only the vertex ids.
   void collect_ids(int t, int e, std::vector<std::array<int, 4>>& out) const {
     out.clear();
-    const Triangle& tri = mesh_.triangle(t);
-    const int a = tri[e], b = tri[(e + 1) % 3], lo = std::min(a, b), hi = std::max(a, b);
-    auto on_edge = [&](const SymbolicVertex& q) {
-      return q.type == SymbolicVertex::Type::A ? q.v[0] == a || q.v[0] == b
-                                               : q.type == SymbolicVertex::Type::B && q.v[0] == lo && q.v[1] == hi;
-    };
-    for (int p = diagram_.triangle_offsets[t]; p < diagram_.triangle_offsets[t + 1]; ++p) {
-      if (!polygon_ok_[p]) continue;
-      const CellPolygon& poly = diagram_.polygons[p];
-      const SymbolicVertex* verts = diagram_.polygon_vertices(poly);
-      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
-      for (int k = 0; k < poly.vertex_count; ++k) {
-        const int k1 = (k + 1) % poly.vertex_count;
-        if (on_edge(verts[k]) && on_edge(verts[k1]))
-          out.push_back({std::min(ids[k], ids[k1]), std::max(ids[k], ids[k1]), poly.cell, p});
-      }
-    }
+    for_each_segment(t, e, [&](int from, int to, int cell, int p) {
+      out.push_back({std::min(from, to), std::max(from, to), cell, p});
+    });
     std::sort(out.begin(), out.end());
   }
 
