@@ -802,6 +802,26 @@ TEST_CASE("Mutation: two vertices of a polygon swapped make it non-convex and br
   CHECK(v.equidistant.passed);  // the same vertices
 }
 
+TEST_CASE("Mutation: a polygon read as a pentagram turns left at every vertex but is caught as non-convex",
+          "[verification][mutation]") {
+  Case c = valid_lrvd();
+  Diagram& d = c.diagram;
+  // A pentagon a b c d e read as a c e b d: every turn has the pentagon's sign, but the edges wind
+  // twice around, so a vertex lies right of some edge.
+  int target = -1;
+  for (int p = 0; p < static_cast<int>(d.polygons.size()) && target < 0; ++p)
+    if (d.polygons[p].vertex_count == 5) target = p;
+  REQUIRE(target >= 0);
+  const CellPolygon poly = d.polygons[target];
+  const std::vector<SymbolicVertex> was(d.vertices.begin() + poly.first_vertex,
+                                        d.vertices.begin() + poly.first_vertex + 5);
+  for (int k = 0; k < 5; ++k) d.vertices[poly.first_vertex + k] = was[(2 * k) % 5];
+  const DiagramVerification v = verify_diagram(c.mesh, c.samples, d);
+  require_only_broken(v, v.disjoint,
+                      fmt::format("triangle {}: polygon of cell {} is not convex and counterclockwise", poly.triangle, poly.cell));
+  CHECK(v.equidistant.passed);  // the same vertices
+}
+
 TEST_CASE("Mutation: a sample on no triangle or outside its triangle breaks sample_in_cell", "[verification][mutation]") {
   const int sample = 4;
   SECTION("no triangle") {

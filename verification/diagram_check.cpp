@@ -120,7 +120,9 @@ struct Checked {
     for (size_t k = 0; k < d.vertices.size(); ++k) {
       const SymbolicVertex& q = d.vertices[k];
       if (!well_formed(q, mesh.vertex_count(), n)) continue;
-      const bool corner = q.type == SymbolicVertex::Type::A && q == SymbolicVertex::mesh_vertex(q.v[0]);
+      // Equal to SymbolicVertex::mesh_vertex(q.v[0]), field by field (no call, no memcmp).
+      const bool corner = q.type == SymbolicVertex::Type::A && q.v[1] == -1 && q.v[2] == -1 && q.label[0] == -1 &&
+                          q.label[1] == -1 && q.label[2] == -1;
       vertices.of_diagram_vertex[k] = corner ? mesh_vertex[q.v[0]] : vertices.exact.add(q);
     }
     vertices.exact.make_points();
@@ -324,6 +326,10 @@ class DiagramChecker {
       }
       if (!inside) return fmt::format("has vertex {} outside the triangle", describe(q));
     }
+    if (strictly_convex(fv, n, f)) {
+      area_sign_[p] = Sign::Positive;
+      return {};
+    }
     bool strictly_left = false;
     for (int k = 0; k < n; ++k) {
       const int k1 = (k + 1) % n;
@@ -339,6 +345,28 @@ class DiagramChecker {
     }
     area_sign_[p] = strictly_left ? Sign::Positive : Sign::Zero;
     return {};
+  }
+
+  // Whether the interval filters alone show the polygon strictly convex and counterclockwise:
+  // every turn strictly left, and its edges' directions turning once around (two changes of the
+  // sign of their v component, each decided; a turn is less than a half turn, so the directions
+  // cross v = 0 twice per round). Such a polygon has every vertex strictly left of every edge it
+  // does not end, which is what polygon_problem checks; false leaves the decision to that check.
+  // \pre the rounding mode is upward.
+  static bool strictly_convex(const FrameVertex* fv, int n, const Frame& f) {
+    int changes = 0;
+    Sign previous = filtered_sign(fv[0].v - fv[n - 1].v);
+    if (previous == Sign::Zero) return false;
+    for (int k = 0; k < n; ++k) {
+      const FrameVertex &a = fv[(k + n - 1) % n], &b = fv[k], &c = fv[(k + 1) % n];
+      const Sign turn = filtered_sign((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u));
+      if (turn == Sign::Zero || (f.sign > 0) != (turn == Sign::Positive)) return false;
+      const Sign direction = filtered_sign(c.v - b.v);
+      if (direction == Sign::Zero) return false;
+      changes += direction != previous;
+      previous = direction;
+    }
+    return changes == 2;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.

@@ -156,17 +156,14 @@ Sign orient_exact(const ExactVertex& a, const ExactVertex& b, const ExactVertex&
 std::uint8_t edges_of(const SymbolicVertex& q, const Triangle& tri) {
   // As SymbolicVertex::on_mesh_edge(tri[e], tri[e + 1]) for each e: a corner is on the two edges
   // through it, a type B vertex on the edge it names.
-  std::uint8_t edges = 0;
-  if (q.type == SymbolicVertex::Type::A) {
-    for (int c = 0; c < 3; ++c)
-      if (q.v[0] == tri[c]) edges |= static_cast<std::uint8_t>((1 << c) | (1 << ((c + 2) % 3)));
-  } else if (q.type == SymbolicVertex::Type::B) {
-    for (int e = 0; e < 3; ++e) {
-      const int a = tri[e], b = tri[(e + 1) % 3];
-      if (q.v[0] == std::min(a, b) && q.v[1] == std::max(a, b)) edges |= static_cast<std::uint8_t>(1 << e);
-    }
-  }
-  return edges;
+  if (q.type == SymbolicVertex::Type::C) return 0;
+  auto corner = [&](int v) { return v == tri[0] ? 0 : (v == tri[1] ? 1 : (v == tri[2] ? 2 : -1)); };
+  const int a = corner(q.v[0]);
+  if (a < 0) return 0;
+  if (q.type == SymbolicVertex::Type::A) return static_cast<std::uint8_t>((1 << a) | (1 << ((a + 2) % 3)));
+  const int b = corner(q.v[1]);
+  if (b < 0 || a == b || q.v[0] > q.v[1]) return 0;  // edge e runs from corner e to corner e + 1
+  return static_cast<std::uint8_t>(1 << (b == (a + 1) % 3 ? a : b));
 }
 
 Q twice_area(const std::vector<const ExactVertex*>& polygon, const Frame& f) {
