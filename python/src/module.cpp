@@ -155,13 +155,14 @@ void write_mesh_py(const std::string& path, const py::object& V, const py::objec
 
 py::tuple remesh(const py::object& V, const py::object& F, const py::object& n, const py::object& seed,
                  const std::string& diagram, const std::string& optimizer, const std::string& density,
-                 const std::string& priority, int iterations, bool fit, const std::string& refine,
-                 const py::object& threads) {
+                 const std::string& priority, const std::string& repair_scope, int iterations, bool fit,
+                 const std::string& refine, const py::object& threads) {
   RemeshSettings settings;
   settings.kind = diagram;
   settings.optimizer = optimizer;
   settings.density = density;
   settings.priority = priority;
+  settings.repair_scope = repair_scope;
   settings.iterations = iterations;
   settings.fit = fit;
   check_remesh_settings(settings);
@@ -296,7 +297,7 @@ PYBIND11_MODULE(lrvd, m) {
         "The diagram of `points` (k, 3) or of `n` random samples: a Diagram");
   m.def("remesh", &remesh, py::arg("V"), py::arg("F"), py::arg("n"), py::arg("seed") = 1, py::arg("diagram") = "lrvd",
         py::arg("optimizer") = "lbfgs", py::arg("density") = "uniform", py::arg("priority") = "distance",
-        py::arg("iterations") = 60, py::arg("fit") = true, py::arg("refine") = "auto", py::arg("threads") = py::none(),
+        py::arg("repair_scope") = "whole", py::arg("iterations") = 60, py::arg("fit") = true, py::arg("refine") = "auto", py::arg("threads") = py::none(),
         "CVT remesh to exactly n vertices: (V2, F2, report)");
   m.def("mps", &mps, py::arg("V"), py::arg("F"), py::arg("radius"), py::arg("adaptive") = false,
         py::arg("max_radius_ratio") = py::none(), py::arg("seed") = 1, py::arg("gap_update") = "local",

@@ -125,6 +125,8 @@ def test_bad_arguments(cube):
         lrvd.compute(V, F, n=5, refine="fine")
     with pytest.raises(ValueError, match="--optimizer"):
         lrvd.remesh(V, F, 10, optimizer="newton")
+    with pytest.raises(ValueError, match="--repair-scope"):
+        lrvd.remesh(V, F, 10, repair_scope="global")
     with pytest.raises(ValueError, match="remesh uses a Voronoi diagram"):
         lrvd.remesh(V, F, 10, diagram="lrpd")
     with pytest.raises(ValueError, match="unknown"):
