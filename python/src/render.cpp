@@ -31,12 +31,7 @@ RenderOptions view_options(const std::pair<int, int>& size, const std::pair<doub
                                  view.second));
   if (!(o.elevation >= -90 && o.elevation <= 90))
     throw InputError(fmt::format("--view: the elevation is -90 to 90 degrees, not {}", o.elevation));
-  const bool negative = !up.empty() && up[0] == '-';
-  const std::string axis = negative ? up.substr(1) : up;
-  if (axis != "x" && axis != "y" && axis != "z")
-    throw InputError(fmt::format("--up takes x, y, z, -x, -y or -z, not '{}'", up));
-  o.up_axis = axis[0] - 'x';
-  o.up_negative = negative;
+  set_up_axis(up, o);
   o.edges = edges;
   return o;
 }

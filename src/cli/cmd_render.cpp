@@ -49,15 +49,6 @@ void parse_view(const std::string& text, RenderOptions& o) {
     throw InputError(fmt::format("--view: the elevation is -90 to 90 degrees, not {}", o.elevation));
 }
 
-void parse_up(const std::string& text, RenderOptions& o) {
-  const bool negative = !text.empty() && text[0] == '-';
-  const std::string axis = negative ? text.substr(1) : text;
-  if (axis != "x" && axis != "y" && axis != "z")
-    throw InputError(fmt::format("--up takes x, y, z, -x, -y or -z, not '{}'", text));
-  o.up_axis = axis[0] - 'x';
-  o.up_negative = negative;
-}
-
 // Options that only mean something for a diagram, refused without samples rather than dropped.
 void refuse_diagram_options_without_samples(const CLI::App& cmd) {
   if (cmd.count("--samples") > 0)
@@ -73,7 +64,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
   RenderOptions view;
   parse_size(opt.size, view);
   parse_view(opt.view, view);
-  parse_up(opt.up, view);
+  set_up_axis(opt.up, view);
   view.edges = opt.edges;
   const DiagramKind kind = diagram_kind_from_string(opt.kind);
   check_outputs({{opt.output, "-o", {".png"}}}, read_files(opt.input));

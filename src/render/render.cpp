@@ -99,6 +99,15 @@ bool share_vertex(const std::array<int, 3>& a, const std::array<int, 3>& b) {
 
 }  // namespace
 
+void set_up_axis(const std::string& text, RenderOptions& options) {
+  const bool negative = !text.empty() && text[0] == '-';
+  const std::string axis = negative ? text.substr(1) : text;
+  if (axis != "x" && axis != "y" && axis != "z")
+    throw InputError(fmt::format("--up takes x, y, z, -x, -y or -z, not '{}'", text));
+  options.up_axis = axis[0] - 'x';
+  options.up_negative = negative;
+}
+
 Image render(const RenderScene& scene, const RenderOptions& options) {
   check_options(options);
   check_render_scene(scene);

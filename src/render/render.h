@@ -49,6 +49,10 @@ struct RenderOptions {
                                  //!< at 24 M samples at most
 };
 
+//! Sets RenderOptions::up_axis and up_negative from "x", "y", "z", "-x", "-y" or "-z" (`--up`).
+//! \throw InputError on any other text.
+void set_up_axis(const std::string& text, RenderOptions& options);
+
 //! An 8-bit RGB picture, rows from the top.
 struct Image {
   int width = 0, height = 0;
