@@ -40,7 +40,7 @@ struct DiagramStats {
   int clipped_triangles = 0;     //!< triangle clippings (a triangle clipped again counts again)
   int connectivity_rounds = 0;   //!< LRVD: rounds that removed stray cell pieces
   int forbidden_labels = 0;      //!< LRVD: (triangle, cell) pairs forbidden to restore connectivity
-  int pinned_labels = 0;         //!< LRVD: forbidden pairs let back in for good, the cell's own
+  int pinned_labels = 0;         //!< LRVD: forbidden pairs let back in, the cell's own
                                  //!< triangle having grown onto that triangle's edge
 };
 

@@ -65,7 +65,8 @@ struct VertexClaim {
 // forbade or pinned, and unpacked vertices (more candidates than the clipper packs).
 struct TriangleExtras {
   std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
-  std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted; never removed
+  std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted
+  std::vector<int> unpinned;   // pinned cells removed again as stray pieces, sorted; pinned for good when let back in
   std::vector<SymbolicVertex> wide;  // instead of the packed vertices
 };
 
@@ -97,6 +98,7 @@ struct TrianglePolygons {
     if (extras) {
       extras->forbidden.clear();
       extras->pinned.clear();
+      extras->unpinned.clear();
       extras->wide.clear();
     }
   }
@@ -437,9 +439,10 @@ class LrvdBuilder {
   // triangle, a triangle k is pinned to, or t's only cell) means k reaches the edge of a triangle
   // it was forbidden in -- two cells with stray pieces in each other's triangles, both forbidden,
   // grow there. k is let back into that triangle and pinned to it: the triangle across now
-  // holds k's piece that continues t's over the shared edge, and no later rule takes it out
-  // again. A (triangle, cell) pair only ever goes free -> forbidden -> pinned, so this happens at
-  // most once per pair and the rounds terminate. Returns whether a cell was let back in.
+  // holds k's piece that continues t's over the shared edge, and only forbid_stray_pieces takes
+  // it out again, once. A (triangle, cell) pair goes free -> forbidden -> pinned -> forbidden ->
+  // pinned at most, so this happens at most twice per pair and the rounds terminate. Returns
+  // whether a cell was let back in.
   bool settle_stuck_conflicts() {
     std::sort(stuck_.begin(), stuck_.end());
     stuck_.erase(std::unique(stuck_.begin(), stuck_.end()), stuck_.end());
@@ -513,7 +516,13 @@ class LrvdBuilder {
       for (size_t a = begin; a < end; ++a) {
         const int t = stray[a].second;
         TrianglePolygons& st = state_[t];
-        if (st.pins(k)) continue;
+        if (st.pins(k)) {
+          // A piece let back in that became stray since (a third cell's piece came back between
+          // it and k's sample) is taken out once more; let back in again, it stays.
+          if (contains(st.extras->unpinned, k)) continue;
+          erase_sorted(st.extras->pinned, k);
+          insert_sorted(st.extras->unpinned, k);
+        }
         if (!remove_label(t, k)) continue;
         insert_sorted(st.extra().forbidden, k);
         ++stats_.forbidden_labels;
