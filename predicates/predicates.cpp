@@ -374,13 +374,23 @@ Sign side1_unperturbed(const Site& i, const Site& l, const Vec3& q, bool inputs_
   return side1_unperturbed_counted(local_counters(), i, l, q, inputs_in_range);
 }
 
+void add_calls(CallTally& tally) {
+  ThreadCounters& c = local_counters();
+  std::atomic<std::uint64_t>& s1 = c.value[kSide1][kCalls];
+  std::atomic<std::uint64_t>& s2 = c.value[kSide2][kCalls];
+  s1.store(s1.load(std::memory_order_relaxed) + tally.side1, std::memory_order_relaxed);
+  s2.store(s2.load(std::memory_order_relaxed) + tally.side2, std::memory_order_relaxed);
+  tally = CallTally{};
+}
+
 Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
-           const BoundedPowerDistance& dl) {
+           const BoundedPowerDistance& dl, CallTally* tally) {
   // |r - (d_l - d_i)| <= e_i + e_l + u |d~_l - d~_i| <= e_i + e_l + u |r| / (1 - u): a margin of
   // 2^-40 on the rounded sum of the bounds covers the last term and the sum's own rounding.
   const double r = dl.value - di.value;
   if (std::fabs(r) > (di.error + dl.error) * (1 + 0x1p-40)) {
-    bump(local_counters(), kSide1, kCalls);
+    if (tally) ++tally->side1;
+    else bump(local_counters(), kSide1, kCalls);
     return r > 0 ? Sign::Positive : Sign::Negative;
   }
   return side1(i, l, q, true);
@@ -388,7 +398,8 @@ Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistan
 
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            const BoundedPowerDistance& i1, const BoundedPowerDistance& j1, const BoundedPowerDistance& l1,
-           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2) {
+           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2,
+           CallTally* tally) {
   // Each value with a bound on its distance to the exact one (docs/algorithms/predicates.md, "Shared power
   // distances"): a difference adds 2u of its rounded value, a product |a| e_b + (|b| + e_b) e_a
   // and 2u of itself; 2^-1000 covers every underflow. The bounds themselves are rounded: the
@@ -405,7 +416,8 @@ Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Ve
                     (std::fabs(F2) + eF2) * eG1 + u2 * (std::fabs(P) + std::fabs(Q) + std::fabs(N)) + 0x1p-1000;
   constexpr double margin = 1 + 0x1p-40;
   if (std::fabs(N) > eN * margin && std::fabs(den) > eden * margin) {
-    bump(local_counters(), kSide2, kCalls);
+    if (tally) ++tally->side2;
+    else bump(local_counters(), kSide2, kCalls);
     // side2 is sign(-f_il(q)), f_il(q) (F1 - F2) = N.
     return (N > 0) == (den > 0) ? Sign::Negative : Sign::Positive;
   }

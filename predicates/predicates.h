@@ -107,21 +107,34 @@ inline bool ball_clear_of_bisector(const Site& i, const Site& l, double reach2) 
   return d.value - 2 * d.error > 4 * reach2;
 }
 
+//! Calls of the two overloads below that doubles decided, counted by their caller: one that makes
+//! many calls in a row (the clipper, per triangle) passes a tally and adds it to the thread's
+//! counters once (add_calls), instead of each call looking up the thread's counters -- a
+//! thread-local look-up, which in a module loaded at run time (the Python module) is a call to
+//! __tls_get_addr (3 % of a remesh's instructions there).
+struct CallTally {
+  std::uint64_t side1 = 0, side2 = 0;
+};
+//! Adds the tally to the calling thread's counters and zeroes it.
+void add_calls(CallTally& tally);
+
 //! side1(i, l, q, true) from q's bounded power distances to i and to l: the same answer, decided in
 //! doubles when the distances differ by more than their error bounds, else by side1 itself (and
-//! counted as one side1 call either way).
+//! counted as one side1 call either way: in `tally` when given and doubles decided).
 //! \pre i, l and q are in the filter range; di and dl are bounded_power_distance(i, q) and (l, q).
 Sign side1(const Site& i, const Site& l, const Vec3& q, const BoundedPowerDistance& di,
-           const BoundedPowerDistance& dl);
+           const BoundedPowerDistance& dl, CallTally* tally = nullptr);
 
 //! side2(i, j, l, q1, q2, true) from the bounded power distances of q1 and q2 to i, j and l (the
 //! corners of a triangle's edge): the same answer, decided in doubles when the signs of
 //! F1·G2 − G1·F2 and F1 − F2 (F_r = d_i(q_r) − d_j(q_r), G_r = d_i(q_r) − d_l(q_r)) exceed their
-//! error bounds, else by side2 itself (and counted as one side2 call either way).
+//! error bounds, else by side2 itself (and counted as one side2 call either way: in `tally` when
+//! given and doubles decided).
 //! \pre i, j, l, q1 and q2 are in the filter range; i1 = bounded_power_distance(i, q1), and so on.
 Sign side2(const Site& i, const Site& j, const Site& l, const Vec3& q1, const Vec3& q2,
            const BoundedPowerDistance& i1, const BoundedPowerDistance& j1, const BoundedPowerDistance& l1,
-           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2);
+           const BoundedPowerDistance& i2, const BoundedPowerDistance& j2, const BoundedPowerDistance& l2,
+           CallTally* tally = nullptr);
 
 //! Type (b): q is the point of line (q1,q2) on bisector(i,j).
 //! \pre (q1 - q2).(p_j - p_i) != 0 (the vertex exists); otherwise returns Zero.

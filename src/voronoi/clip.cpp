@@ -117,7 +117,7 @@ inline const predicates::BoundedPowerDistance& CellClipper::corner_distance(int 
 // context's inputs are in the filters' range (the same answer, fewer operations), else directly.
 inline Sign CellClipper::corner_side(int c, int k, int l) {
   if (!in_range_) return predicates::side1(*site_[k], *site_[l], *corner_[c], false);
-  return predicates::side1(*site_[k], *site_[l], *corner_[c], corner_distance(k, c), corner_distance(l, c));
+  return predicates::side1(*site_[k], *site_[l], *corner_[c], corner_distance(k, c), corner_distance(l, c), &tally_);
 }
 
 // side(q; k, l) of corner c, by side1, stored for (k, l) and (l, k).
@@ -140,7 +140,7 @@ Sign CellClipper::evaluate_vertex(const LocalVertex& q, int k, int l) {
       const int c1 = (*triangle_)[c] == edge_lo_[c] ? c : next, c2 = c1 == c ? next : c;
       r = predicates::side2(*site_[k], *site_[other], *site_[l], q1, q2, corner_distance(k, c1),
                             corner_distance(other, c1), corner_distance(l, c1), corner_distance(k, c2),
-                            corner_distance(other, c2), corner_distance(l, c2));
+                            corner_distance(other, c2), corner_distance(l, c2), &tally_);
     } else {
       r = predicates::side2(*site_[k], *site_[other], *site_[l], q1, q2, false);
     }
@@ -319,6 +319,13 @@ void CellClipper::clip_many(const std::array<int, 3>& tri, int k, const int* lab
 void CellClipper::clip(const SurfaceMesh& mesh, int t, const int* labels, int m, const SymbolicContext& ctx,
                        std::vector<TrianglePolygon>& polygons, std::vector<PackedVertex>& verts,
                        std::vector<SymbolicVertex>& wide) {
+  // The calls the doubles decided are counted here and go to the thread's counters once.
+  struct AddCalls {
+    predicates::CallTally& tally;
+    ~AddCalls() {
+      if (tally.side1 != 0 || tally.side2 != 0) predicates::add_calls(tally);
+    }
+  } add_calls{tally_};
   const Triangle& tri = mesh.triangle(t);
   if (m == 1) {  // the whole triangle: no vertices
     polygons.push_back({labels[0], static_cast<int>(verts.size()), 7, 7});

@@ -179,6 +179,7 @@ class CellClipper {
   // distances shared between the cell pairs of the triangle).
   predicates::BoundedPowerDistance corner_distance_[3 * kMaxLabels];
   std::uint64_t corner_distance_known_ = 0;
+  predicates::CallTally tally_;  // side1 and side2 calls decided in doubles, added to the counters per clip()
   std::vector<std::uint32_t> edge_sign_, inner_sign_;
   std::uint32_t epoch_ = 0;
   LocalPolygon polygon_, scratch_;

@@ -254,8 +254,16 @@ class LrvdBuilder {
   // Clips triangle t by its candidates into its polygons. Reads only t's labels and writes only
   // t's polygons (the buffers belong to the thread), so triangles can be clipped in parallel.
   void clip(int t) const {
-    thread_local CellClipper clipper;
-    thread_local std::vector<TrianglePolygon> polygons;
+    // One thread-local record, looked up once per clipping (in a module loaded at run time, each
+    // thread-local is a call to __tls_get_addr).
+    struct Scratch {
+      CellClipper clipper;
+      std::vector<TrianglePolygon> polygons;
+      std::vector<SymbolicVertex> unused;  // the clipper writes no unpacked vertex then
+    };
+    thread_local Scratch scratch;
+    CellClipper& clipper = scratch.clipper;
+    std::vector<TrianglePolygon>& polygons = scratch.polygons;
     TrianglePolygons& st = state_[t];
     st.verts.clear();
     if (st.extras) st.extras->wide.clear();
@@ -264,10 +272,9 @@ class LrvdBuilder {
     const int m = static_cast<int>(st.labels.size());
     if (m > 1) st.verts.reserve(4 * m + 4);
     polygons.clear();
-    thread_local std::vector<SymbolicVertex> unused;  // the clipper writes no unpacked vertex then
     const std::uint64_t ties = thread_perturbations();
     clipper.clip(mesh_, t, st.labels.data(), m, ctx_, polygons, st.verts,
-                 m > CellClipper::kMaxLabels ? st.extra().wide : unused);
+                 m > CellClipper::kMaxLabels ? st.extra().wide : scratch.unused);
     st.polygons.assign(polygons.begin(), polygons.end());
     if (thread_perturbations() != ties) edges_in_the_limit(t);
     clipped_[t] = 1;
