@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

@@ -16,10 +16,10 @@
 #include <tbb/parallel_invoke.h>
 
 #include "common/error.h"
+#include "diagram/clip.h"
 #include "mesh/closest_point.h"
 #include "predicates/exact.h"
 #include "verification/diagram_geometry.h"
-#include "voronoi/clip.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {

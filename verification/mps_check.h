@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
 
 namespace lrvd {
 

@@ -13,6 +13,7 @@
 
 #include "arrays.h"
 #include "common/error.h"
+#include "diagram/cells_output.h"
 #include "mesh/stress.h"
 #include "predicates/predicates.h"
 #include "render/render.h"
@@ -20,7 +21,6 @@
 #include "report/remesh_report.h"
 #include "report/report.h"
 #include "verification/diagram_check.h"
-#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::python {

@@ -10,9 +10,9 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/cells_output.h"
 #include "predicates/predicates.h"
 #include "verification/diagram_check.h"
-#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

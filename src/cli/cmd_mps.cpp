@@ -8,13 +8,13 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/dual.h"
 #include "metrics/quality.h"
+#include "mps/mps.h"
 #include "predicates/predicates.h"
-#include "remesh/mps.h"
 #include "report/mps_report.h"
 #include "verification/mps_check.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

@@ -13,12 +13,12 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/dual.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
 #include "remesh/remesh.h"
 #include "report/remesh_report.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

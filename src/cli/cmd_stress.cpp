@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
 #include "render/render.h"
 #include "verification/diagram_check.h"

@@ -19,7 +19,7 @@
 
 #include "common/error.h"
 #include "common/text.h"
-#include "mesh/mesh_file_diagnosis.h"
+#include "io/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
 namespace lrvd::cli {

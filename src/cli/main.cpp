@@ -13,7 +13,7 @@
 
 #include "cli/commands.h"
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

@@ -12,9 +12,9 @@
 
 #include <fmt/format.h>
 
+#include "diagram/clip.h"
 #include "mesh/curvature.h"
-#include "metrics/self_intersections.h"
-#include "voronoi/clip.h"
+#include "mesh/self_intersections.h"
 
 namespace lrvd {
 

@@ -6,7 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "mesh/closest_point.h"
-#include "metrics/self_intersections.h"
+#include "mesh/self_intersections.h"
 #include "remesh/fit_offsets_detail.h"
 
 namespace lrvd::fit_detail {

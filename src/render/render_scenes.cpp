@@ -7,13 +7,13 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "diagram/cells_output.h"
+#include "diagram/diagram.h"
+#include "mesh/self_intersections.h"
 #include "mesh/surface_mesh.h"
 #include "metrics/quality.h"
-#include "metrics/self_intersections.h"
 #include "render/render.h"
-#include "voronoi/cells_output.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

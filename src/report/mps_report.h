@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "remesh/mps.h"
+#include "diagram/dual.h"
+#include "mps/mps.h"
 #include "report/report.h"
 #include "verification/mps_check.h"
-#include "voronoi/dual.h"
 
 namespace lrvd {
 

@@ -10,8 +10,8 @@
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/clip.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {

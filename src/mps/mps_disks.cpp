@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "mesh/closest_point.h"
+#include "mps/mps_gaps.h"
 #include "predicates/exact.h"
-#include "remesh/mps_gaps.h"
 
 namespace lrvd::mps_detail {
 

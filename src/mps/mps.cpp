@@ -2,7 +2,7 @@
 // twice the radius or, as the paper does, to r_min; area table), dart throwing with
 // triangle-based conflict checks, then gap detection with the LRPD and darts into the gaps until
 // none is left. The conflict rule is in docs/algorithms/mps.md.
-#include "remesh/mps.h"
+#include "mps/mps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 
 #include "common/error.h"
 #include "mesh/curvature.h"
-#include "remesh/mps_gaps.h"
+#include "mps/mps_gaps.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {

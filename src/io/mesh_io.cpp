@@ -2,7 +2,7 @@
 // exact ear-clipping triangulation, optional CGAL PMP soup repair and hole filling (writers:
 // mesh_writers.cpp).
 // This is the only translation unit that includes CGAL's IO and repair headers.
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/OBJ.h>
@@ -35,10 +35,10 @@
 
 #include "common/error.h"
 #include "common/text.h"
-#include "mesh/mesh_file_diagnosis.h"
-#include "mesh/mesh_file_layout.h"
+#include "io/mesh_file_diagnosis.h"
+#include "io/mesh_file_layout.h"
+#include "mesh/self_intersections.h"
 #include "mesh/weld.h"
-#include "metrics/self_intersections.h"
 
 namespace lrvd {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "remesh/mps_gaps.h"
+#include "mps/mps_gaps.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::mps_detail {

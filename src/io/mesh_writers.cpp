@@ -16,8 +16,8 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_file_diagnosis.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_file_diagnosis.h"
+#include "io/mesh_io.h"
 
 namespace lrvd {
 

@@ -1,5 +1,5 @@
 // Samples: uniform random sampling by area and location of given points by closest point.
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +15,8 @@
 
 #include "common/error.h"
 #include "common/text.h"
+#include "io/mesh_io.h"
 #include "mesh/closest_point.h"
-#include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
 
 namespace lrvd {
