@@ -400,9 +400,7 @@ double SurfaceMesh::area() const {
 
 Vec3 SurfaceMesh::triangle_normal(int t) const {
   const Triangle& tri = triangles_[t];
-  const Vec3& a = positions_[tri[0]];
-  const Vec3 n = cross(positions_[tri[1]] - a, positions_[tri[2]] - a);
-  return n / norm(n);
+  return lrvd::triangle_normal(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]);
 }
 
 BoundingBox bounding_box(const std::vector<Vec3>& points) {
