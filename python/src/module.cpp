@@ -1,5 +1,6 @@
 // The `lrvd` Python module: the command's subcommands as functions of NumPy arrays, returning
 // arrays and the command's JSON reports as dicts (docs/guide/python.md).
+// The module's entry point: no header.
 #include <cstdint>
 #include <memory>
 #include <optional>

@@ -1,5 +1,6 @@
 // `lrvd compute` and `lrvd verify`: one diagram (LRVD, RVD, LRPD, RPD) of samples on a mesh, its
 // cells as a PLY and its verification as a JSON report.
+// Declared in cli/commands.h, with the other subcommands.
 #include <algorithm>
 #include <cstdio>
 

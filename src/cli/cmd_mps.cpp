@@ -1,5 +1,6 @@
 // `lrvd mps`: maximal Poisson-disk sampling (paper §4.2), its independent verification on a
 // fresh LRPD, and optionally the LRRT remesh of the samples, checked like any remesh.
+// Declared in cli/commands.h, with the other subcommands.
 #include <cmath>
 #include <cstdio>
 

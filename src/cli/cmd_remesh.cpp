@@ -1,5 +1,6 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
+// Declared in cli/commands.h, with the other subcommands.
 #include <algorithm>
 #include <array>
 #include <cmath>

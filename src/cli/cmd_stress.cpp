@@ -1,4 +1,5 @@
 // `lrvd stress`: list and write the stress meshes (nearby sheets, thin walls, tubes, ...).
+// Declared in cli/commands.h, with the other subcommands.
 #include <cstdio>
 #include <filesystem>
 

@@ -1,4 +1,5 @@
 // lrvd: localized restricted Voronoi diagrams on triangle meshes, remeshing and sampling.
+// The program's entry point: no header.
 #include <algorithm>
 #include <cstdio>
 #include <exception>

@@ -1,5 +1,6 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
+// Declared in io/mesh_io.h, with the readers.
 #include <algorithm>
 #include <atomic>
 #include <cmath>

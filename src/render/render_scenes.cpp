@@ -1,5 +1,6 @@
 // The scenes `lrvd render` draws: a mesh, a diagram's cells with their stray pieces hatched, and a
 // mesh coloured by triangle quality or by the remesh checks its triangles fail.
+// Declared in render/render.h, with the rasterizer that draws them.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
