@@ -19,6 +19,7 @@
 #include "mps/mps.h"
 #include "remesh/cvt.h"
 #include "remesh/remesh_pipeline.h"
+#include "report/mps_report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"

@@ -22,6 +22,7 @@
 #include "mesh/stress.h"
 #include "mps/mps.h"
 #include "mps/mps_gaps.h"
+#include "report/mps_report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"

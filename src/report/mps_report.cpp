@@ -7,8 +7,19 @@
 
 #include "common/error.h"
 #include "predicates/predicates.h"
+#include "voronoi/lrvd.h"
 
 namespace lrvd {
+
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options,
+                           Diagram* lrpd) {
+  const auto compute_lrpd = [&] {
+    LrvdOptions lrpd_options;
+    lrpd_options.weighted = true;
+    return compute_lrvd(mesh, samples, lrpd_options);
+  };
+  return verify_mps(mesh, samples, compute_lrpd, options, lrpd);
+}
 
 void check_mps_settings(const MpsSettings& settings) {
   // A radius of the model's size already leaves one sample per sheet; far beyond it, squared

@@ -32,6 +32,11 @@ struct MpsSettings {
   bool feature_angle_given = false;
 };
 
+//! verify_mps (verification/mps_check.h) on an LRPD of the samples computed here with compute_lrvd;
+//! it goes to `*lrpd` when asked for.
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options = {},
+                           Diagram* lrpd = nullptr);
+
 //! What can be refused before the mesh is read: the radius, the ranges and names of the options,
 //! --max-radius-ratio without --adaptive. \throw InputError
 void check_mps_settings(const MpsSettings& settings);
