@@ -160,7 +160,17 @@ void SurfaceMesh::build_vertex_triangles() {
 }
 
 void SurfaceMesh::link_and_check() {
-  const int nt = triangle_count(), nv = vertex_count();
+  check_no_duplicate_triangles();
+  link_edges();
+  check_one_fan_per_vertex();
+}
+
+int SurfaceMesh::least_used(int a, int b) const {
+  return vertex_triangle_count(a) <= vertex_triangle_count(b) ? a : b;
+}
+
+void SurfaceMesh::check_no_duplicate_triangles() const {
+  const int nt = triangle_count();
   // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
   // around the corner with the fewest triangles (a fan's hub would make this quadratic), before
   // this one.
@@ -169,7 +179,6 @@ void SurfaceMesh::link_and_check() {
     std::sort(corners.begin(), corners.end());
     return corners;
   };
-  auto least_used = [&](int a, int b) { return vertex_triangle_count(a) <= vertex_triangle_count(b) ? a : b; };
   for (int t = 0; t < nt; ++t) {
     const std::array<int, 3> corners = sorted_corners(t);
     const int pivot = least_used(least_used(corners[0], corners[1]), corners[2]);
@@ -178,7 +187,10 @@ void SurfaceMesh::link_and_check() {
         throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})", *u, t, corners[0],
                                      corners[1], corners[2]));
   }
+}
 
+void SurfaceMesh::link_edges() {
+  const int nt = triangle_count();
   // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
   // those around a or b (whichever has fewer) that hold both, in increasing order; each (t, e) is
   // checked when t is reached, so the first offending triangle is named, as a single pass over the
@@ -219,7 +231,10 @@ void SurfaceMesh::link_and_check() {
       neighbors_[t0][edge_index(t0, b, a)] = t;
     }
   }
+}
 
+void SurfaceMesh::check_one_fan_per_vertex() const {
+  const int nv = vertex_count();
   // Manifold vertices: the triangles around v form a single fan (edge-connected through v). With
   // every edge manifold and consistently oriented, the triangles around v chain across their
   // edges at v; a walk both ways from the first one meets all of them iff they form one fan.
@@ -262,7 +277,6 @@ void SurfaceMesh::link_and_check() {
       throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v, groups));
     }
   }
-
 }
 
 void SurfaceMesh::finish_topology() {
