@@ -123,11 +123,7 @@ class SurfaceMesh {
 
   void build_topology();            // all of the below, in order
   void build_vertex_triangles();    // vertex-to-triangle lists
-  void link_and_check();            // duplicates, edges and neighbours, one fan per vertex:
-  void check_no_duplicate_triangles() const;
-  void link_edges();                // neighbours_, edge_count_; at most two triangles an edge, oriented alike
-  void check_one_fan_per_vertex() const;
-  int least_used(int a, int b) const;  // of vertices a and b, the one in fewer triangles
+  void link_and_check();            // duplicates, edges and neighbours, one fan per vertex
   void finish_topology();           // vertex-to-vertex lists, components, boundary loops
   void build_vertex_neighbors();    // vertex-to-vertex lists
   void build_components();          // components over triangle adjacency
