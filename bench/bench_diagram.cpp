@@ -16,13 +16,13 @@
 
 #include "bench_util.h"
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "predicates/predicates.h"
-#include "remesh/remesh_pipeline.h"
 #include "remesh/cvt.h"
+#include "remesh/remesh_pipeline.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
-#include "voronoi/samples.h"
 
 using namespace lrvd;
 

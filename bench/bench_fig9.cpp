@@ -24,12 +24,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_sphere.h"
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
 #include "predicates/predicates.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
-#include "voronoi/diagram.h"
 #include "voronoi/lrvd.h"
-#include "voronoi/samples.h"
 
 namespace {
 

@@ -14,7 +14,7 @@
 #include <tbb/global_control.h>
 
 #include "bench_util.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/fit.h"
 #include "remesh/remesh_pipeline.h"

@@ -26,7 +26,7 @@
 #include <tbb/global_control.h>
 
 #include "bench_util.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
 #include "remesh/remesh_pipeline.h"

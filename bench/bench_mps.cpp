@@ -18,11 +18,11 @@
 #include <nlohmann/json.hpp>
 #include <tbb/global_control.h>
 
-#include "mesh/mesh_io.h"
-#include "remesh/mps.h"
+#include "diagram/dual.h"
+#include "io/mesh_io.h"
+#include "mps/mps.h"
 #include "verification/mps_check.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace {

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_util.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"

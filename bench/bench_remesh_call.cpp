@@ -10,7 +10,7 @@
 #include <sys/resource.h>
 #include <tbb/global_control.h>
 
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "report/remesh_report.h"
 
 namespace {

@@ -19,9 +19,9 @@
 
 #include "bench/bench_sphere.h"
 #include "bench/bench_util.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
-#include "voronoi/samples.h"
 
 namespace {
 

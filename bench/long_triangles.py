@@ -4,7 +4,7 @@
 CAD exports tessellate a cylinder's side with triangles that run its whole length, and a cone
 with triangles from apex to base; when the mesh also has enough small triangles elsewhere
 (2 n or more, so that `lrvd` does not refine it first), each long triangle holds dozens of
-candidate cells: the clipper's many-candidate path (src/voronoi/clip.cpp, `clip_many`).
+candidate cells: the clipper's many-candidate path (src/diagram/clip.cpp, `clip_many`).
 
     bench/long_triangles.py OUTDIR
     bench/ab_compare.py --base OLD --new build/lrvd --runs 3 --same-output -- \\

@@ -15,11 +15,11 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/surface_mesh.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
-#include "voronoi/samples.h"
 
 namespace lrvd::fuzz {
 

@@ -1,4 +1,5 @@
 // One libFuzzer target: LRVD_FUZZ_TARGET (0, 1, 2) names its entry in fuzz::kTargets.
+// A program of its own: no header.
 #include <cstddef>
 #include <cstdint>
 

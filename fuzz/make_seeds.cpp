@@ -1,5 +1,6 @@
 // Writes the fuzz targets' seed corpus: small valid inputs of every format each target reads, made
 // here (no third-party file). Usage: lrvd_fuzz_seeds OUT_DIR (one folder per target under it).
+// A program of its own: no header.
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -9,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 

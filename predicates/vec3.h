@@ -36,5 +36,7 @@ inline Vec3 unit(const Vec3& a) {
   const double n = norm(a);
   return n > 0 ? a / n : Vec3{};
 }
+//! The unit normal of triangle (a, b, c), counterclockwise; the zero vector when it has no area.
+inline Vec3 triangle_normal(const Vec3& a, const Vec3& b, const Vec3& c) { return unit(cross(b - a, c - a)); }
 
 }  // namespace lrvd

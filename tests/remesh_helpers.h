@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "metrics/quality.h"
 #include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"

@@ -20,8 +20,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
+#include "io/mesh_io.h"
 #include "mesh/closest_point.h"
-#include "mesh/mesh_io.h"
 #include "remesh/remesh_pipeline.h"
 #include "test_meshes.h"
 

@@ -13,10 +13,10 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
+#include "mesh/self_intersections.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
-#include "metrics/self_intersections.h"
 #include "remesh/remesh_pipeline.h"
 #include "remesh_helpers.h"
 #include "test_meshes.h"

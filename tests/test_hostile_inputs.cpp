@@ -19,9 +19,9 @@
 
 #include "common/error.h"
 #include "fuzz/fuzz_entry.h"
+#include "io/mesh_io.h"
 #include "mesh/closest_point.h"
-#include "mesh/mesh_io.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 using namespace lrvd;
 

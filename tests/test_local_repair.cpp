@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
 #include "remesh/local_repair.h"
 #include "remesh/remesh.h"

@@ -13,15 +13,16 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "diagram/clip.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
+#include "mps/mps.h"
 #include "remesh/cvt.h"
-#include "remesh/mps.h"
 #include "remesh/remesh_pipeline.h"
+#include "report/mps_report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"
-#include "voronoi/clip.h"
 #include "voronoi/growth_entry.h"
 #include "voronoi/lrvd.h"
 

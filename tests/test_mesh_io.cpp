@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/weld.h"
 
 using namespace lrvd;

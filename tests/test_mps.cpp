@@ -17,15 +17,16 @@
 #include <nlohmann/json.hpp>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "diagram/dual.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
-#include "remesh/mps.h"
-#include "remesh/mps_gaps.h"
+#include "mps/mps.h"
+#include "mps/mps_gaps.h"
+#include "report/mps_report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;

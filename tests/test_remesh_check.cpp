@@ -12,8 +12,8 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
 
-#include "mesh/mesh_io.h"
-#include "metrics/self_intersections.h"
+#include "io/mesh_io.h"
+#include "mesh/self_intersections.h"
 #include "test_meshes.h"
 #include "verification/remesh_check.h"
 

@@ -12,12 +12,12 @@
 #include <unistd.h>
 
 #include "common/error.h"
-#include "metrics/quality.h"
-#include "mesh/mesh_io.h"
+#include "diagram/cells_output.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
+#include "metrics/quality.h"
 #include "render/render.h"
 #include "test_meshes.h"
-#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 #pragma GCC diagnostic push

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "common/error.h"
+#include "io/mesh_io.h"
 #include "mesh/closest_point.h"
-#include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
+#include "samples/samples.h"
 #include "test_meshes.h"
-#include "voronoi/samples.h"
 
 using namespace lrvd;
 

@@ -16,11 +16,11 @@
 #include <tbb/global_control.h>
 
 #include "common/error.h"
+#include "diagram/cells_output.h"
+#include "diagram/dual.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/diagram_geometry.h"
-#include "voronoi/cells_output.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;

@@ -11,9 +11,9 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <nanoflann.hpp>
 #include <tbb/parallel_for.h>
 
+#include "mesh/kd_tree.h"
 #include "verification/diagram_geometry.h"
 
 namespace lrvd {
@@ -150,7 +150,7 @@ struct Checked {
 // doubles and of the tree's distances many times over, so every site that may matter is found.
 class Near {
  public:
-  Near(const std::vector<Site>& sites, const std::vector<int>& present) : cloud_{sites, present}, tree_(3, cloud_) {
+  Near(const std::vector<Site>& sites, const std::vector<int>& present) : cloud_{{sites, present}}, tree_(3, cloud_) {
     for (int j : present) w_max_ = std::max(w_max_, sites[j].w);
     tree_.buildIndex();
   }
@@ -171,25 +171,21 @@ class Near {
     found_.clear();
     tree_.radiusSearch(query, reach * reach, found_, nanoflann::SearchParams(32, 0, false));
     out.clear();
-    for (const auto& [index, squared] : found_) out.push_back(cloud_.present[index]);
+    for (const auto& [index, squared] : found_) out.push_back(cloud_.view.present[index]);
     for (int a = 0; a < labels.num_labels(); ++a) out.push_back(labels.label[a]);
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
  private:
-  struct Cloud {
+  struct Present {  // the sites of the cells present
     const std::vector<Site>& sites;
     const std::vector<int>& present;
-    std::size_t kdtree_get_point_count() const { return present.size(); }
-    double kdtree_get_pt(std::size_t k, std::size_t axis) const { return sites[present[k]].p[static_cast<int>(axis)]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box&) const {
-      return false;
-    }
+    std::size_t size() const { return present.size(); }
+    const Vec3& operator[](std::size_t k) const { return sites[present[k]].p; }
   };
-  Cloud cloud_;
-  nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3> tree_;
+  KdPoints<Present> cloud_;
+  KdTree<Present> tree_;
   double w_max_ = 0;
   mutable std::vector<std::pair<unsigned, double>> found_;
 };

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "voronoi/diagram.h"
+#include "diagram/diagram.h"
 
 namespace lrvd {
 

@@ -2,6 +2,7 @@
 // beside a mesh edge split it at the same points with the same cells. Recomputed here from the
 // polygons and the exact parameters of their vertices along the edge, independently of the
 // diagram's own helpers (cell_components), so a bug there shows up.
+// Part of verify_diagram (verification/diagram_check.h), its helpers in verification/diagram_geometry.h.
 #include <algorithm>
 #include <array>
 #include <numeric>

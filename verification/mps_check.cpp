@@ -16,11 +16,11 @@
 #include <tbb/parallel_invoke.h>
 
 #include "common/error.h"
+#include "common/timing.h"
+#include "diagram/clip.h"
 #include "mesh/closest_point.h"
 #include "predicates/exact.h"
 #include "verification/diagram_geometry.h"
-#include "voronoi/clip.h"
-#include "voronoi/lrvd.h"
 
 namespace lrvd {
 
@@ -463,10 +463,6 @@ void check_mps_samples(const SurfaceMesh& mesh, const Samples& samples) {
     if (!(samples.weights[i] >= 0)) throw InputError(fmt::format("sample {} has a negative weight (radius²)", i));
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 }  // namespace
 
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
@@ -487,8 +483,8 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   return out;
 }
 
-MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options,
-                           Diagram* lrpd_out) {
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const std::function<Diagram()>& compute_lrpd,
+                           const MpsVerifyOptions& options, Diagram* lrpd_out) {
   const auto start = std::chrono::steady_clock::now();
   check_mps_samples(mesh, samples);
   MpsVerification out;
@@ -497,11 +493,7 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   std::optional<SampleDisks> disks;
   // The diagram and the distance checks read only the mesh and the samples.
   tbb::parallel_invoke(
-      [&] {
-        LrvdOptions lrpd_options;
-        lrpd_options.weighted = true;
-        lrpd = compute_lrvd(mesh, samples, lrpd_options);
-      },
+      [&] { lrpd = compute_lrpd(); },
       [&] {
         disks.emplace(samples, regions);
         out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, *disks, regions, out));

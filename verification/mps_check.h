@@ -4,14 +4,15 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
 
 namespace lrvd {
 
@@ -58,10 +59,12 @@ struct MpsVerification {
 MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const Diagram& lrpd,
                            const MpsVerifyOptions& options = {});
 
-//! As above with an LRPD computed here, beside the checks that do not need it (minimum distance,
-//! close pairs), on another thread when there is one; the results do not depend on it. The
-//! diagram goes to `*lrpd` when asked for (the LRRT of the samples is its dual).
-MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options = {},
-                           Diagram* lrpd = nullptr);
+//! As above with the LRPD that `compute_lrpd` returns, computed beside the checks that do not need
+//! it (minimum distance, close pairs), on another thread when there is one; the results do not
+//! depend on it. The checks build no diagram: the caller passes the builder (verify_mps of
+//! report/mps_report.h passes compute_lrvd). The diagram goes to `*lrpd` when asked for (the LRRT
+//! of the samples is its dual).
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const std::function<Diagram()>& compute_lrpd,
+                           const MpsVerifyOptions& options = {}, Diagram* lrpd = nullptr);
 
 }  // namespace lrvd

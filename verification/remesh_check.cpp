@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "mesh/closest_point.h"
-#include "metrics/self_intersections.h"
+#include "mesh/self_intersections.h"
 #include "predicates/predicates.h"
 
 namespace lrvd {

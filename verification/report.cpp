@@ -1,4 +1,5 @@
 // JSON and text forms of verification results.
+// The members of the result types of verification/diagram_check.h.
 #include <fmt/format.h>
 
 #include "verification/diagram_check.h"

@@ -6,12 +6,12 @@
 #include <cstdlib>
 
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "remesh/remesh_pipeline.h"
+#include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "verification/remesh_check.h"
 #include "voronoi/lrvd.h"
-#include "voronoi/samples.h"
 
 int main(int argc, char** argv) {
   if (argc != 4) {

@@ -1,5 +1,6 @@
 // The `lrvd` Python module: the command's subcommands as functions of NumPy arrays, returning
 // arrays and the command's JSON reports as dicts (docs/guide/python.md).
+// The module's entry point: no header.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -13,6 +14,7 @@
 
 #include "arrays.h"
 #include "common/error.h"
+#include "diagram/cells_output.h"
 #include "mesh/stress.h"
 #include "predicates/predicates.h"
 #include "render/render.h"
@@ -20,7 +22,6 @@
 #include "report/remesh_report.h"
 #include "report/report.h"
 #include "verification/diagram_check.h"
-#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::python {

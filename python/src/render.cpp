@@ -1,4 +1,5 @@
 // lrvd.render: the picture `lrvd render` draws, as an (h, w, 3) uint8 array.
+// Its one function, add_render, is declared in module.cpp, which calls it: no header.
 #include <cmath>
 #include <string>
 #include <utility>

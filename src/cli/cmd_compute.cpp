@@ -1,5 +1,6 @@
 // `lrvd compute` and `lrvd verify`: one diagram (LRVD, RVD, LRPD, RPD) of samples on a mesh, its
 // cells as a PLY and its verification as a JSON report.
+// Declared in cli/commands.h, with the other subcommands.
 #include <algorithm>
 #include <cstdio>
 
@@ -10,9 +11,9 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/cells_output.h"
 #include "predicates/predicates.h"
 #include "verification/diagram_check.h"
-#include "voronoi/cells_output.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

@@ -1,5 +1,6 @@
 // `lrvd mps`: maximal Poisson-disk sampling (paper §4.2), its independent verification on a
 // fresh LRPD, and optionally the LRRT remesh of the samples, checked like any remesh.
+// Declared in cli/commands.h, with the other subcommands.
 #include <cmath>
 #include <cstdio>
 
@@ -8,13 +9,13 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/dual.h"
 #include "metrics/quality.h"
+#include "mps/mps.h"
 #include "predicates/predicates.h"
-#include "remesh/mps.h"
 #include "report/mps_report.h"
 #include "verification/mps_check.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

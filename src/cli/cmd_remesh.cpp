@@ -1,5 +1,6 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
+// Declared in cli/commands.h, with the other subcommands.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,12 +14,12 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
+#include "diagram/dual.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
 #include "remesh/remesh.h"
 #include "report/remesh_report.h"
 #include "verification/remesh_check.h"
-#include "voronoi/dual.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

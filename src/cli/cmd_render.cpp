@@ -1,5 +1,6 @@
 // `lrvd render`: a PNG of a mesh, or of the cells of a diagram of samples on it (stray pieces
 // hatched, so an RVD's broken cells show beside the LRVD's whole ones).
+// Declared in cli/commands.h, with the other subcommands.
 #include <cmath>
 #include <cstdio>
 #include <sstream>

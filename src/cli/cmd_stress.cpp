@@ -1,4 +1,5 @@
 // `lrvd stress`: list and write the stress meshes (nearby sheets, thin walls, tubes, ...).
+// Declared in cli/commands.h, with the other subcommands.
 #include <cstdio>
 #include <filesystem>
 
@@ -7,7 +8,7 @@
 #include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "mesh/stress.h"
 #include "render/render.h"
 #include "verification/diagram_check.h"

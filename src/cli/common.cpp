@@ -19,7 +19,7 @@
 
 #include "common/error.h"
 #include "common/text.h"
-#include "mesh/mesh_file_diagnosis.h"
+#include "io/mesh_file_diagnosis.h"
 #include "predicates/predicates.h"
 
 namespace lrvd::cli {
@@ -193,56 +193,112 @@ std::vector<ReadFile> read_files(const InputOptions& input) {
           {input.weights_path, "the --weights file"}};
 }
 
+namespace {
+
+// A path as it is once the links of its folders are followed, for a file not made yet too.
+std::filesystem::path resolved(std::filesystem::path p) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  // A link to a file not made yet is followed too (weakly_canonical stops at it).
+  p = written_file(p.string());
+  // Absolute first: weakly_canonical leaves a relative path to a file not made yet relative, and
+  // `n.xyz` would not equal `./n.xyz` or its absolute spelling.
+  const fs::path absolute = fs::absolute(p, error).lexically_normal();
+  const fs::path canonical = fs::weakly_canonical(absolute, error);
+  return error ? absolute : canonical;
+}
+
+// One file under two names: the same file on disk (a link, another spelling), or, for a file
+// not made yet, the same path once the links of its folders are followed.
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b) {
+  std::error_code error;
+  return std::filesystem::equivalent(a, b, error) || resolved(a) == resolved(b);
+}
+
+// The output's name: a file (not a folder) of an extension lrvd writes, in a folder that exists,
+// through links that lead somewhere.
+void check_output_name(const PlannedOutput& out) {
+  namespace fs = std::filesystem;
+  const fs::path path(out.path);
+  std::error_code error;
+  if (fs::is_directory(path, error))
+    throw InputError(fmt::format("{} {} is a folder, not a file", out.option, out.path));
+  const std::string ext = lowercase_extension(out.path);
+  auto listed = [&](const std::vector<std::string>& list) { return std::find(list.begin(), list.end(), ext) != list.end(); };
+  if (!out.extensions.empty() && !listed(out.extensions)) {
+    std::string known;
+    for (const std::string& e : out.extensions) known += (known.empty() ? "" : ", ") + e;
+    throw InputError(fmt::format("{} {}: {}; {} {} there", out.option, out.path,
+                                 ext.empty() ? "no extension" : fmt::format("lrvd does not write '{}' files", ext),
+                                 ext.empty() ? "lrvd writes" : "it writes", known));
+  }
+  if (listed(out.refused))
+    throw InputError(fmt::format("{} {}: this output is not a mesh, and a '{}' file would pass for one; use another "
+                                 "extension",
+                                 out.option, out.path, ext));
+  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  if (!fs::is_directory(folder, error))
+    throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
+  // Through a symbolic link: the file the link leads to is the one written (mesh_writers.cpp).
+  const fs::path file(written_file(out.path));
+  if (fs::is_symlink(file, error))
+    throw InputError(fmt::format("{} {} is a loop of symbolic links, or a chain of more than 40", out.option,
+                                 out.path));
+  const fs::path file_folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  if (file != path && !fs::is_directory(file_folder, error))
+    throw InputError(fmt::format("{} {} is a symbolic link to {}, whose folder does not exist", out.option,
+                                 out.path, file.string()));
+}
+
+// Writable: an existing file opened for appending (nothing changes), a new one made and removed,
+// so that a long run does not end on a file it cannot write; and the part file beside it.
+void probe_output(const PlannedOutput& out, bool device) {
+  namespace fs = std::filesystem;
+  const fs::path path(out.path);
+  const fs::path file(written_file(out.path));
+  std::error_code error;
+  // The console's own file (--report /dev/stdout with stdout sent to a file): the report and
+  // the console lines would overwrite each other.
+  struct stat target {}, console {};
+  if (!device && ::stat(out.path.c_str(), &target) == 0)
+    for (int fd : {STDOUT_FILENO, STDERR_FILENO})
+      if (::fstat(fd, &console) == 0 && console.st_dev == target.st_dev && console.st_ino == target.st_ino)
+        throw InputError(fmt::format("{} {} is where lrvd's console lines go too; write it to a file of its own",
+                                     out.option, out.path));
+  // A device or a named pipe is written as it is, unprobed: opening a pipe to probe it would
+  // block without a reader, or end the reader's input.
+  if (fs::exists(path, error) && !fs::is_regular_file(path, error)) return;
+  // Through a link to a file not made yet, the probe makes the link's target: that goes again,
+  // the link stays.
+  const bool existed = fs::exists(path, error);
+  if (!std::ofstream(out.path, std::ios::app))
+    throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
+  if (!existed) fs::remove(file, error);
+  // The writer's part file beside it, or beside the file a link there leads to (mesh_writers.cpp):
+  // its longer name may pass the folder's limit.
+  const std::string part = file.string() + ".lrvd-part";
+  if (fs::is_directory(fs::symlink_status(part, error)))
+    throw InputError(fmt::format("{} {}: a folder {} is where its part file (written first, then renamed) goes; "
+                                 "remove or rename it",
+                                 out.option, out.path, fs::path(part).filename().string()));
+  if (!fs::exists(fs::symlink_status(part, error))) {
+    if (!std::ofstream(part))
+      throw InputError(fmt::format("{} {}: its part file {} (written first, then renamed) cannot be made there ({})",
+                                   out.option, out.path, fs::path(part).filename().string(), std::strerror(errno)));
+    fs::remove(part, error);
+  }
+}
+
+}  // namespace
+
 void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<ReadFile>& inputs) {
   namespace fs = std::filesystem;
-  // One file under two names: the same file on disk (a link, another spelling), or, for a file
-  // not made yet, the same path once the links of its folders are followed.
-  const auto resolved = [](fs::path p) {
-    std::error_code error;
-    // A link to a file not made yet is followed too (weakly_canonical stops at it).
-    p = written_file(p.string());
-    // Absolute first: weakly_canonical leaves a relative path to a file not made yet relative, and
-    // `n.xyz` would not equal `./n.xyz` or its absolute spelling.
-    const fs::path absolute = fs::absolute(p, error).lexically_normal();
-    const fs::path canonical = fs::weakly_canonical(absolute, error);
-    return error ? absolute : canonical;
-  };
-  const auto same_file = [&](const fs::path& a, const fs::path& b) {
-    std::error_code error;
-    return fs::equivalent(a, b, error) || resolved(a) == resolved(b);
-  };
   std::vector<fs::path> seen;
   for (const PlannedOutput& out : outputs) {
     if (out.path.empty()) continue;
     const fs::path path(out.path);
+    check_output_name(out);
     std::error_code error;
-    if (fs::is_directory(path, error))
-      throw InputError(fmt::format("{} {} is a folder, not a file", out.option, out.path));
-    const std::string ext = lowercase_extension(out.path);
-    auto listed = [&](const std::vector<std::string>& list) { return std::find(list.begin(), list.end(), ext) != list.end(); };
-    if (!out.extensions.empty() && !listed(out.extensions)) {
-      std::string known;
-      for (const std::string& e : out.extensions) known += (known.empty() ? "" : ", ") + e;
-      throw InputError(fmt::format("{} {}: {}; {} {} there", out.option, out.path,
-                                   ext.empty() ? "no extension" : fmt::format("lrvd does not write '{}' files", ext),
-                                   ext.empty() ? "lrvd writes" : "it writes", known));
-    }
-    if (listed(out.refused))
-      throw InputError(fmt::format("{} {}: this output is not a mesh, and a '{}' file would pass for one; use another "
-                                   "extension",
-                                   out.option, out.path, ext));
-    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(folder, error))
-      throw InputError(fmt::format("{} {}: the folder {} does not exist", out.option, out.path, folder.string()));
-    // Through a symbolic link: the file the link leads to is the one written (mesh_writers.cpp).
-    const fs::path file(written_file(out.path));
-    if (fs::is_symlink(file, error))
-      throw InputError(fmt::format("{} {} is a loop of symbolic links, or a chain of more than 40", out.option,
-                                   out.path));
-    const fs::path file_folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
-    if (file != path && !fs::is_directory(file_folder, error))
-      throw InputError(fmt::format("{} {} is a symbolic link to {}, whose folder does not exist", out.option,
-                                   out.path, file.string()));
     for (const ReadFile& in : inputs)
       if (!in.path.empty() && same_file(path, in.path))
         throw InputError(fmt::format("{} {} is {}, which it would overwrite: write to another file", out.option,
@@ -255,38 +311,7 @@ void check_outputs(const std::vector<PlannedOutput>& outputs, const std::vector<
       if (!device && same_file(path, other))
         throw InputError(fmt::format("{} {} is also another output of this command", out.option, out.path));
     seen.push_back(path);
-    // Writable: an existing file opened for appending (nothing changes), a new one made and removed,
-    // so that a long run does not end on a file it cannot write.
-    // The console's own file (--report /dev/stdout with stdout sent to a file): the report and
-    // the console lines would overwrite each other.
-    struct stat target {}, console {};
-    if (!device && ::stat(out.path.c_str(), &target) == 0)
-      for (int fd : {STDOUT_FILENO, STDERR_FILENO})
-        if (::fstat(fd, &console) == 0 && console.st_dev == target.st_dev && console.st_ino == target.st_ino)
-          throw InputError(fmt::format("{} {} is where lrvd's console lines go too; write it to a file of its own",
-                                       out.option, out.path));
-    // A device or a named pipe is written as it is, unprobed: opening a pipe to probe it would
-    // block without a reader, or end the reader's input.
-    if (fs::exists(path, error) && !fs::is_regular_file(path, error)) continue;
-    // Through a link to a file not made yet, the probe makes the link's target: that goes again,
-    // the link stays.
-    const bool existed = fs::exists(path, error);
-    if (!std::ofstream(out.path, std::ios::app))
-      throw InputError(fmt::format("{} {}: the file cannot be written there", out.option, out.path));
-    if (!existed) fs::remove(file, error);
-    // The writer's part file beside it, or beside the file a link there leads to (mesh_writers.cpp):
-    // its longer name may pass the folder's limit.
-    const std::string part = file.string() + ".lrvd-part";
-    if (fs::is_directory(fs::symlink_status(part, error)))
-      throw InputError(fmt::format("{} {}: a folder {} is where its part file (written first, then renamed) goes; "
-                                   "remove or rename it",
-                                   out.option, out.path, fs::path(part).filename().string()));
-    if (!fs::exists(fs::symlink_status(part, error))) {
-      if (!std::ofstream(part))
-        throw InputError(fmt::format("{} {}: its part file {} (written first, then renamed) cannot be made there ({})",
-                                     out.option, out.path, fs::path(part).filename().string(), std::strerror(errno)));
-      fs::remove(part, error);
-    }
+    probe_output(out, device);
   }
 }
 

@@ -9,11 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 #include "metrics/quality.h"
-#include "verification/remesh_check.h"
 #include "report/report.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
+#include "verification/remesh_check.h"
 
 namespace lrvd::cli {
 

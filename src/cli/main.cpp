@@ -1,4 +1,5 @@
 // lrvd: localized restricted Voronoi diagrams on triangle meshes, remeshing and sampling.
+// The program's entry point: no header.
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -13,7 +14,7 @@
 
 #include "cli/commands.h"
 #include "common/error.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_io.h"
 
 namespace {
 
@@ -59,6 +60,37 @@ std::string printable(const std::string& message) {
     out = out.substr(0, head) + fmt::format(" [... {} characters ...] ", tail - head) + out.substr(tail);
   }
   return out;
+}
+
+// CLI11's wording, where it reads oddly: "--samples: At Most 1 required but received 2" for an
+// option given twice, "--samples: 1 required INT:INT missing" for one without its value, and the
+// words it did not expect listed last first.
+std::string plain_parse_error(std::string message) {
+  const std::string repeated = ": At Most 1 required but received ";
+  const std::string unexpected = "The following arguments were not expected: ",
+                    unexpected_one = "The following argument was not expected: ";
+  if (const auto at = message.find(repeated); at != std::string::npos) {
+    message = message.substr(0, at) + " is given " + message.substr(at + repeated.size()) + " times; give it once";
+  } else if (message.find(": 1 required ") != std::string::npos && message.size() > 8 &&
+             message.compare(message.size() - 8, 8, " missing") == 0) {
+    message = message.substr(0, message.find(": 1 required ")) + " needs a value";
+  } else if (const std::string convert = "Could not convert: "; message.rfind(convert, 0) == 0 &&
+                                                                 message.find(" = ") != std::string::npos) {
+    // "Could not convert: --radius = abc": a number option given text.
+    const std::size_t equals = message.find(" = ");
+    message = fmt::format("{} takes a number, not '{}'", message.substr(convert.size(), equals - convert.size()),
+                          message.substr(equals + 3));
+  } else if (message.rfind(unexpected, 0) == 0 || message.rfind(unexpected_one, 0) == 0) {
+    std::vector<std::string> words;
+    std::istringstream rest(message.substr(message.find(": ") + 2));
+    for (std::string word; rest >> word;) words.push_back(word);
+    std::reverse(words.begin(), words.end());
+    std::string listed;
+    for (const std::string& word : words) listed += (listed.empty() ? "" : " ") + word;
+    message = fmt::format("unexpected argument{}: {} (this command does not take {})", words.size() == 1 ? "" : "s",
+                          listed, words.size() == 1 ? "it" : "them");
+  }
+  return message;
 }
 
 }  // namespace
@@ -113,34 +145,7 @@ int main(int argc, char** argv) {
                        printable(extra).c_str());
           return kBadInput;
         }
-    // CLI11's wording, where it reads oddly: "--samples: At Most 1 required but received 2" for
-    // an option given twice, "--samples: 1 required INT:INT missing" for one without its value,
-    // and the words it did not expect listed last first.
-    std::string message = e.what();
-    const std::string repeated = ": At Most 1 required but received ";
-    const std::string unexpected = "The following arguments were not expected: ",
-                      unexpected_one = "The following argument was not expected: ";
-    if (const auto at = message.find(repeated); at != std::string::npos) {
-      message = message.substr(0, at) + " is given " + message.substr(at + repeated.size()) + " times; give it once";
-    } else if (message.find(": 1 required ") != std::string::npos && message.size() > 8 &&
-               message.compare(message.size() - 8, 8, " missing") == 0) {
-      message = message.substr(0, message.find(": 1 required ")) + " needs a value";
-    } else if (const std::string convert = "Could not convert: "; message.rfind(convert, 0) == 0 &&
-                                                                   message.find(" = ") != std::string::npos) {
-      // "Could not convert: --radius = abc": a number option given text.
-      const std::size_t equals = message.find(" = ");
-      message = fmt::format("{} takes a number, not '{}'", message.substr(convert.size(), equals - convert.size()),
-                            message.substr(equals + 3));
-    } else if (message.rfind(unexpected, 0) == 0 || message.rfind(unexpected_one, 0) == 0) {
-      std::vector<std::string> words;
-      std::istringstream rest(message.substr(message.find(": ") + 2));
-      for (std::string word; rest >> word;) words.push_back(word);
-      std::reverse(words.begin(), words.end());
-      std::string listed;
-      for (const std::string& word : words) listed += (listed.empty() ? "" : " ") + word;
-      message = fmt::format("unexpected argument{}: {} (this command does not take {})", words.size() == 1 ? "" : "s",
-                            listed, words.size() == 1 ? "it" : "them");
-    }
+    const std::string message = plain_parse_error(e.what());
     std::fprintf(stderr, "lrvd: error: %s (see --help)\n", printable(message).c_str());
     return kBadInput;
   }

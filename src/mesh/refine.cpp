@@ -1,5 +1,6 @@
 // Refinement by splitting long edges (paper §4.2): every edge longer than a bound (one length, or
 // a length field over the vertices) is split at its midpoint, longest first, until none is left.
+// Declared in mesh/surface_mesh.h: the refinements are friends of SurfaceMesh, whose adjacency they build.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

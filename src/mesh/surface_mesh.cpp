@@ -64,6 +64,128 @@ bool orientable_around(const std::vector<Triangle>& triangles, int start) {
   return true;
 }
 
+// The steps of SurfaceMesh::link_and_check.
+
+// Of vertices a and b, the one in fewer triangles.
+int least_used(const SurfaceMesh& mesh, int a, int b) {
+  return mesh.vertex_triangle_count(a) <= mesh.vertex_triangle_count(b) ? a : b;
+}
+
+void check_no_duplicate_triangles(const SurfaceMesh& mesh) {
+  const int nt = mesh.triangle_count();
+  const std::vector<Triangle>& triangles = mesh.triangles();
+  // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
+  // around the corner with the fewest triangles (a fan's hub would make this quadratic), before
+  // this one.
+  auto sorted_corners = [&](int t) {
+    std::array<int, 3> corners = triangles[t];
+    std::sort(corners.begin(), corners.end());
+    return corners;
+  };
+  for (int t = 0; t < nt; ++t) {
+    const std::array<int, 3> corners = sorted_corners(t);
+    const int pivot = least_used(mesh, least_used(mesh, corners[0], corners[1]), corners[2]);
+    for (const int* u = mesh.vertex_triangles_begin(pivot); *u < t; ++u)
+      if (sorted_corners(*u) == corners)
+        throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})", *u, t, corners[0],
+                                     corners[1], corners[2]));
+  }
+}
+
+// The neighbours of the mesh's triangles across their edges; returns the number of edges.
+int link_edges(const SurfaceMesh& mesh, std::vector<std::array<int, 3>>& neighbors) {
+  const int nt = mesh.triangle_count();
+  const std::vector<Triangle>& triangles = mesh.triangles();
+  // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
+  // those around a or b (whichever has fewer) that hold both, in increasing order; each (t, e) is
+  // checked when t is reached, so the first offending triangle is named, as a single pass over the
+  // triangles would.
+  neighbors.assign(nt, {-1, -1, -1});
+  int edge_count = 0;
+  auto edge_index = [&](int t, int a, int b) {  // the edge of t from a to b, or -1
+    for (int e = 0; e < 3; ++e)
+      if (triangles[t][e] == a && triangles[t][(e + 1) % 3] == b) return e;
+    return -1;
+  };
+  for (int t = 0; t < nt; ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][e], b = triangles[t][(e + 1) % 3];
+      int users[3] = {-1, -1, -1}, count = 0;
+      const int pivot = least_used(mesh, a, b), other = pivot == a ? b : a;
+      for (const int* u = mesh.vertex_triangles_begin(pivot); u != mesh.vertex_triangles_end(pivot) && count < 3; ++u) {
+        const Triangle& tri = triangles[*u];
+        if (tri[0] == other || tri[1] == other || tri[2] == other) users[count++] = *u;
+      }
+      if (users[0] == t) {
+        ++edge_count;
+        continue;
+      }
+      if (count >= 3 && users[2] == t)
+        throw InputError(fmt::format("mesh is not manifold: edge ({}, {}) has 3 or more triangles ({}, {}, {})",
+                                     std::min(a, b), std::max(a, b), users[0], users[1], t));
+      if (users[1] != t) continue;  // a fourth user or later: the third one has thrown already
+      const int t0 = users[0];
+      if (edge_index(t0, a, b) >= 0)
+        throw InputError(fmt::format(
+            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction{}", t0,
+            t, a, b,
+            orientable_around(triangles, t) ? ""
+                                             : ", and no orientation of their surface agrees on every edge (it is "
+                                               "one-sided, like a Möbius strip: a repair cuts it open)"));
+      neighbors[t][e] = t0;
+      neighbors[t0][edge_index(t0, b, a)] = t;
+    }
+  }
+  return edge_count;
+}
+
+void check_one_fan_per_vertex(const SurfaceMesh& mesh, const std::vector<std::array<int, 3>>& neighbors) {
+  const int nv = mesh.vertex_count();
+  const std::vector<Triangle>& triangles = mesh.triangles();
+  // Manifold vertices: the triangles around v form a single fan (edge-connected through v). With
+  // every edge manifold and consistently oriented, the triangles around v chain across their
+  // edges at v; a walk both ways from the first one meets all of them iff they form one fan.
+  // Only a failing vertex is looked at again, to count its fans for the message.
+  auto corner_of = [&](int t, int v) { return triangles[t][0] == v ? 0 : triangles[t][1] == v ? 1 : 2; };
+  auto fan_size = [&](int v) {
+    const int start = *mesh.vertex_triangles_begin(v), count = mesh.vertex_triangle_count(v);
+    int seen = 1;
+    // Forward: across edge (v, next); stops back at the start (a closed fan) or at the boundary.
+    int t = neighbors[start][corner_of(start, v)];
+    for (; t >= 0 && t != start && seen <= count; t = neighbors[t][corner_of(t, v)]) ++seen;
+    if (t == start) return seen;
+    // Backward: across edge (previous, v), from the start to the other end of the open fan.
+    for (t = neighbors[start][(corner_of(start, v) + 2) % 3]; t >= 0 && seen <= count;
+         t = neighbors[t][(corner_of(t, v) + 2) % 3])
+      ++seen;
+    return seen;
+  };
+  {
+    std::vector<int> parent;
+    for (int v = 0; v < nv; ++v) {
+      const int count = mesh.vertex_triangle_count(v);
+      if (fan_size(v) == count) continue;
+      const int* begin = mesh.vertex_triangles_begin(v);
+      parent.resize(count);
+      std::iota(parent.begin(), parent.end(), 0);
+      int groups = count;
+      for (int a = 0; a < count; ++a) {
+        const int t = begin[a];
+        for (int e = 0; e < 3; ++e) {
+          const Triangle& tri = triangles[t];
+          if (tri[e] != v && tri[(e + 1) % 3] != v) continue;
+          const int across = neighbors[t][e];
+          if (across < 0) continue;
+          const int b = static_cast<int>(std::lower_bound(begin, begin + count, across) - begin);  // sorted list
+          const int ra = find_root(parent, a), rb = find_root(parent, b);
+          if (ra != rb) { parent[ra] = rb; --groups; }
+        }
+      }
+      throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v, groups));
+    }
+  }
+}
+
 }  // namespace
 
 double BoundingBox::diagonal() const { return distance(min, max); }
@@ -160,109 +282,9 @@ void SurfaceMesh::build_vertex_triangles() {
 }
 
 void SurfaceMesh::link_and_check() {
-  const int nt = triangle_count(), nv = vertex_count();
-  // Duplicate triangles: same vertex set, in any order; the earlier one is among the triangles
-  // around the corner with the fewest triangles (a fan's hub would make this quadratic), before
-  // this one.
-  auto sorted_corners = [&](int t) {
-    std::array<int, 3> corners = triangles_[t];
-    std::sort(corners.begin(), corners.end());
-    return corners;
-  };
-  auto least_used = [&](int a, int b) { return vertex_triangle_count(a) <= vertex_triangle_count(b) ? a : b; };
-  for (int t = 0; t < nt; ++t) {
-    const std::array<int, 3> corners = sorted_corners(t);
-    const int pivot = least_used(least_used(corners[0], corners[1]), corners[2]);
-    for (const int* u = vertex_triangles_begin(pivot); *u < t; ++u)
-      if (sorted_corners(*u) == corners)
-        throw InputError(fmt::format("triangles {} and {} are duplicates (vertices {}, {}, {})", *u, t, corners[0],
-                                     corners[1], corners[2]));
-  }
-
-  // Edges: at most two triangles each, in opposite directions. The triangles of edge (a, b) are
-  // those around a or b (whichever has fewer) that hold both, in increasing order; each (t, e) is
-  // checked when t is reached, so the first offending triangle is named, as a single pass over the
-  // triangles would.
-  neighbors_.assign(nt, {-1, -1, -1});
-  edge_count_ = 0;
-  auto edge_index = [&](int t, int a, int b) {  // the edge of t from a to b, or -1
-    for (int e = 0; e < 3; ++e)
-      if (triangles_[t][e] == a && triangles_[t][(e + 1) % 3] == b) return e;
-    return -1;
-  };
-  for (int t = 0; t < nt; ++t) {
-    for (int e = 0; e < 3; ++e) {
-      const int a = triangles_[t][e], b = triangles_[t][(e + 1) % 3];
-      int users[3] = {-1, -1, -1}, count = 0;
-      const int pivot = least_used(a, b), other = pivot == a ? b : a;
-      for (const int* u = vertex_triangles_begin(pivot); u != vertex_triangles_end(pivot) && count < 3; ++u) {
-        const Triangle& tri = triangles_[*u];
-        if (tri[0] == other || tri[1] == other || tri[2] == other) users[count++] = *u;
-      }
-      if (users[0] == t) {
-        ++edge_count_;
-        continue;
-      }
-      if (count >= 3 && users[2] == t)
-        throw InputError(fmt::format("mesh is not manifold: edge ({}, {}) has 3 or more triangles ({}, {}, {})",
-                                     std::min(a, b), std::max(a, b), users[0], users[1], t));
-      if (users[1] != t) continue;  // a fourth user or later: the third one has thrown already
-      const int t0 = users[0];
-      if (edge_index(t0, a, b) >= 0)
-        throw InputError(fmt::format(
-            "inconsistent orientation: triangles {} and {} both traverse edge ({}, {}) in the same direction{}", t0,
-            t, a, b,
-            orientable_around(triangles_, t) ? ""
-                                             : ", and no orientation of their surface agrees on every edge (it is "
-                                               "one-sided, like a Möbius strip: a repair cuts it open)"));
-      neighbors_[t][e] = t0;
-      neighbors_[t0][edge_index(t0, b, a)] = t;
-    }
-  }
-
-  // Manifold vertices: the triangles around v form a single fan (edge-connected through v). With
-  // every edge manifold and consistently oriented, the triangles around v chain across their
-  // edges at v; a walk both ways from the first one meets all of them iff they form one fan.
-  // Only a failing vertex is looked at again, to count its fans for the message.
-  auto corner_of = [&](int t, int v) { return triangles_[t][0] == v ? 0 : triangles_[t][1] == v ? 1 : 2; };
-  auto fan_size = [&](int v) {
-    const int start = *vertex_triangles_begin(v), count = vertex_triangle_count(v);
-    int seen = 1;
-    // Forward: across edge (v, next); stops back at the start (a closed fan) or at the boundary.
-    int t = neighbors_[start][corner_of(start, v)];
-    for (; t >= 0 && t != start && seen <= count; t = neighbors_[t][corner_of(t, v)]) ++seen;
-    if (t == start) return seen;
-    // Backward: across edge (previous, v), from the start to the other end of the open fan.
-    for (t = neighbors_[start][(corner_of(start, v) + 2) % 3]; t >= 0 && seen <= count;
-         t = neighbors_[t][(corner_of(t, v) + 2) % 3])
-      ++seen;
-    return seen;
-  };
-  {
-    std::vector<int> parent;
-    for (int v = 0; v < nv; ++v) {
-      const int count = vertex_triangle_count(v);
-      if (fan_size(v) == count) continue;
-      const int* begin = vertex_triangles_begin(v);
-      parent.resize(count);
-      std::iota(parent.begin(), parent.end(), 0);
-      int groups = count;
-      for (int a = 0; a < count; ++a) {
-        const int t = begin[a];
-        for (int e = 0; e < 3; ++e) {
-          const Triangle& tri = triangles_[t];
-          if (tri[e] != v && tri[(e + 1) % 3] != v) continue;
-          const int across = neighbors_[t][e];
-          if (across < 0) continue;
-          const int b = static_cast<int>(std::lower_bound(begin, begin + count, across) - begin);  // sorted list
-          const int ra = find_root(parent, a), rb = find_root(parent, b);
-          if (ra != rb) { parent[ra] = rb; --groups; }
-        }
-      }
-      throw InputError(fmt::format("mesh is not manifold: vertex {} joins {} separate fans of triangles", v, groups));
-    }
-  }
-
+  check_no_duplicate_triangles(*this);
+  edge_count_ = link_edges(*this, neighbors_);
+  check_one_fan_per_vertex(*this, neighbors_);
 }
 
 void SurfaceMesh::finish_topology() {
@@ -400,9 +422,7 @@ double SurfaceMesh::area() const {
 
 Vec3 SurfaceMesh::triangle_normal(int t) const {
   const Triangle& tri = triangles_[t];
-  const Vec3& a = positions_[tri[0]];
-  const Vec3 n = cross(positions_[tri[1]] - a, positions_[tri[2]] - a);
-  return n / norm(n);
+  return lrvd::triangle_normal(positions_[tri[0]], positions_[tri[1]], positions_[tri[2]]);
 }
 
 BoundingBox bounding_box(const std::vector<Vec3>& points) {

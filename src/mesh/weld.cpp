@@ -11,32 +11,25 @@
 #include <utility>
 #include <vector>
 
-#include <nanoflann.hpp>
+#include "mesh/kd_tree.h"
 
 namespace lrvd {
 
 namespace {
 
-// nanoflann's view of a subset of points (all of them when `subset` is null).
-struct PointCloud {
+// A subset of points (all of them when `subset` is null).
+struct PointSubset {
   const std::vector<Vec3>& points;
   const std::vector<int>* subset;
-  std::size_t kdtree_get_point_count() const { return subset ? subset->size() : points.size(); }
-  double kdtree_get_pt(std::size_t i, std::size_t dim) const {
-    const Vec3& p = points[subset ? (*subset)[i] : i];
-    return dim == 0 ? p.x : (dim == 1 ? p.y : p.z);
-  }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;
-  }
+  std::size_t size() const { return subset ? subset->size() : points.size(); }
+  const Vec3& operator[](std::size_t i) const { return points[subset ? (*subset)[i] : i]; }
 };
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, PointCloud>, PointCloud, 3>;
+using PointCloud = KdPoints<PointSubset>;
+using PointTree = KdTree<PointSubset>;
 
 // The tree's radius search compares squared distances with `<`: within the tolerance, excluded.
 // A tolerance whose square underflows still takes the points at the same place.
-std::vector<std::pair<unsigned, double>> within(const KdTree& tree, const Vec3& p, double tolerance) {
+std::vector<std::pair<unsigned, double>> within(const PointTree& tree, const Vec3& p, double tolerance) {
   std::vector<std::pair<unsigned, double>> found;
   const double query[3] = {p.x, p.y, p.z};
   const double squared = std::max(tolerance * tolerance, std::numeric_limits<double>::denorm_min());
@@ -53,8 +46,8 @@ std::vector<int> weld_representatives(const std::vector<Vec3>& points, double to
     for (int i = 0; i < n; ++i) representative[i] = i;
     return representative;
   }
-  PointCloud cloud{points, nullptr};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  PointCloud cloud{{points, nullptr}};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
   for (int i = 0; i < n; ++i) {
     if (representative[i] >= 0) continue;
@@ -69,8 +62,8 @@ NearTwins find_near_twins(const std::vector<Vec3>& points, const std::vector<int
                           const std::function<bool(int, int)>& joined) {
   NearTwins twins;
   if (candidates.empty() || !(tolerance > 0)) return twins;
-  PointCloud cloud{points, &candidates};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  PointCloud cloud{{points, &candidates}};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
   for (const int a : candidates) {
     int nearest = -1;
@@ -111,8 +104,8 @@ std::vector<TJunction> find_t_junctions(const std::vector<Vec3>& points, const s
           for (int v : {t[e], t[(e + 1) % 3]})
             if (!on_boundary[v]) on_boundary[v] = 1, corners.push_back(v);
   if (corners.empty()) return found;
-  PointCloud cloud{points, &corners};
-  KdTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
+  PointCloud cloud{{points, &corners}};
+  PointTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(10));
   tree.buildIndex();
   for (int t = 0; t < static_cast<int>(triangles.size()); ++t) {
     const Triangle& f = triangles[t];

@@ -14,7 +14,7 @@
 #include "mesh/closest_point.h"
 #include "mesh/spatial_order.h"
 #include "predicates/predicates.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

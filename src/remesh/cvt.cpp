@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "mesh/closest_point.h"
 #include "mesh/curvature.h"
 #include "voronoi/lrvd.h"
@@ -327,7 +328,7 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
   result.energy = current.energy;
   result.diagram = std::move(current.diagram);
   result.iterations = iteration;
-  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.time_s = seconds_since(start);
   return result;
 }
 

@@ -5,9 +5,9 @@
 #include <functional>
 #include <vector>
 
+#include "diagram/diagram.h"
 #include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/diagram.h"
 
 namespace lrvd {
 

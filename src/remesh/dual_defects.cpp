@@ -12,9 +12,9 @@
 
 #include <fmt/format.h>
 
+#include "diagram/clip.h"
 #include "mesh/curvature.h"
-#include "metrics/self_intersections.h"
-#include "voronoi/clip.h"
+#include "mesh/self_intersections.h"
 
 namespace lrvd {
 
@@ -26,121 +26,168 @@ namespace {
 // it looks like a manifold. Also, in `strips`, the pairs whose one shared arc runs from the mesh
 // boundary to the mesh boundary through no triple point: across a strip narrower than the cells,
 // where the dual has no edge between them. Boundary pieces are joined through their shared symbolic
-// vertices.
-void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect,
-                               std::vector<std::pair<int, int>>& strips) {
+// vertices. The steps: read the polygons' edges, the cells' Euler characteristics, the boundary
+// pieces grouped by key, and their connected components per key.
+class CellTopology {
+ public:
+  CellTopology(const Diagram& diagram, const SurfaceMesh& mesh)
+      : diagram_(diagram), mesh_(mesh), cells_(diagram.sample_count), faces_(cells_, 0), inner_sides_(cells_, 0),
+        outer_edges_(cells_, 0), unknown_edge_(cells_, 0) {}
+
+  void add_defects(std::set<int>& defect, std::vector<std::pair<int, int>>& strips) {
+    read_polygon_edges();
+    add_cells_not_disks(defect);
+    group_pieces_by_key();
+    add_split_boundaries(defect, strips);
+  }
+
+ private:
   using Key = std::pair<int, int>;  // (cell, 0) for a cell's whole boundary, (i, j + 1) for arc i|j
   struct Piece {
     Key key;
     SymbolicVertex u, w;
   };
-  std::vector<Piece> pieces;
-  std::vector<SymbolicVertex> arc_ends_on_boundary;  // arc vertices on a boundary edge of the mesh
-  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids;  // every polygon vertex, numbered
-  auto id_of = [&](const SymbolicVertex& q) { return ids.try_emplace(q, static_cast<int>(ids.size())).first->second; };
-  // Per cell, for its Euler characteristic: polygons, polygon edges shared with the cell's own
-  // polygon across a mesh edge (each counted from both sides), the other edges, and (cell, vertex).
-  const int cells = diagram.sample_count;
-  std::vector<int> faces(cells, 0), inner_sides(cells, 0), outer_edges(cells, 0);
-  std::vector<char> unknown_edge(cells, 0);
-  std::vector<std::pair<int, int>> cell_vertices;
-  for (const CellPolygon& poly : diagram.polygons) {
-    const SymbolicVertex* v = diagram.polygon_vertices(poly);
-    const Triangle& tri = mesh.triangle(poly.triangle);
-    ++faces[poly.cell];
-    for (int k = 0; k < poly.vertex_count; ++k) {
-      const SymbolicVertex &u = v[k], &w = v[(k + 1) % poly.vertex_count];
-      cell_vertices.push_back({poly.cell, id_of(u)});
-      int other = -1;  // the neighbour cell across this edge, or -2 on the mesh boundary
-      for (int e = 0; e < 3 && other == -1; ++e)
-        if (u.on_mesh_edge(tri[e], tri[(e + 1) % 3]) && w.on_mesh_edge(tri[e], tri[(e + 1) % 3]))
-          other = mesh.neighbor(poly.triangle, e) < 0 ? -2 : -3;
-      if (other == -3) {  // inside the cell, across a mesh edge
-        ++inner_sides[poly.cell];
-        continue;
-      }
-      if (other == -1)
-        for (int l : u.label)
-          if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
-      if (other == -1) {
-        unknown_edge[poly.cell] = 1;
-        continue;
-      }
-      ++outer_edges[poly.cell];
-      pieces.push_back({{poly.cell, 0}, u, w});
-      if (other >= 0 && poly.cell < other) {
-        pieces.push_back({{poly.cell, other + 1}, u, w});
-        for (const SymbolicVertex* q : {&u, &w})
-          for (int e = 0; e < 3; ++e)
-            if (q->type == SymbolicVertex::Type::B && mesh.neighbor(poly.triangle, e) < 0 &&
-                q->on_mesh_edge(tri[e], tri[(e + 1) % 3]))
-              arc_ends_on_boundary.push_back(*q);
-      }
-    }
-  }
-  // V - E + F of each cell: 1 for a disk, 0 for a ring, -1 for a disk with a handle in it.
-  std::sort(cell_vertices.begin(), cell_vertices.end());
-  cell_vertices.erase(std::unique(cell_vertices.begin(), cell_vertices.end()), cell_vertices.end());
-  std::vector<int> euler(faces);
-  for (const auto& [cell, vertex] : cell_vertices) ++euler[cell];
-  for (int c = 0; c < cells; ++c) {
-    euler[c] -= inner_sides[c] / 2 + outer_edges[c];
-    if (faces[c] > 0 && !unknown_edge[c] && inner_sides[c] % 2 == 0 && euler[c] < 1) defect.insert(c);
-  }
-  // Count connected components per key with a union-find over the key's vertices: the pieces
-  // sorted by key, the vertices numbered with the cells' ones.
   struct Link {
     Key key;
     int u, w;
     bool operator<(const Link& o) const { return key < o.key; }
   };
-  // Grouped by cell (a counting sort), then each cell's few pieces sorted by key.
-  std::vector<int> first_of_cell(diagram.sample_count + 1, 0);
-  for (const Piece& p : pieces) ++first_of_cell[p.key.first + 1];
-  for (int c = 0; c < diagram.sample_count; ++c) first_of_cell[c + 1] += first_of_cell[c];
-  std::vector<Link> links(pieces.size());
-  std::vector<int> next(first_of_cell.begin(), first_of_cell.end() - 1);
-  for (const Piece& p : pieces) {
-    const int u = id_of(p.u);
-    links[next[p.key.first]++] = {p.key, u, id_of(p.w)};
+
+  int id_of(const SymbolicVertex& q) { return ids_.try_emplace(q, static_cast<int>(ids_.size())).first->second; }
+
+  // The neighbour cell across polygon edge (u, w) of `poly`: -3 inside the cell across a mesh
+  // edge, -2 on the mesh boundary, -1 unknown.
+  int cell_across(const CellPolygon& poly, const Triangle& tri, const SymbolicVertex& u, const SymbolicVertex& w) const {
+    int other = -1;
+    for (int e = 0; e < 3 && other == -1; ++e)
+      if (u.on_mesh_edge(tri[e], tri[(e + 1) % 3]) && w.on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+        other = mesh_.neighbor(poly.triangle, e) < 0 ? -2 : -3;
+    if (other == -1)
+      for (int l : u.label)
+        if (l >= 0 && l != poly.cell && w.has_label(l)) other = l;
+    return other;
   }
-  // Per vertex id: 1 for a triple point (type C), 2 for an arc's end on the mesh boundary.
-  std::vector<char> kind(ids.size(), 0);
-  for (const auto& [q, id] : ids)
-    if (q.type == SymbolicVertex::Type::C) kind[id] = 1;
-  for (const SymbolicVertex& q : arc_ends_on_boundary) kind[ids.at(q)] = 2;
-  for (int c = 0; c < diagram.sample_count; ++c)
-    std::sort(links.begin() + first_of_cell[c], links.begin() + first_of_cell[c + 1]);
-  std::vector<int> parent(ids.size(), -1);  // -1: not in the current key's forest
-  std::vector<int> touched;
-  auto root = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (size_t first = 0; first < links.size();) {
-    size_t last = first;
-    int components = 0;
-    bool triple = false, boundary_end = false;
-    for (; last < links.size() && links[last].key == links[first].key; ++last)
-      for (int x : {links[last].u, links[last].w}) {
-        if (parent[x] < 0) parent[x] = x, touched.push_back(x), ++components;
-        triple = triple || kind[x] == 1;
-        boundary_end = boundary_end || kind[x] == 2;
+
+  // Per cell, for its Euler characteristic: polygons, polygon edges shared with the cell's own
+  // polygon across a mesh edge (each counted from both sides), the other edges, and (cell, vertex);
+  // the boundary pieces, and the arc vertices on a boundary edge of the mesh.
+  void read_polygon_edges() {
+    for (const CellPolygon& poly : diagram_.polygons) {
+      const SymbolicVertex* v = diagram_.polygon_vertices(poly);
+      const Triangle& tri = mesh_.triangle(poly.triangle);
+      ++faces_[poly.cell];
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const SymbolicVertex &u = v[k], &w = v[(k + 1) % poly.vertex_count];
+        cell_vertices_.push_back({poly.cell, id_of(u)});
+        const int other = cell_across(poly, tri, u, w);
+        if (other == -3) {  // inside the cell, across a mesh edge
+          ++inner_sides_[poly.cell];
+          continue;
+        }
+        if (other == -1) {
+          unknown_edge_[poly.cell] = 1;
+          continue;
+        }
+        ++outer_edges_[poly.cell];
+        pieces_.push_back({{poly.cell, 0}, u, w});
+        if (other >= 0 && poly.cell < other) {
+          pieces_.push_back({{poly.cell, other + 1}, u, w});
+          for (const SymbolicVertex* q : {&u, &w})
+            for (int e = 0; e < 3; ++e)
+              if (q->type == SymbolicVertex::Type::B && mesh_.neighbor(poly.triangle, e) < 0 &&
+                  q->on_mesh_edge(tri[e], tri[(e + 1) % 3]))
+                arc_ends_on_boundary_.push_back(*q);
+        }
       }
-    for (size_t k = first; k < last; ++k) {
-      const int ra = root(links[k].u), rb = root(links[k].w);
-      if (ra != rb) parent[ra] = rb, --components;
     }
-    if (components > 1) {
-      defect.insert(links[first].key.first);
-      if (links[first].key.second > 0) defect.insert(links[first].key.second - 1);
-    } else if (links[first].key.second > 0 && boundary_end && !triple) {
-      strips.push_back({links[first].key.first, links[first].key.second - 1});
-    }
-    for (int x : touched) parent[x] = -1;
-    touched.clear();
-    first = last;
   }
+
+  // V - E + F of each cell: 1 for a disk, 0 for a ring, -1 for a disk with a handle in it.
+  void add_cells_not_disks(std::set<int>& defect) {
+    std::sort(cell_vertices_.begin(), cell_vertices_.end());
+    cell_vertices_.erase(std::unique(cell_vertices_.begin(), cell_vertices_.end()), cell_vertices_.end());
+    std::vector<int> euler(faces_);
+    for (const auto& [cell, vertex] : cell_vertices_) ++euler[cell];
+    for (int c = 0; c < cells_; ++c) {
+      euler[c] -= inner_sides_[c] / 2 + outer_edges_[c];
+      if (faces_[c] > 0 && !unknown_edge_[c] && inner_sides_[c] % 2 == 0 && euler[c] < 1) defect.insert(c);
+    }
+  }
+
+  // The pieces as links between numbered vertices, grouped by cell (a counting sort), then each
+  // cell's few pieces sorted by key; per vertex id, 1 for a triple point (type C), 2 for an arc's
+  // end on the mesh boundary.
+  void group_pieces_by_key() {
+    first_of_cell_.assign(cells_ + 1, 0);
+    for (const Piece& p : pieces_) ++first_of_cell_[p.key.first + 1];
+    for (int c = 0; c < cells_; ++c) first_of_cell_[c + 1] += first_of_cell_[c];
+    links_.resize(pieces_.size());
+    std::vector<int> next(first_of_cell_.begin(), first_of_cell_.end() - 1);
+    for (const Piece& p : pieces_) {
+      const int u = id_of(p.u);
+      links_[next[p.key.first]++] = {p.key, u, id_of(p.w)};
+    }
+    kind_.assign(ids_.size(), 0);
+    for (const auto& [q, id] : ids_)
+      if (q.type == SymbolicVertex::Type::C) kind_[id] = 1;
+    for (const SymbolicVertex& q : arc_ends_on_boundary_) kind_[ids_.at(q)] = 2;
+    for (int c = 0; c < cells_; ++c)
+      std::sort(links_.begin() + first_of_cell_[c], links_.begin() + first_of_cell_[c + 1]);
+  }
+
+  // Connected components per key, with a union-find over the key's vertices: a cell's boundary or
+  // a pair's arc in more than one piece is a defect; a pair's one arc from the mesh boundary to the
+  // mesh boundary through no triple point is a strip.
+  void add_split_boundaries(std::set<int>& defect, std::vector<std::pair<int, int>>& strips) {
+    std::vector<int> parent(ids_.size(), -1);  // -1: not in the current key's forest
+    std::vector<int> touched;
+    auto root = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    for (size_t first = 0; first < links_.size();) {
+      size_t last = first;
+      int components = 0;
+      bool triple = false, boundary_end = false;
+      for (; last < links_.size() && links_[last].key == links_[first].key; ++last)
+        for (int x : {links_[last].u, links_[last].w}) {
+          if (parent[x] < 0) parent[x] = x, touched.push_back(x), ++components;
+          triple = triple || kind_[x] == 1;
+          boundary_end = boundary_end || kind_[x] == 2;
+        }
+      for (size_t k = first; k < last; ++k) {
+        const int ra = root(links_[k].u), rb = root(links_[k].w);
+        if (ra != rb) parent[ra] = rb, --components;
+      }
+      if (components > 1) {
+        defect.insert(links_[first].key.first);
+        if (links_[first].key.second > 0) defect.insert(links_[first].key.second - 1);
+      } else if (links_[first].key.second > 0 && boundary_end && !triple) {
+        strips.push_back({links_[first].key.first, links_[first].key.second - 1});
+      }
+      for (int x : touched) parent[x] = -1;
+      touched.clear();
+      first = last;
+    }
+  }
+
+  const Diagram& diagram_;
+  const SurfaceMesh& mesh_;
+  const int cells_;
+  std::vector<Piece> pieces_;
+  std::vector<SymbolicVertex> arc_ends_on_boundary_;  // arc vertices on a boundary edge of the mesh
+  std::unordered_map<SymbolicVertex, int, SymbolicVertexHash> ids_;  // every polygon vertex, numbered
+  std::vector<int> faces_, inner_sides_, outer_edges_;
+  std::vector<char> unknown_edge_;
+  std::vector<std::pair<int, int>> cell_vertices_;
+  std::vector<int> first_of_cell_;
+  std::vector<Link> links_;
+  std::vector<char> kind_;
+};
+
+void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect,
+                               std::vector<std::pair<int, int>>& strips) {
+  CellTopology(diagram, mesh).add_defects(defect, strips);
 }
 
 // Vertices whose triangles form more than one fan (two triangles around v are in one fan when a

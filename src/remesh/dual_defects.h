@@ -7,11 +7,11 @@
 #include <utility>
 #include <vector>
 
+#include "diagram/diagram.h"
+#include "diagram/dual.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/untangle.h"
-#include "voronoi/diagram.h"
-#include "voronoi/dual.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

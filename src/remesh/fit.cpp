@@ -11,9 +11,9 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "diagram/clip.h"
+#include "mesh/self_intersections.h"
 #include "metrics/quality.h"
-#include "metrics/self_intersections.h"
-#include "voronoi/clip.h"
 
 namespace lrvd {
 

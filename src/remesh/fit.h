@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include "diagram/diagram.h"
+#include "diagram/dual.h"
 #include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/fit_offsets.h"
-#include "voronoi/diagram.h"
-#include "voronoi/dual.h"
 
 namespace lrvd {
 

@@ -19,9 +19,9 @@
 #include <functional>
 #include <vector>
 
+#include "diagram/dual.h"
 #include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/dual.h"
 
 namespace lrvd {
 

@@ -6,10 +6,10 @@
 #include <optional>
 #include <vector>
 
+#include "diagram/dual.h"
 #include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/fit_offsets.h"
-#include "voronoi/dual.h"
 
 namespace lrvd::fit_detail {
 

@@ -1,4 +1,5 @@
 // The samples of balance_offsets on both surfaces and their measured distances (see fit_offsets_detail.h).
+// Part of OffsetBalancer, declared in remesh/fit_offsets_detail.h with the rest of it.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -6,7 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "mesh/closest_point.h"
-#include "metrics/self_intersections.h"
+#include "mesh/self_intersections.h"
 #include "remesh/fit_offsets_detail.h"
 
 namespace lrvd::fit_detail {
@@ -133,9 +134,7 @@ double OffsetBalancer::measure(double floor) {
 
 Vec3 OffsetBalancer::triangle_normal(int t) const {
   const Triangle& f = dual_.triangles[t];
-  const Vec3 n = cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
-  const double length = norm(n);
-  return length > 0 ? n / length : n;
+  return lrvd::triangle_normal(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
 }
 
 void OffsetBalancer::place_samples() {

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -174,7 +175,7 @@ CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples
   result.iterations = moved.iterations;
   result.diagram_evaluations = moved.diagram_evaluations + 1;
   result.line_search_stopped = moved.line_search_stopped;
-  result.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.time_s = seconds_since(start);
   return result;
 }
 

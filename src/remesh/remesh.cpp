@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "mesh/closest_point.h"
 #include "mesh/curvature.h"
 #include "metrics/quality.h"
@@ -519,7 +520,7 @@ RemeshResult RemeshDriver::finish() {
   kept_.path.repair_saturated = saturated_runs_ == runs_ && !kept_defects_.empty();
   kept_.path.runs = runs_;
   kept_.defects = std::move(kept_defects_);
-  kept_.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  kept_.time_s = seconds_since(start_);
   return std::move(kept_);
 }
 

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "diagram/dual.h"
 #include "remesh/cvt.h"
 #include "remesh/dual_defects.h"
 #include "remesh/fit.h"
 #include "remesh/local_repair.h"
 #include "remesh/untangle.h"
-#include "voronoi/dual.h"
 
 namespace lrvd {
 

@@ -8,7 +8,7 @@
 
 #include "mesh/surface_mesh.h"
 #include "remesh/remesh.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

@@ -5,9 +5,9 @@
 #include <limits>
 #include <tuple>
 
+#include "diagram/clip.h"
 #include "mesh/closest_point.h"
 #include "remesh/cvt.h"
-#include "voronoi/clip.h"
 
 namespace lrvd {
 

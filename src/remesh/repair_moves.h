@@ -5,9 +5,9 @@
 #include <cstddef>
 #include <vector>
 
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

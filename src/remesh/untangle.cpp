@@ -5,8 +5,8 @@
 #include <map>
 #include <set>
 
+#include "mesh/self_intersections.h"
 #include "metrics/quality.h"
-#include "metrics/self_intersections.h"
 #include "predicates/predicates.h"
 
 namespace lrvd {

@@ -16,9 +16,9 @@
 
 #include <vector>
 
+#include "diagram/dual.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/dual.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

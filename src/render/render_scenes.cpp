@@ -1,5 +1,6 @@
 // The scenes `lrvd render` draws: a mesh, a diagram's cells with their stray pieces hatched, and a
 // mesh coloured by triangle quality or by the remesh checks its triangles fail.
+// Declared in render/render.h, with the rasterizer that draws them.
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -7,13 +8,13 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "diagram/cells_output.h"
+#include "diagram/diagram.h"
+#include "mesh/self_intersections.h"
 #include "mesh/surface_mesh.h"
 #include "metrics/quality.h"
-#include "metrics/self_intersections.h"
 #include "render/render.h"
-#include "voronoi/cells_output.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

@@ -7,8 +7,19 @@
 
 #include "common/error.h"
 #include "predicates/predicates.h"
+#include "voronoi/lrvd.h"
 
 namespace lrvd {
+
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options,
+                           Diagram* lrpd) {
+  const auto compute_lrpd = [&] {
+    LrvdOptions lrpd_options;
+    lrpd_options.weighted = true;
+    return compute_lrvd(mesh, samples, lrpd_options);
+  };
+  return verify_mps(mesh, samples, compute_lrpd, options, lrpd);
+}
 
 void check_mps_settings(const MpsSettings& settings) {
   // A radius of the model's size already leaves one sample per sheet; far beyond it, squared
@@ -31,14 +42,11 @@ void check_mps_settings(const MpsSettings& settings) {
     throw InputError(fmt::format("--split-to is field or rmin, not '{}'", settings.split_to));
 }
 
-MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
-               const std::string& mesh_path, const std::string& output_path, bool lrrt,
-               const std::string& remesh_path, const ProgressFn& on_progress,
-               const std::function<void(const Samples&)>& on_samples,
-               const std::function<void(const DualMesh&)>& on_dual) {
-  MpsRun run;
-  MpsOptions& options = run.options;
-  const SurfaceMesh& input = loaded.mesh;
+namespace {
+
+// The sampler's options, as the settings name them. \throw InputError on options that do not go together.
+MpsOptions mps_options(const MpsSettings& settings, const ProgressFn& on_progress) {
+  MpsOptions options;
   options.radius = settings.radius;
   options.adaptive = settings.adaptive;
   options.max_radius_ratio = settings.max_radius_ratio;
@@ -52,28 +60,18 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   options.sample_features = settings.features;
   options.feature_angle = settings.feature_angle;
   options.on_progress = on_progress;
-  reset_predicate_stats();
-  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
-  // message names the file, as the loader's do.
-  try {
-    run.result = maximal_poisson_disk_sampling(input, options);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", mesh_path, e.what()));
-  }
+  return options;
+}
+
+// run.report, the JSON report of a finished sampling and its checks (the LRRT's parts are added by run_mps).
+void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
+                      const std::string& mesh_path, const std::string& output_path, const Diagram& lrpd) {
+  const SurfaceMesh& input = loaded.mesh;
+  const MpsOptions& options = run.options;
   const MpsResult& result = run.result;
   const Samples& samples = result.samples;
-  if (on_samples) on_samples(samples);
-
-  // The checks start from the samples alone: a new LRPD, new local regions.
-  if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
-  MpsVerifyOptions verify_options;
-  verify_options.exact_maximality = settings.exact;
-  Diagram lrpd;
-  run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
   const MpsVerification& check = run.check;
-  const bool maximal = run.maximal = check.maximal.passed && check.diagram_covers.passed;
-  const bool min_distance_ok = run.min_distance_ok = check.min_distance.passed;
-
+  const bool maximal = run.maximal, min_distance_ok = run.min_distance_ok;
   nlohmann::json& report = run.report;
   report["input"] = {{"path", mesh_path},
                      {"vertices", input.vertex_count()},
@@ -119,6 +117,44 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
                       {"verification_lrpd", lrpd.stats.time_s},
                       {"verification", check.time_s}};
   report["output"] = output_path;
+
+}
+
+}  // namespace
+
+MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
+               const std::string& mesh_path, const std::string& output_path, bool lrrt,
+               const std::string& remesh_path, const ProgressFn& on_progress,
+               const std::function<void(const Samples&)>& on_samples,
+               const std::function<void(const DualMesh&)>& on_dual) {
+  MpsRun run;
+  run.options = mps_options(settings, on_progress);
+  const MpsOptions& options = run.options;
+  const SurfaceMesh& input = loaded.mesh;
+  reset_predicate_stats();
+  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
+  // message names the file, as the loader's do.
+  try {
+    run.result = maximal_poisson_disk_sampling(input, options);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", mesh_path, e.what()));
+  }
+  const MpsResult& result = run.result;
+  const Samples& samples = result.samples;
+  if (on_samples) on_samples(samples);
+
+  // The checks start from the samples alone: a new LRPD, new local regions.
+  if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
+  MpsVerifyOptions verify_options;
+  verify_options.exact_maximality = settings.exact;
+  Diagram lrpd;
+  run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
+  const MpsVerification& check = run.check;
+  run.maximal = check.maximal.passed && check.diagram_covers.passed;
+  run.min_distance_ok = check.min_distance.passed;
+
+  write_mps_report(run, loaded, repair_requested, settings, mesh_path, output_path, lrpd);
+  nlohmann::json& report = run.report;
 
   run.lrrt = lrrt;
   if (lrrt) {

@@ -8,10 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "remesh/mps.h"
+#include "diagram/dual.h"
+#include "mps/mps.h"
 #include "report/report.h"
 #include "verification/mps_check.h"
-#include "voronoi/dual.h"
 
 namespace lrvd {
 
@@ -31,6 +31,11 @@ struct MpsSettings {
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
 };
+
+//! verify_mps (verification/mps_check.h) on an LRPD of the samples computed here with compute_lrvd;
+//! it goes to `*lrpd` when asked for.
+MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, const MpsVerifyOptions& options = {},
+                           Diagram* lrpd = nullptr);
 
 //! What can be refused before the mesh is read: the radius, the ranges and names of the options,
 //! --max-radius-ratio without --adaptive. \throw InputError

@@ -88,15 +88,11 @@ void check_remesh_settings(const RemeshSettings& settings) {
     throw InputError(fmt::format("--iterations is 1 to 100000, not {}", settings.iterations));
 }
 
-RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_samples, std::uint64_t seed,
-                     const std::string& mesh_path, const std::string& output_path, const ProgressFn& on_progress,
-                     const std::function<void(const DualMesh&)>& on_dual) {
-  if (input.samples.weighted())
-    throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
-  if (input.refined_from >= 0 && on_progress)
-    on_progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
-  RemeshRun run;
-  RemeshOptions& remesh = run.options;
+namespace {
+
+// The options of a remesh, as the settings name them.
+RemeshOptions remesh_options(const RemeshSettings& settings, const ProgressFn& on_progress) {
+  RemeshOptions remesh;
   CvtOptions& cvt = remesh.cvt;
   cvt.diagram = diagram_kind_from_string(settings.kind);
   cvt.optimizer = settings.optimizer == "lloyd" ? CvtOptimizer::Lloyd : CvtOptimizer::Lbfgs;
@@ -106,32 +102,17 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   if (settings.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
   remesh.repair = settings.repair_scope == "local" ? RepairScope::Local : RepairScope::Whole;
   remesh.on_progress = on_progress;
-  // The samples drawn per component unless given (--points), both renumbered: remesh_from.
-  RemeshStart start;
-  start.n = input.samples.size();
-  start.seed = seed;
-  start.mesh = std::move(input.mesh);
-  if (!random_samples) start.samples = std::move(input.samples);
-  start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
-    reset_predicate_stats();
-    if (on_progress) on_progress(fmt::format("CVT of {} samples on the {}", samples.size(), settings.kind));
-  };
-  run.result = remesh_from(input.loaded.mesh, start, remesh);
-  input.mesh = std::move(*start.mesh);
-  input.samples = std::move(*start.samples);
+  return remesh;
+}
+
+// run.report, the JSON report of a finished remesh of `input` (and run.diagonal, run.holes).
+void write_remesh_report(RemeshRun& run, const Input& input, const RemeshSettings& settings,
+                         const std::string& mesh_path, const std::string& output_path) {
+  const RemeshOptions& remesh = run.options;
   const RemeshResult& remeshed = run.result;
   const CvtResult& result = remeshed.cvt;
   const DualMesh& dual = remeshed.dual;
-  if (on_dual) on_dual(dual);
-
-  if (on_progress) on_progress("checking the remesh");
-  run.check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
-  // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
-  // is nothing to measure.
   const RemeshVerification& check = run.check;
-  run.measurable = !dual.triangles.empty();
-  if (run.measurable) run.quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
-
   nlohmann::json& report = run.report;
   report["input"] = input_json(input);
   report["input"]["path"] = mesh_path;
@@ -190,6 +171,44 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
   report["predicates"] = predicates_json();
+}
+
+}  // namespace
+
+RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_samples, std::uint64_t seed,
+                     const std::string& mesh_path, const std::string& output_path, const ProgressFn& on_progress,
+                     const std::function<void(const DualMesh&)>& on_dual) {
+  if (input.samples.weighted())
+    throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
+  if (input.refined_from >= 0 && on_progress)
+    on_progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+  RemeshRun run;
+  run.options = remesh_options(settings, on_progress);
+  const RemeshOptions& remesh = run.options;
+  // The samples drawn per component unless given (--points), both renumbered: remesh_from.
+  RemeshStart start;
+  start.n = input.samples.size();
+  start.seed = seed;
+  start.mesh = std::move(input.mesh);
+  if (!random_samples) start.samples = std::move(input.samples);
+  start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
+    reset_predicate_stats();
+    if (on_progress) on_progress(fmt::format("CVT of {} samples on the {}", samples.size(), settings.kind));
+  };
+  run.result = remesh_from(input.loaded.mesh, start, remesh);
+  input.mesh = std::move(*start.mesh);
+  input.samples = std::move(*start.samples);
+  const DualMesh& dual = run.result.dual;
+  if (on_dual) on_dual(dual);
+
+  if (on_progress) on_progress("checking the remesh");
+  run.check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
+  // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
+  // is nothing to measure.
+  run.measurable = !dual.triangles.empty();
+  if (run.measurable) run.quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
+
+  write_remesh_report(run, input, settings, mesh_path, output_path);
   return run;
 }
 

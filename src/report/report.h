@@ -9,11 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "mesh/mesh_io.h"
+#include "diagram/diagram.h"
+#include "io/mesh_io.h"
 #include "metrics/quality.h"
+#include "samples/samples.h"
 #include "verification/remesh_check.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
 
 namespace lrvd {
 

@@ -17,8 +17,8 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
+#include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/clip.h"
 #include "voronoi/growth_entry.h"
 
 namespace lrvd {

@@ -2,7 +2,7 @@
 // diagram it is compared with, behind one entry point.
 #pragma once
 
-#include "voronoi/diagram.h"
+#include "diagram/diagram.h"
 
 namespace lrvd {
 

@@ -1,6 +1,7 @@
 // The exact restricted Voronoi (power) diagram, the baseline the LRVD is compared with: for each
 // triangle, the cells meeting it are found by walking the Delaunay (regular) neighbour graph from
 // the cell of one corner, and each is clipped by all its neighbours' bisectors exactly.
+// Declared in voronoi/lrvd.h, beside compute_lrvd, whose Diagram it returns.
 #include <algorithm>
 #include <chrono>
 #include <map>
@@ -10,8 +11,9 @@
 #include <CGAL/Regular_triangulation_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include "common/timing.h"
+#include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/clip.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -197,7 +199,7 @@ Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weight
     d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
     ++d.stats.clipped_triangles;
   }
-  d.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  d.stats.time_s = seconds_since(start);
   return d;
 }
 

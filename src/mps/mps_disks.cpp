@@ -1,13 +1,14 @@
 // The disks of maximal Poisson-disk sampling as the triangles know them (paper §4.2, second
 // change): region growing from a dart's triangle instead of a 3D grid, per-triangle lists of the
 // disks that cover or reach each triangle, and the exact point-in-disk test.
+// Part of the gap filling's DiskIndex, declared in mps/mps_gaps.h.
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "mesh/closest_point.h"
+#include "mps/mps_gaps.h"
 #include "predicates/exact.h"
-#include "remesh/mps_gaps.h"
 
 namespace lrvd::mps_detail {
 

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <string>
 
-#include "mesh/mesh_file_diagnosis.h"
+#include "io/mesh_file_diagnosis.h"
 
 namespace lrvd {
 

@@ -1,6 +1,6 @@
 // Diagnosis of mesh files CGAL refused: OFF, OBJ and ascii PLY/STL are scanned line by line for
 // the first offending element; binary files get their header counts in the message.
-#include "mesh/mesh_file_diagnosis.h"
+#include "io/mesh_file_diagnosis.h"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // Dual triangulation of a diagram with orientation read from the polygons' counterclockwise order.
-#include "voronoi/dual.h"
+#include "diagram/dual.h"
 
 #include <algorithm>
 #include <map>

@@ -2,8 +2,8 @@
 // a colour per face (neighbouring cells get different colours).
 #pragma once
 
-#include "mesh/mesh_io.h"
-#include "voronoi/diagram.h"
+#include "diagram/diagram.h"
+#include "io/mesh_io.h"
 
 namespace lrvd {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "predicates/symbolic_vertex.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

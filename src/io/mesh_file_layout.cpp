@@ -1,6 +1,6 @@
 // Header counts against file sizes, PLY lists against the bytes left, and what follows the last
 // declared element: a walk over the file's structure (header tokens, PLY list counts), no data.
-#include "mesh/mesh_file_layout.h"
+#include "io/mesh_file_layout.h"
 
 #include <fmt/format.h>
 

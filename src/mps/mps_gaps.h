@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/diagram.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd::mps_detail {
 

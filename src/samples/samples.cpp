@@ -1,5 +1,5 @@
 // Samples: uniform random sampling by area and location of given points by closest point.
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +15,8 @@
 
 #include "common/error.h"
 #include "common/text.h"
+#include "io/mesh_io.h"
 #include "mesh/closest_point.h"
-#include "mesh/mesh_io.h"
 #include "mesh/surface_mesh.h"
 
 namespace lrvd {
@@ -32,15 +32,14 @@ uint64_t splitmix64(uint64_t& x) {
 
 uint64_t rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
 
-// A point of triangle t, uniform by area, from two uniform numbers.
-void point_in_triangle(const SurfaceMesh& mesh, int t, double u1, double u2, Vec3& position, Vec3& bary) {
+}  // namespace
+
+Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, double u1, double u2, Vec3& bary) {
   const double r = std::sqrt(u1);
   bary = {1 - r, r * (1 - u2), r * u2};
   const Triangle& tri = mesh.triangle(t);
-  position = bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
+  return bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
 }
-
-}  // namespace
 
 Random::Random(uint64_t seed) {
   for (auto& s : state_) s = splitmix64(seed);
@@ -118,7 +117,7 @@ Samples sample_uniform(const SurfaceMesh& mesh, int n, uint64_t seed) {
     const int t = pick(i < components ? &component_triangles[i] : nullptr);
     const double u1 = random.uniform(), u2 = random.uniform();
     samples.triangles[i] = t;
-    point_in_triangle(mesh, t, u1, u2, samples.positions[i], samples.barycentric[i]);
+    samples.positions[i] = point_in_triangle(mesh, t, u1, u2, samples.barycentric[i]);
   }
   return samples;
 }
@@ -170,7 +169,7 @@ Samples sample_by_component(const SurfaceMesh& mesh, int n, uint64_t seed, const
       const int t = triangles[c][at];
       const double u1 = random.uniform(), u2 = random.uniform();
       samples.triangles[i] = t;
-      point_in_triangle(mesh, t, u1, u2, samples.positions[i], samples.barycentric[i]);
+      samples.positions[i] = point_in_triangle(mesh, t, u1, u2, samples.barycentric[i]);
     }
   return samples;
 }

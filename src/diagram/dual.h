@@ -4,8 +4,8 @@
 
 #include <vector>
 
+#include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/diagram.h"
 
 namespace lrvd {
 

@@ -1,5 +1,6 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
+// Declared in io/mesh_io.h, with the readers.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -16,8 +17,8 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
-#include "mesh/mesh_file_diagnosis.h"
-#include "mesh/mesh_io.h"
+#include "io/mesh_file_diagnosis.h"
+#include "io/mesh_io.h"
 
 namespace lrvd {
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mps/mps_gap_geometry.h"
+#include "mps/mps_gaps.h"
 #include "predicates/exact.h"
-#include "remesh/mps_gap_geometry.h"
-#include "remesh/mps_gaps.h"
 
 namespace lrvd::mps_detail {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mesh/surface_mesh.h"
-#include "voronoi/samples.h"
+#include "samples/samples.h"
 
 namespace lrvd {
 

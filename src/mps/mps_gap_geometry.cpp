@@ -1,5 +1,5 @@
 // The area of a convex polygon outside a ball, by the sector formula (see mps_gap_geometry.h).
-#include "remesh/mps_gap_geometry.h"
+#include "mps/mps_gap_geometry.h"
 
 #include <algorithm>
 #include <cmath>

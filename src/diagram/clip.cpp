@@ -1,6 +1,6 @@
 // Sutherland-Hodgman clipping on symbolic vertices. The symbolic perturbation guarantees no vertex
 // lies on a clipping bisector, so each vertex is strictly kept or strictly dropped.
-#include "voronoi/clip.h"
+#include "diagram/clip.h"
 
 #include <algorithm>
 #include <limits>

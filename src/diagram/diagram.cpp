@@ -1,5 +1,5 @@
 // Diagram helpers: kinds, sites, cell integrals for CVT and cell connected components.
-#include "voronoi/diagram.h"
+#include "diagram/diagram.h"
 
 #include <cstdint>
 #include <numeric>
@@ -9,8 +9,8 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
+#include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/clip.h"
 
 namespace lrvd {
 

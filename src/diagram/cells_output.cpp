@@ -1,5 +1,5 @@
 // Diagram to polygon mesh for the cells PLY.
-#include "voronoi/cells_output.h"
+#include "diagram/cells_output.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Self-intersections of a triangle soup: candidate pairs from CGAL's box intersection, decided by
 // exact Epick triangle / segment tests that account for the vertices or edge a pair shares.
-#include "metrics/self_intersections.h"
+#include "mesh/self_intersections.h"
 
 #include <algorithm>
 

@@ -65,6 +65,10 @@ PointFile read_xyz(const std::string& path);
 std::vector<double> read_weights(const std::string& path);
 void write_xyz(const std::string& path, const std::vector<Vec3>& points, const std::vector<double>& weights = {});
 
+//! The point of triangle t at barycentric coordinates (1 - r, r (1 - u2), r u2), r = sqrt(u1), which
+//! `bary` receives: uniform by area over the triangle for u1 and u2 uniform in [0, 1).
+Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, double u1, double u2, Vec3& bary);
+
 //! Reproducible uniform doubles in [0, 1) from a 64-bit seed (same on every platform).
 class Random {
  public:

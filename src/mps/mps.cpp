@@ -2,7 +2,7 @@
 // twice the radius or, as the paper does, to r_min; area table), dart throwing with
 // triangle-based conflict checks, then gap detection with the LRPD and darts into the gaps until
 // none is left. The conflict rule is in docs/algorithms/mps.md.
-#include "remesh/mps.h"
+#include "mps/mps.h"
 
 #include <algorithm>
 #include <chrono>
@@ -12,8 +12,9 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "mesh/curvature.h"
-#include "remesh/mps_gaps.h"
+#include "mps/mps_gaps.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -23,7 +24,6 @@ using namespace mps_detail;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 //! Walker's alias table: an index with probability proportional to its weight in O(1).
 class AliasTable {
@@ -65,11 +65,10 @@ class AliasTable {
   std::vector<int> alias_;
 };
 
-Vec3 point_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bary) {
-  const double r = std::sqrt(random.uniform()), s = random.uniform();
-  bary = {1 - r, r * (1 - s), r * s};
-  const Triangle& tri = mesh.triangle(t);
-  return bary.x * mesh.position(tri[0]) + bary.y * mesh.position(tri[1]) + bary.z * mesh.position(tri[2]);
+// A dart: a point of triangle t, uniform by area.
+Vec3 dart_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bary) {
+  const double u1 = random.uniform(), u2 = random.uniform();
+  return point_in_triangle(mesh, t, u1, u2, bary);
 }
 
 //! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each
@@ -484,7 +483,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   for (int rejections = 0; rejections < options.max_consecutive_rejections && sampler.disks().size() < sample_cap;) {
     const int t = by_area.pick(random);
     Vec3 bary;
-    const Vec3 p = point_in_triangle(m, t, random, bary);
+    const Vec3 p = dart_in_triangle(m, t, random, bary);
     ++result.darts;
     if (sampler.try_insert(p, t, bary))
       rejections = 0;
@@ -505,7 +504,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       for (int attempt = 0; attempt < 10000; ++attempt) {
         const int t = tris[in_component.pick(random)];
         Vec3 bary;
-        const Vec3 p = point_in_triangle(m, t, random, bary);
+        const Vec3 p = dart_in_triangle(m, t, random, bary);
         ++result.darts;
         if (sampler.try_insert(p, t, bary)) break;
       }
