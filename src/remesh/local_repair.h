@@ -28,6 +28,21 @@ struct LocalRepairOptions {
   //! A window holding more than this share of the samples (with its frozen ring) is optimised as
   //! a whole CVT: the part of the mesh it covers would save little.
   double max_window_share = 0.5;
+  //! A window above max_window_share takes fewer rings, down to none (the cells acted on move, their
+  //! neighbours stay), before the round is a whole CVT.
+  bool shrink_to_fit = false;
+  //! A state a local round left without defects is optimised again as a whole (repair_iterations,
+  //! the same density), and that stands if its dual has no defect and a worst triangle no lower.
+  bool finish_whole = false;
+};
+
+//! What a local repair round did (repair_round_cvt), for its progress line.
+struct LocalRound {
+  //! why the round was a whole CVT: "" (it was local), "first rounds" (LocalRepairOptions::whole_first),
+  //! "no progress" (whole_after), "window too large" (max_window_share)
+  const char* whole_because = "";
+  int window = 0;   //!< samples in the window, the frozen ring included (0: no window was built)
+  int moving = 0;   //!< of which move
 };
 
 //! The samples within `rings` rings of `seeds` in the cell adjacency of `diagram` (two cells are
@@ -56,6 +71,6 @@ CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples
 //! of `samples` but for the moved ones.
 CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
                            const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int round, int rounds_without_progress,
-                           const ClosestPointIndex& index);
+                           const ClosestPointIndex& index, LocalRound* account = nullptr);
 
 }  // namespace lrvd

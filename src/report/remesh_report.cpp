@@ -95,6 +95,8 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0 && on_progress)
     on_progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+  const double cpu_start = process_cpu_seconds();
+  double cpu_before_cvt = cpu_start;
   RemeshRun run;
   RemeshOptions& remesh = run.options;
   CvtOptions& cvt = remesh.cvt;
@@ -114,6 +116,7 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   if (!random_samples) start.samples = std::move(input.samples);
   start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
     reset_predicate_stats();
+    cpu_before_cvt = process_cpu_seconds();
     if (on_progress) on_progress(fmt::format("CVT of {} samples on the {}", samples.size(), settings.kind));
   };
   run.result = remesh_from(input.loaded.mesh, start, remesh);
@@ -125,12 +128,15 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   if (on_dual) on_dual(dual);
 
   if (on_progress) on_progress("checking the remesh");
+  const double cpu_checks = process_cpu_seconds();
   run.check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
+  const double cpu_metrics = process_cpu_seconds();
   // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
   // is nothing to measure.
   const RemeshVerification& check = run.check;
   run.measurable = !dual.triangles.empty();
   if (run.measurable) run.quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
+  const double cpu_end = process_cpu_seconds();
 
   nlohmann::json& report = run.report;
   report["input"] = input_json(input);
@@ -189,6 +195,26 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
+  const RemeshStageTimes& stages = remeshed.stage_cpu_s;
+  report["time_cpu_s"] = {{"prepare", cpu_before_cvt - cpu_start},
+                          {"first_cvt", stages.first_cvt},
+                          {"repair_round_cvts", stages.round_cvts},
+                          {"duals_and_defects", stages.defects},
+                          {"untangle_in_rounds", stages.round_untangle},
+                          {"polish_and_ease", stages.polish_ease},
+                          {"fit", stages.fit},
+                          {"untangle", stages.untangle},
+                          {"other", stages.other},
+                          {"checks", cpu_metrics - cpu_checks},
+                          {"metrics", cpu_end - cpu_metrics},
+                          {"total", cpu_end - cpu_start}};
+  if (on_progress)
+    on_progress(fmt::format("CPU s: prepare {:.2f}, first CVT {:.2f}, repair rounds' CVTs {:.2f}, duals and defects "
+                            "{:.2f}, untangling in the rounds {:.2f}, polish and ease {:.2f}, fit {:.2f}, untangle "
+                            "{:.2f}, other {:.2f}, checks {:.2f}, metrics {:.2f}",
+                            cpu_before_cvt - cpu_start, stages.first_cvt, stages.round_cvts, stages.defects,
+                            stages.round_untangle, stages.polish_ease, stages.fit, stages.untangle, stages.other,
+                            cpu_metrics - cpu_checks, cpu_end - cpu_metrics));
   report["predicates"] = predicates_json();
   return run;
 }
