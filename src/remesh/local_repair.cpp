@@ -203,15 +203,8 @@ CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, cons
     fresh = compute_diagram(mesh, samples, options.diagram);
   }
   const Diagram& now = current ? diagram : fresh;
-  // A window too large with its rings takes fewer (LocalRepairOptions::shrink_to_fit), down to the
-  // cells acted on and their frozen ring.
-  std::vector<char> window;
-  long size = 0;
-  for (int rings = local.rings + rounds_without_progress; rings >= 0; --rings) {
-    window = repair_window(now, seeds, rings);
-    size = std::count_if(window.begin(), window.end(), [](char w) { return w != 0; });
-    if (!local.shrink_to_fit || static_cast<double>(size) <= local.max_window_share * n) break;
-  }
+  const std::vector<char> window = repair_window(now, seeds, local.rings + rounds_without_progress);
+  const auto size = std::count_if(window.begin(), window.end(), [](char w) { return w != 0; });
   said.window = static_cast<int>(size);
   said.moving = static_cast<int>(std::count(window.begin(), window.end(), 1));
   if (static_cast<double>(size) > local.max_window_share * n) {

@@ -28,12 +28,6 @@ struct LocalRepairOptions {
   //! A window holding more than this share of the samples (with its frozen ring) is optimised as
   //! a whole CVT: the part of the mesh it covers would save little.
   double max_window_share = 0.5;
-  //! A window above max_window_share takes fewer rings, down to none (the cells acted on move, their
-  //! neighbours stay), before the round is a whole CVT.
-  bool shrink_to_fit = false;
-  //! A state a local round left without defects is optimised again as a whole (repair_iterations,
-  //! the same density), and that stands if its dual has no defect and a worst triangle no lower.
-  bool finish_whole = false;
 };
 
 //! What a local repair round did (repair_round_cvt), for its progress line.

@@ -93,8 +93,6 @@ struct Run {
   int rounds_without_progress = 0;   // since the best state so far
   bool lower_rings = false;          // the third run's caps stalled: their rings are lowered from then on
   bool saw_tip_caps = false;         // some round's dual had a cap on a sharp tip
-  bool windowed = false;             // the last round moved only a window of samples (RepairScope::Local)
-  bool best_windowed = false;        // and so did the round that made `best`
 };
 
 // The state remesh_cvt's stages share: the surfaces, the options, what the runs found, and the
@@ -128,7 +126,6 @@ class RemeshDriver {
   RemeshResult end_run(Run& r);
   void polish(RemeshResult& state, const std::vector<double>& density, Run& r);
   void ease(Run& r);
-  void finish_whole(Run& r);
   DualDefects find_defects(const DualMesh& dual, const CvtResult& cvt) const {
     const StageClock::Scope timed(clock_, &RemeshStageTimes::defects);
     return find_dual_defects(dual, cvt.diagram, mesh_, cvt.samples, reference_.is_closed(), inherited_);
@@ -364,14 +361,12 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
       std::vector<int> acted_on(raised);
       acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
       LocalRound local;
-      r.windowed = false;
       result.cvt = repair_round_cvt(mesh_, result.cvt.samples, result.cvt.diagram, acted_on, r.again,
                                     options_.local_repair, round, r.rounds_without_progress, index_, &local);
       progress(*local.whole_because
                    ? fmt::format("repair round {}: a whole CVT ({}{})", round + 1, local.whole_because,
                                  local.window ? fmt::format(": {} of {} samples", local.window, result.cvt.samples.size()) : "")
                    : fmt::format("repair round {}: {} samples move in a window of {}", round + 1, local.moving, local.window));
-      r.windowed = !*local.whole_because;
     }
   }
   result.total_iterations += result.cvt.iterations;
@@ -391,7 +386,6 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
       progress(fmt::format("repair round {}: a better state after {} rounds without one", round + 1,
                            r.rounds_without_progress));
     r.best_defects = r.defects;
-    r.best_windowed = r.windowed;
     r.best = result;
     r.best_density = r.again.triangle_density;
     r.rounds_without_progress = 0;
@@ -404,7 +398,6 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
 // counters of the whole run. A state whose crossings were untangled (settle) is kept as it is.
 RemeshResult RemeshDriver::end_run(Run& r) {
   const bool clean = r.best_defects.empty() && !r.best.path.fitted_in_rounds;
-  if (clean && r.best_windowed && options_.local_repair.finish_whole) finish_whole(r);
   if (clean) polish(r.best, r.best_density, r);
   if (clean && options_.ease_iterations > 0 && r.result.repair_rounds > 0 &&
       r.best_density.size() == r.base_density.size())
@@ -413,39 +406,6 @@ RemeshResult RemeshDriver::end_run(Run& r) {
   r.best.total_iterations = r.result.total_iterations;
   r.best.diagram_evaluations = r.result.diagram_evaluations;
   return std::move(r.best);
-}
-
-// A state a local round left without defects (RepairScope::Local) is optimised again as a whole, as
-// a whole round would have been, with the same density: it stands if its dual has no defect and a
-// worst triangle no lower. The window's edge is where a local round leaves its worst triangles.
-void RemeshDriver::finish_whole(Run& r) {
-  RemeshResult& best = r.best;
-  CvtOptions whole = r.again;
-  whole.triangle_density = r.best_density;
-  CvtResult cvt;
-  {
-    const StageClock::Scope timed(clock_, &RemeshStageTimes::round_cvts);
-    cvt = optimize_cvt(mesh_, best.cvt.samples, whole, &best.cvt.diagram, &index_);
-  }
-  r.result.total_iterations += cvt.iterations;
-  r.result.diagram_evaluations += cvt.diagram_evaluations;
-  DualMesh dual = dual_of(cvt);
-  const DualDefects after = find_defects(dual, cvt);
-  const double q_before = shape_metrics(best.dual.positions, best.dual.triangles).q_min;
-  const double q_after = after.empty() ? shape_metrics(dual.positions, dual.triangles).q_min : 0.0;
-  const bool kept = after.empty() && q_after >= q_before;
-  progress(fmt::format("{} iterations of every sample on the local rounds' state: the dual has {}{}", cvt.iterations,
-                       after.describe(),
-                       kept ? fmt::format(", worst triangle {:.3f} -> {:.3f}, kept", q_before, q_after)
-                            : ", the state before them stands"));
-  if (!kept) return;
-  // The kept CVT's history, iterations and evaluations cover the state it started from.
-  cvt.energy_history.insert(cvt.energy_history.begin(), best.cvt.energy_history.begin(), best.cvt.energy_history.end() - 1);
-  cvt.iterations += best.cvt.iterations;
-  cvt.diagram_evaluations += best.cvt.diagram_evaluations;
-  cvt.time_s += best.cvt.time_s;
-  best.cvt = std::move(cvt);
-  best.dual = std::move(dual);
 }
 
 // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density it
