@@ -24,8 +24,9 @@ struct RemeshOptions {
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
   //! A run ends after this many repair rounds in a row without a state with fewer defects than its
   //! best (0: only at repair_rounds); the next run, if any, starts then. Runs that end valid went at
-  //! most 9 rounds so (the folded sheet at 300, its second run; the 20 rows of docs/results.md at
-  //! most 4), while feline 200's first run, whose best state is its fourth round's, went 20.
+  //! most 10 rounds so (CGAL's diplodocus at 200; the folded sheet at 300 9, the 20 rows of
+  //! docs/results.md at most 4), while feline 200's first run, whose best state is its fourth
+  //! round's, went 20.
   int give_up_after = 12;
   //! What a repair round re-optimises (remesh/local_repair.h): every sample (Whole), or after the
   //! first rounds the samples within a few cell rings of the cells it acts on, on the part of the
