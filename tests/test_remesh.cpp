@@ -471,8 +471,8 @@ TEST_CASE("A remesh with the curvature density is valid and puts more vertices a
 TEST_CASE("A run ends after give_up_after rounds without a better state, and the next run starts", "[remesh]") {
   // The thin plate at the committed scale at 100 vertices: its first run is valid at its tenth round
   // after eight rounds without a better state. A limit of 3 ends that run at its fifth round and
-  // starts the second (samples kept to their sheets); the default limit (12) leaves the remesh as it
-  // is without one.
+  // starts the second (samples kept to their sheets); a limit of 12 leaves the remesh as it is
+  // without one (the default).
   const SurfaceMesh input = make_stress_mesh("thin_plate", 0.5);
   auto remesh = [&](int give_up_after, std::vector<std::string>& lines) {
     RemeshOptions options;
@@ -489,8 +489,8 @@ TEST_CASE("A run ends after give_up_after rounds without a better state, and the
   REQUIRE(unlimited.path.runs == 1);
   REQUIRE(unlimited.repair_rounds == 10);
   REQUIRE_FALSE(stopped(unlimited_lines, 8));
-  const RemeshResult by_default = remesh(RemeshOptions().give_up_after, default_lines);
-  REQUIRE(RemeshOptions().give_up_after == 12);
+  REQUIRE(RemeshOptions().give_up_after == 0);
+  const RemeshResult by_default = remesh(12, default_lines);
   REQUIRE(by_default.dual.positions == unlimited.dual.positions);
   REQUIRE(by_default.dual.triangles == unlimited.dual.triangles);
   const RemeshResult short_runs = remesh(3, short_lines);

@@ -377,14 +377,15 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
   result.fit = {};
   result.untangle = {};
   settle(result, r.defects);
-  progress(fmt::format("repair round {}: {} iterations, energy {:.6g}; the dual has {}", round + 1,
-                       result.cvt.iterations, result.cvt.energy, r.defects.describe()));
-  if (r.defects.fewer_than(r.best_defects)) {
-    // How long the run went without a better state before this one (what RemeshOptions::give_up_after
-    // is set from).
-    if (r.rounds_without_progress > 0)
-      progress(fmt::format("repair round {}: a better state after {} rounds without one", round + 1,
-                           r.rounds_without_progress));
+  const bool better = r.defects.fewer_than(r.best_defects);
+  // How long the run went without a better state before this one (RemeshOptions::give_up_after).
+  progress(fmt::format("repair round {}: {} iterations, energy {:.6g}{}; the dual has {}", round + 1,
+                       result.cvt.iterations, result.cvt.energy,
+                       better && r.rounds_without_progress > 0
+                           ? fmt::format(" (a better state after {} rounds without one)", r.rounds_without_progress)
+                           : "",
+                       r.defects.describe()));
+  if (better) {
     r.best_defects = r.defects;
     r.best = result;
     r.best_density = r.again.triangle_density;
