@@ -389,6 +389,20 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
   REQUIRE(j["priority"] == "distance");
   REQUIRE(j["relaxed"]["rounds"] == 0);
   REQUIRE(j["relaxed"]["moved"] == 0);
+  // The CPU time by stage: each second in one stage, so the stages add up to the total; the first
+  // CVT and the metrics took some, the repair rounds (there were none) none.
+  const json& cpu = j["time_cpu_s"];
+  double stages = 0;
+  for (const char* key : {"prepare", "first_cvt", "repair_round_cvts", "duals_and_defects", "untangle_in_rounds",
+                          "polish_and_ease", "fit", "untangle", "other", "checks", "metrics"}) {
+    REQUIRE(cpu[key].get<double>() >= 0);
+    stages += cpu[key].get<double>();
+  }
+  REQUIRE(stages == Approx(cpu["total"].get<double>()).epsilon(1e-6));
+  REQUIRE(cpu["first_cvt"].get<double>() > 0);
+  REQUIRE(cpu["metrics"].get<double>() > 0);
+  REQUIRE(j["repair_rounds"] == 0);
+  REQUIRE(cpu["repair_round_cvts"].get<double>() == 0);
   // The quality command measures the written file on its own.
   const std::string quality = kOut + "quality.json";
   REQUIRE(run("quality " + kData + "/ellipsoid.off " + out + " --report " + quality).status == 0);

@@ -467,3 +467,34 @@ TEST_CASE("A remesh with the curvature density is valid and puts more vertices a
   // The band r > 0.9 holds 46 of the uniform remesh's 200 vertices and 65 of the adaptive one's.
   CHECK(near_rim(adaptive.dual) > 1.25 * near_rim(uniform.dual));
 }
+
+TEST_CASE("A run ends after give_up_after rounds without a better state, and the next run starts", "[remesh]") {
+  // The thin plate at the committed scale at 100 vertices: its first run is valid at its tenth round
+  // after eight rounds without a better state. A limit of 3 ends that run at its fifth round and
+  // starts the second (samples kept to their sheets); a limit of 12 leaves the remesh as it is with
+  // none (the default).
+  const SurfaceMesh input = make_stress_mesh("thin_plate", 0.5);
+  auto remesh = [&](int give_up_after, std::vector<std::string>& lines) {
+    RemeshOptions options;
+    options.give_up_after = give_up_after;
+    options.on_progress = [&](const std::string& line) { lines.push_back(line); };
+    return remesh_to(input, 100, 1, options);
+  };
+  auto stopped = [](const std::vector<std::string>& lines, int rounds) {
+    const std::string said = fmt::format("no better state in {} rounds, the run stops", rounds);
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(said) != std::string::npos; });
+  };
+  std::vector<std::string> unlimited_lines, lines_at_12, short_lines;
+  const RemeshResult unlimited = remesh(0, unlimited_lines);
+  REQUIRE(unlimited.path.runs == 1);
+  REQUIRE(unlimited.repair_rounds == 10);
+  REQUIRE_FALSE(stopped(unlimited_lines, 8));
+  REQUIRE(RemeshOptions().give_up_after == 0);
+  const RemeshResult at_12 = remesh(12, lines_at_12);
+  REQUIRE(at_12.dual.positions == unlimited.dual.positions);
+  REQUIRE(at_12.dual.triangles == unlimited.dual.triangles);
+  const RemeshResult short_runs = remesh(3, short_lines);
+  REQUIRE(stopped(short_lines, 3));
+  REQUIRE(short_runs.path.runs >= 2);
+  REQUIRE(short_runs.dual.positions.size() == 100);
+}

@@ -181,14 +181,18 @@ CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples
 
 CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
                            const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int round, int rounds_without_progress,
-                           const ClosestPointIndex& index) {
+                           const ClosestPointIndex& index, LocalRound* account) {
+  LocalRound unused;
+  LocalRound& said = account ? *account : unused;
   const int n = samples.size();
   std::vector<int> moved;
   for (int i = 0; i < n && i < static_cast<int>(diagram.sites.size()); ++i)
     if (!(diagram.sites[i].p == samples.positions[i])) moved.push_back(i);
   const bool current = moved.empty() && diagram.sample_count == n;
-  if (round < local.whole_first || rounds_without_progress >= local.whole_after || diagram.sample_count != n)
+  if (round < local.whole_first || rounds_without_progress >= local.whole_after || diagram.sample_count != n) {
+    said.whole_because = round < local.whole_first ? "first rounds" : "no progress";
     return optimize_cvt(mesh, samples, options, current ? &diagram : nullptr, &index);
+  }
   // Samples moved since the diagram (into defect cells): they and the cells they left move too,
   // on the diagram of where they are now.
   std::vector<int> seeds(acted_on);
@@ -202,7 +206,10 @@ CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, cons
   const Diagram& now = current ? diagram : fresh;
   const std::vector<char> window = repair_window(now, seeds, local.rings + rounds_without_progress);
   const auto size = std::count_if(window.begin(), window.end(), [](char w) { return w != 0; });
+  said.window = static_cast<int>(size);
+  said.moving = static_cast<int>(std::count(window.begin(), window.end(), 1));
   if (static_cast<double>(size) > local.max_window_share * n) {
+    said.whole_because = "window too large";
     CvtResult whole = optimize_cvt(mesh, samples, options, &now, &index);
     whole.diagram_evaluations += current ? 0 : 1;
     return whole;

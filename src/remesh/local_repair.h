@@ -30,6 +30,15 @@ struct LocalRepairOptions {
   double max_window_share = 0.5;
 };
 
+//! What a local repair round did (repair_round_cvt), for its progress line.
+struct LocalRound {
+  //! why the round was a whole CVT: "" (it was local), "first rounds" (LocalRepairOptions::whole_first),
+  //! "no progress" (whole_after), "window too large" (max_window_share)
+  const char* whole_because = "";
+  int window = 0;   //!< samples in the window, the frozen ring included (0: no window was built)
+  int moving = 0;   //!< of which move
+};
+
 //! The samples within `rings` rings of `seeds` in the cell adjacency of `diagram` (two cells are
 //! adjacent when they share a diagram vertex): 1 for those, 2 for the ring of cells next to them,
 //! 0 for the rest.
@@ -56,6 +65,6 @@ CvtResult optimize_cvt_in_window(const SurfaceMesh& mesh, const Samples& samples
 //! of `samples` but for the moved ones.
 CvtResult repair_round_cvt(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
                            const std::vector<int>& acted_on, const CvtOptions& options, const LocalRepairOptions& local, int round, int rounds_without_progress,
-                           const ClosestPointIndex& index);
+                           const ClosestPointIndex& index, LocalRound* account = nullptr);
 
 }  // namespace lrvd

@@ -103,7 +103,7 @@ class RemeshDriver {
   RemeshDriver(const SurfaceMesh& reference, const SurfaceMesh& mesh, const Samples& initial,
                const RemeshOptions& options)
       : reference_(reference), mesh_(mesh), initial_(initial), options_(options),
-        start_(std::chrono::steady_clock::now()), inherited_(mesh), index_(mesh) {}
+        start_(std::chrono::steady_clock::now()), clock_(times_), inherited_(mesh), index_(mesh) {}
 
   // The first run from the initial samples, and its retries while defects are left: the run again
   // with samples kept to their sheets, then with the density lowered on caps at sharp tips.
@@ -128,7 +128,12 @@ class RemeshDriver {
   void polish(RemeshResult& state, const std::vector<double>& density, Run& r);
   void ease(Run& r);
   DualDefects find_defects(const DualMesh& dual, const CvtResult& cvt) const {
+    const StageClock::Scope timed(clock_, &RemeshStageTimes::defects);
     return find_dual_defects(dual, cvt.diagram, mesh_, cvt.samples, reference_.is_closed(), inherited_);
+  }
+  DualMesh dual_of(const CvtResult& cvt) const {
+    const StageClock::Scope timed(clock_, &RemeshStageTimes::defects);
+    return compute_dual(cvt.diagram, mesh_, cvt.samples);
   }
   void settle(RemeshResult& r, DualDefects& d) const;
   void progress(const std::string& message) const {
@@ -140,6 +145,8 @@ class RemeshDriver {
   const Samples& initial_;
   const RemeshOptions& options_;
   const std::chrono::steady_clock::time_point start_;
+  RemeshStageTimes times_;  // charged by clock_ from the driver's construction on
+  mutable StageClock clock_;
   // On the CVT's mesh, whose components the samples' triangles name (the reference's cross alike).
   const InputCrossings inherited_;
   const ClosestPointIndex index_;  // one for every CVT and repair round
@@ -226,8 +233,14 @@ RemeshResult RemeshDriver::run(const Samples& start, bool keep_to_sheets, bool l
   // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
   // characteristic that no defect finder locates).
   for (int round = 0; round < options_.repair_rounds && !r.defects.empty() && !r.defects.where_to_act().empty();
-       ++round)
+       ++round) {
+    if (options_.give_up_after > 0 && r.rounds_without_progress >= options_.give_up_after) {
+      progress(fmt::format("repair round {}: no better state in {} rounds, the run stops", round + 1,
+                           r.rounds_without_progress));
+      break;
+    }
     if (!repair_round(r, round)) break;
+  }
   saw_tip_caps = saw_tip_caps || r.saw_tip_caps;
   best_defects = r.best_defects;
   return end_run(r);
@@ -244,10 +257,13 @@ void RemeshDriver::first_cvt(Run& r, const Samples& start) {
     r.result.total_iterations = r.result.diagram_evaluations = 0;  // the counters count work done
     return;
   }
-  r.result.cvt = optimize_cvt(mesh_, start, r.first, nullptr, &index_);
+  {
+    const StageClock::Scope timed(clock_, &RemeshStageTimes::first_cvt);
+    r.result.cvt = optimize_cvt(mesh_, start, r.first, nullptr, &index_);
+  }
   r.result.total_iterations = r.result.cvt.iterations;
   r.result.diagram_evaluations = r.result.cvt.diagram_evaluations;
-  r.result.dual = compute_dual(r.result.cvt.diagram, mesh_, r.result.cvt.samples);
+  r.result.dual = dual_of(r.result.cvt);
   r.defects = find_defects(r.result.dual, r.result.cvt);
   settle(r.result, r.defects);
   if (r.keep_to_sheets && options_.tip_caps_retry) sheets_start_ = Start{r.result, r.defects};
@@ -338,25 +354,39 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
                      relocate_samples(result.cvt.diagram, mesh_, r.again.triangle_density, raised, result.cvt.samples) > 0;
   // The diagram of the samples is the last one computed: the density changed, the diagram not.
   // RemeshOptions::repair: every sample, or those near the cells acted on (remesh/local_repair.h).
-  if (options_.repair == RepairScope::Whole) {
-    result.cvt = optimize_cvt(mesh_, result.cvt.samples, r.again, moved ? nullptr : &result.cvt.diagram, &index_);
-  } else {
-    std::vector<int> acted_on(raised);
-    acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
-    result.cvt = repair_round_cvt(mesh_, result.cvt.samples, result.cvt.diagram, acted_on, r.again,
-                                  options_.local_repair, round, r.rounds_without_progress, index_);
+  {
+    const StageClock::Scope timed(clock_, &RemeshStageTimes::round_cvts);
+    if (options_.repair == RepairScope::Whole) {
+      result.cvt = optimize_cvt(mesh_, result.cvt.samples, r.again, moved ? nullptr : &result.cvt.diagram, &index_);
+    } else {
+      std::vector<int> acted_on(raised);
+      acted_on.insert(acted_on.end(), lowered.begin(), lowered.end());
+      LocalRound local;
+      result.cvt = repair_round_cvt(mesh_, result.cvt.samples, result.cvt.diagram, acted_on, r.again,
+                                    options_.local_repair, round, r.rounds_without_progress, index_, &local);
+      progress(*local.whole_because
+                   ? fmt::format("repair round {}: a whole CVT ({}{})", round + 1, local.whole_because,
+                                 local.window ? fmt::format(": {} of {} samples", local.window, result.cvt.samples.size()) : "")
+                   : fmt::format("repair round {}: {} samples move in a window of {}", round + 1, local.moving, local.window));
+    }
   }
   result.total_iterations += result.cvt.iterations;
   result.diagram_evaluations += result.cvt.diagram_evaluations;
-  result.dual = compute_dual(result.cvt.diagram, mesh_, result.cvt.samples);
+  result.dual = dual_of(result.cvt);
   r.defects = find_defects(result.dual, result.cvt);
   result.path.fitted_in_rounds = false;
   result.fit = {};
   result.untangle = {};
   settle(result, r.defects);
-  progress(fmt::format("repair round {}: {} iterations, energy {:.6g}; the dual has {}", round + 1,
-                       result.cvt.iterations, result.cvt.energy, r.defects.describe()));
-  if (r.defects.fewer_than(r.best_defects)) {
+  const bool better = r.defects.fewer_than(r.best_defects);
+  // How long the run went without a better state before this one (RemeshOptions::give_up_after).
+  progress(fmt::format("repair round {}: {} iterations, energy {:.6g}{}; the dual has {}", round + 1,
+                       result.cvt.iterations, result.cvt.energy,
+                       better && r.rounds_without_progress > 0
+                           ? fmt::format(" (a better state after {} rounds without one)", r.rounds_without_progress)
+                           : "",
+                       r.defects.describe()));
+  if (better) {
     r.best_defects = r.defects;
     r.best = result;
     r.best_density = r.again.triangle_density;
@@ -383,6 +413,7 @@ RemeshResult RemeshDriver::end_run(Run& r) {
 // A state without defects gets its Lloyd steps (RemeshOptions::polish_steps), with the density it
 // was optimised for; they stand if its dual still has no defect. Their work is counted in the run.
 void RemeshDriver::polish(RemeshResult& state, const std::vector<double>& density, Run& r) {
+  const StageClock::Scope timed(clock_, &RemeshStageTimes::polish_ease);
   if (options_.polish_steps == 0 || r.first.optimizer != CvtOptimizer::Lbfgs) return;
   CvtOptions lloyd = r.first;
   lloyd.optimizer = CvtOptimizer::Lloyd;
@@ -391,7 +422,7 @@ void RemeshDriver::polish(RemeshResult& state, const std::vector<double>& densit
   CvtResult polished = optimize_cvt(mesh_, state.cvt.samples, lloyd, &state.cvt.diagram, &index_);
   r.result.total_iterations += polished.iterations;
   r.result.diagram_evaluations += polished.diagram_evaluations;
-  DualMesh dual = compute_dual(polished.diagram, mesh_, polished.samples);
+  DualMesh dual = dual_of(polished);
   DualDefects after = find_defects(dual, polished);
   progress(fmt::format("{} Lloyd step{} on the samples: the dual has {}{}", polished.iterations,
                        polished.iterations == 1 ? "" : "s", after.describe(),
@@ -413,6 +444,7 @@ void RemeshDriver::polish(RemeshResult& state, const std::vector<double>& densit
 // part of the way back (RemeshOptions::ease_iterations), and takes its Lloyd steps too; it stands
 // if its dual has no defect and a better worst triangle than the state before.
 void RemeshDriver::ease(Run& r) {
+  const StageClock::Scope timed(clock_, &RemeshStageTimes::polish_ease);
   RemeshResult& best = r.best;
   CvtOptions eased = r.again;
   eased.iterations = options_.ease_iterations;
@@ -428,7 +460,7 @@ void RemeshDriver::ease(Run& r) {
   candidate.path.polished = false;
   r.result.total_iterations += candidate.cvt.iterations;
   r.result.diagram_evaluations += candidate.cvt.diagram_evaluations;
-  candidate.dual = compute_dual(candidate.cvt.diagram, mesh_, candidate.cvt.samples);
+  candidate.dual = dual_of(candidate.cvt);
   const DualDefects after = find_defects(candidate.dual, candidate.cvt);
   progress(fmt::format("{} iterations with the density eased {}% of the way back: the dual has {}{}",
                        candidate.cvt.iterations, std::lround(100 * options_.ease_fraction), after.describe(),
@@ -456,6 +488,7 @@ void RemeshDriver::ease(Run& r) {
 // the ones to act on.
 void RemeshDriver::settle(RemeshResult& r, DualDefects& d) const {
   if (!options_.untangle || !d.topological.empty() || !d.euler_ok || d.crossing.empty()) return;
+  const StageClock::Scope timed(clock_, &RemeshStageTimes::round_untangle);
   // The crossings found in `d` (and then by the fitting) are not searched for again.
   if (options_.fit) r.fit = fit_to_surface(r.cvt.diagram, mesh_, r.dual, options_.fit_options, &index_, &d.crossing_pairs);
   r.untangled_from = r.dual;
@@ -472,6 +505,7 @@ void RemeshDriver::settle(RemeshResult& r, DualDefects& d) const {
 // (RemeshOptions::relax), its vertices fitted to the surface and its crossings untangled.
 void RemeshDriver::fit() {
   if (kept_.path.fitted_in_rounds) return;
+  const StageClock::Scope timed(clock_, &RemeshStageTimes::fit);
   RemeshResult& result = kept_;
   // `kept_defects_` are those of result.dual (found before the fitting, which is not done yet).
   // `kept_defects_.crossing_pairs` are those of result.dual as long as no vertex moved.
@@ -489,6 +523,7 @@ void RemeshDriver::fit() {
     result.fit = fit_to_surface(result.cvt.diagram, mesh_, result.dual, options_.fit_options, &index_, crossings);
   }
   if (options_.untangle) {
+    const StageClock::Scope untangling(clock_, &RemeshStageTimes::untangle);
     result.untangled_from = result.dual;
     result.untangle = untangle_crossings(mesh_, result.cvt.samples, result.dual, inherited_, options_.untangle_options,
                                          options_.fit ? &result.fit.crossings : crossings);
@@ -498,6 +533,7 @@ void RemeshDriver::fit() {
 // Crossings left in the state kept: it is untangled again from its fitted vertices with each reach
 // of RemeshOptions::final_max_moves, the fewest crossings kept.
 void RemeshDriver::untangle_further() {
+  const StageClock::Scope timed(clock_, &RemeshStageTimes::untangle);
   for (double reach : options_.final_max_moves) {
     if (!options_.untangle || kept_.untangle.remaining.empty()) break;
     UntangleOptions further = options_.untangle_options;
@@ -521,6 +557,8 @@ RemeshResult RemeshDriver::finish() {
   kept_.path.runs = runs_;
   kept_.defects = std::move(kept_defects_);
   kept_.time_s = seconds_since(start_);
+  clock_.charge();
+  kept_.stage_cpu_s = times_;
   return std::move(kept_);
 }
 

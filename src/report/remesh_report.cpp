@@ -105,9 +105,44 @@ RemeshOptions remesh_options(const RemeshSettings& settings, const ProgressFn& o
   return remesh;
 }
 
+// CPU seconds of the process at the steps of run_remesh.
+struct RunClock {
+  double start = 0, before_cvt = 0;  // run_remesh's start, the first CVT's
+  double written = 0;                // the remesh done, before its output is written (on_dual)
+  double checks = 0, metrics = 0, end = 0;
+};
+
+// report["time_cpu_s"]: the remesh driver's stages, and the steps of run_remesh around them; the
+// same on the progress line.
+void write_cpu_times(nlohmann::json& report, const RemeshStageTimes& stages, const RunClock& clock,
+                     const ProgressFn& on_progress) {
+  // The rest of the time from the samples to the checks, but for writing the output, is "other".
+  const double other = stages.other + (clock.written - clock.before_cvt) - stages.total();
+  report["time_cpu_s"] = {{"prepare", clock.before_cvt - clock.start},
+                          {"first_cvt", stages.first_cvt},
+                          {"repair_round_cvts", stages.round_cvts},
+                          {"duals_and_defects", stages.defects},
+                          {"untangle_in_rounds", stages.round_untangle},
+                          {"polish_and_ease", stages.polish_ease},
+                          {"fit", stages.fit},
+                          {"untangle", stages.untangle},
+                          {"other", other},
+                          {"checks", clock.metrics - clock.checks},
+                          {"metrics", clock.end - clock.metrics},
+                          {"total", (clock.end - clock.start) - (clock.checks - clock.written)}};
+  if (on_progress)
+    on_progress(fmt::format("CPU s: prepare {:.2f}, first CVT {:.2f}, repair rounds' CVTs {:.2f}, duals and defects "
+                            "{:.2f}, untangling in the rounds {:.2f}, polish and ease {:.2f}, fit {:.2f}, untangle "
+                            "{:.2f}, other {:.2f}, checks {:.2f}, metrics {:.2f}",
+                            clock.before_cvt - clock.start, stages.first_cvt, stages.round_cvts, stages.defects,
+                            stages.round_untangle, stages.polish_ease, stages.fit, stages.untangle, other,
+                            clock.metrics - clock.checks, clock.end - clock.metrics));
+}
+
 // run.report, the JSON report of a finished remesh of `input` (and run.diagonal, run.holes).
 void write_remesh_report(RemeshRun& run, const Input& input, const RemeshSettings& settings,
-                         const std::string& mesh_path, const std::string& output_path) {
+                         const std::string& mesh_path, const std::string& output_path, const RunClock& clock,
+                         const ProgressFn& on_progress) {
   const RemeshOptions& remesh = run.options;
   const RemeshResult& remeshed = run.result;
   const CvtResult& result = remeshed.cvt;
@@ -170,6 +205,7 @@ void write_remesh_report(RemeshRun& run, const Input& input, const RemeshSetting
   report["energy"] = result.energy;
   report["initial_energy"] = result.energy_history.front();
   report["time_s"] = remeshed.time_s;
+  write_cpu_times(report, remeshed.stage_cpu_s, clock, on_progress);
   report["predicates"] = predicates_json();
 }
 
@@ -182,6 +218,8 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
     throw InputError("remesh computes a CVT of unweighted samples: weights (--weights or a 4th column in --points) do not apply");
   if (input.refined_from >= 0 && on_progress)
     on_progress(fmt::format("refined the mesh from {} to {} triangles", input.refined_from, input.mesh.triangle_count()));
+  RunClock clock;
+  clock.start = clock.before_cvt = process_cpu_seconds();
   RemeshRun run;
   run.options = remesh_options(settings, on_progress);
   const RemeshOptions& remesh = run.options;
@@ -193,22 +231,27 @@ RemeshRun run_remesh(Input& input, const RemeshSettings& settings, bool random_s
   if (!random_samples) start.samples = std::move(input.samples);
   start.before_cvt = [&](const SurfaceMesh&, const Samples& samples) {
     reset_predicate_stats();
+    clock.before_cvt = process_cpu_seconds();
     if (on_progress) on_progress(fmt::format("CVT of {} samples on the {}", samples.size(), settings.kind));
   };
   run.result = remesh_from(input.loaded.mesh, start, remesh);
   input.mesh = std::move(*start.mesh);
   input.samples = std::move(*start.samples);
   const DualMesh& dual = run.result.dual;
+  clock.written = process_cpu_seconds();
   if (on_dual) on_dual(dual);
 
   if (on_progress) on_progress("checking the remesh");
+  clock.checks = process_cpu_seconds();
   run.check = verify_remesh(input.loaded.mesh, dual.positions, dual.triangles, input.samples.size());
+  clock.metrics = process_cpu_seconds();
   // A dual without triangles (too few vertices for the surface's shape) fails the checks; there
   // is nothing to measure.
   run.measurable = !dual.triangles.empty();
   if (run.measurable) run.quality = quality_metrics(input.loaded.mesh, dual.positions, dual.triangles);
+  clock.end = process_cpu_seconds();
 
-  write_remesh_report(run, input, settings, mesh_path, output_path);
+  write_remesh_report(run, input, settings, mesh_path, output_path, clock, on_progress);
   return run;
 }
 
