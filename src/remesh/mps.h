@@ -27,6 +27,12 @@ enum class MpsRefinement {
   MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule; split_factor is not used)
 };
 
+//! Which samples must keep their distance (docs/algorithms/mps.md, "Conflict rule").
+enum class MpsConflict {
+  Reach,  //!< the paper's: the ball's region grows over every edge-adjacent triangle it meets
+  Facing  //!< regions stop where the surface turns by 90° or more: lets samples sit closer than r across sharp edges
+};
+
 //! The largest MpsOptions::radius taken (relative: one disk of it covers any sheet many times over).
 constexpr double kMaxMpsRadius = 10;
 
@@ -40,6 +46,7 @@ struct MpsOptions {
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
+  MpsConflict conflict = MpsConflict::Reach;
   //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
   //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
   //! half the time (0.42-0.77 of it on the Table 3 models); nothing needs a triangle smaller than a disk.

@@ -35,15 +35,19 @@ inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
 }
 
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
-//! ball B(x, r) around a point of triangle t: the triangles that the ball meets and that face the
-//! same way as t (normals at less than 90°), edge-connected to t through such triangles — the
-//! paper's region growing, kept from wrapping around a sheet thinner than r onto its other side
-//! or across a fold. The disk of sample i is B(x_i, r_i) on the triangles of its local region.
+//! ball B(x, r) around a point of triangle t: the triangles that the ball meets, edge-connected to
+//! t through such triangles — the paper's region growing ("until the disk does not intersect with
+//! a neighboring triangle"). With the facing cut (MpsConflict::Facing) only triangles facing the
+//! same way as t (normals at less than 90°) count. The disk of sample i is B(x_i, r_i) on the
+//! triangles of its local region.
 //! Each triangle lists the disks that cover it fully and those that reach it only partly, and the
 //! sample centres it holds.
 class DiskIndex {
  public:
-  explicit DiskIndex(const SurfaceMesh& mesh);
+  //! facing_cut: regions grow only through triangles facing like the centre's (MpsConflict::Facing).
+  explicit DiskIndex(const SurfaceMesh& mesh, bool facing_cut = false);
+  //! Regions stop where the surface turns by 90° or more (MpsConflict::Facing).
+  bool facing_cut() const { return facing_cut_; }
 
   int size() const { return static_cast<int>(disk_records_.size()); }
   const Vec3& center(int i) const { return disk_records_[i].center; }
@@ -121,11 +125,12 @@ class DiskIndex {
     return dot(normals_[s], facing) > kFacingCosine;
   }
   template <class F>
-  bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
+  bool search(const Vec3& p, int t, double w, bool region, F&& f);
   //! The ball (p, w), r = √w, meets triangle t (triangle_squared_distance < w), balls far from t's
   //! bounding sphere rejected at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
+  bool facing_cut_;
   //! A disk's centre and weight together: the disk tests read both.
   struct Disk {
     Vec3 center;

@@ -24,6 +24,7 @@ struct MpsSettings {
   std::uint64_t seed = 1;
   std::string gap_update = "local";  //!< local | lrpd
   std::string split_to = "field";    //!< field | rmin
+  std::string conflict = "reach";    //!< reach (the paper's rule) | facing (MpsConflict::Facing)
   double split_factor = MpsOptions{}.split_factor;
   bool split_factor_given = false;
   bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
