@@ -940,3 +940,4 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(lone["quality"].is_null());
   CHECK(!lone["verification"]["passed"].get<bool>());
 }
+

@@ -18,6 +18,7 @@
 #include "predicates/ball_triangle.h"
 #include "predicates/exact.h"
 #include "verification/diagram_geometry.h"
+#include "verification/mps_reach_cover.h"
 #include "voronoi/clip.h"
 #include "voronoi/lrvd.h"
 
@@ -146,6 +147,16 @@ class LocalRegions {
   int epoch_ = 0;
 };
 
+// The triangles each sample lies on (LocalRegions::seeds).
+std::vector<std::vector<int>> sample_triangles(const Samples& s, LocalRegions& regions) {
+  std::vector<std::vector<int>> triangles(s.size());
+  for (int i = 0; i < s.size(); ++i) triangles[i] = regions.seeds(s, i);
+  return triangles;
+}
+
+// Halvings of a polygon the reach certificate may take (ReachCover::covers).
+constexpr int kReachCoverDepth = 8;
+
 // The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
 struct SampleDisks {
   std::vector<int> offset, triangles;
@@ -237,9 +248,7 @@ std::vector<std::pair<int, int>> close_pairs(const Samples& s) {
 // edge or corner lies on every triangle there (LocalRegions::seeds): any of them counts as its
 // triangle. Every pair closer than ρ is looked at (close_pairs), whatever the regions.
 void check_min_distance(const SurfaceMesh& mesh, const Samples& s, const SampleDisks& disks, LocalRegions& regions,
-                        bool cut, MpsVerification& out) {
-  std::vector<std::vector<int>> triangles(s.size());
-  for (int i = 0; i < s.size(); ++i) triangles[i] = regions.seeds(s, i);
+                        const std::vector<std::vector<int>>& triangles, bool cut, MpsVerification& out) {
   double min_ratio2 = std::numeric_limits<double>::infinity();
   // The ratio over the pairs that keep their distance: the centres in each sample's disk.
   const TriangleSamples by_triangle(mesh, s, [&](int i) -> const std::vector<int>& { return triangles[i]; });
@@ -314,7 +323,8 @@ bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, cons
 // is no LRPD candidate of t (its cell was kept connected, or its power cell has a piece there the
 // LRPD does not have).
 void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
-                      const MpsVerifyOptions& options, MpsVerification& out) {
+                      const std::vector<std::vector<int>>& sample_triangles, const MpsVerifyOptions& options,
+                      MpsVerification& out) {
   const int nt = mesh.triangle_count();
   const SymbolicContext ctx = d.context(mesh);
   std::vector<double> area_sum(nt, 0);
@@ -355,6 +365,9 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
       if (slot[*t] >= 0) around[slot[*t]].push_back(i);
 
   const std::vector<Site> sites = make_sites(s, true);
+  std::optional<verify_detail::ReachCover> reach;
+  if (!options.facing_cut) reach.emplace(mesh, s, sample_triangles);
+  std::vector<ExactPoint> exact_polygon;
   const SymbolicContext around_ctx{mesh.positions().data(), sites.data()};
   std::vector<SymbolicVertex> polygon, scratch;
   for (size_t u = 0; u < undecided.size(); ++u) {
@@ -366,17 +379,26 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
     for (size_t c = 0; c < a.size() && covered; ++c) {
       const int k = a[c];
       clip_triangle(mesh, t, k, a.data(), static_cast<int>(a.size()), around_ctx, polygon, scratch);
-      for (const SymbolicVertex& q : polygon) {
-        double pd = 0;
-        if (!outside_ball(q, position(q, around_ctx), sites[k], around_ctx, options.exact_maximality,
-                          out.exact_vertex_tests, pd))
+      double pd = 0, worst = -std::numeric_limits<double>::infinity();
+      for (const SymbolicVertex& q : polygon)
+        if (outside_ball(q, position(q, around_ctx), sites[k], around_ctx, options.exact_maximality,
+                         out.exact_vertex_tests, pd))
+          worst = std::max(worst, pd);
+      if (!(worst > -std::numeric_limits<double>::infinity())) continue;
+      // The paper's rule from the spot's side: a sample whose ball the spot's region reaches.
+      if (reach) {
+        exact_polygon.clear();
+        for (const SymbolicVertex& q : polygon) exact_polygon.push_back(exact_position(q, around_ctx));
+        if (reach->covers(t, exact_polygon, k, kReachCoverDepth)) {
+          ++out.polygons_covered_from_spot_side;
           continue;
-        out.maximal.fail(fmt::format("triangle {}: a point {:.4g}·r_k from sample k = {}, the nearest in power of "
-                                     "the {} around, is in no disk reaching it nor in its cell's ball (uncovered)",
-                                     t, std::sqrt(std::max(0.0, 1 + pd / sites[k].w)), k, a.size()));
-        covered = false;
-        break;
+        }
       }
+      out.maximal.fail(fmt::format("triangle {}: a point {:.4g}·r_k from sample k = {}, the nearest in power of "
+                                   "the {} around, is in no disk reaching it nor in its cell's ball{} (uncovered)",
+                                   t, std::sqrt(std::max(0.0, 1 + worst / sites[k].w)), k, a.size(),
+                                   reach ? ", nor within r_s of a sample s its ball's region reaches" : ""));
+      covered = false;
     }
     if (covered) ++out.triangles_covered_by_other_disks;
   }
@@ -435,6 +457,7 @@ nlohmann::json MpsVerification::to_json() const {
           {"polygons_outside_own_ball", polygons_outside_own_ball},
           {"triangles_covered_by_other_disks", triangles_covered_by_other_disks},
           {"polygons_of_remote_balls", polygons_of_remote_balls},
+          {"polygons_covered_from_spot_side", polygons_covered_from_spot_side},
           {"properties",
            {{"min_distance", min_distance.to_json()},
             {"maximal", maximal.to_json()},
@@ -474,9 +497,10 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   MpsVerification out;
   out.facing_cut = options.facing_cut;
   LocalRegions regions(mesh);
+  const std::vector<std::vector<int>> triangles = sample_triangles(samples, regions);
   const SampleDisks disks(samples, regions, options.facing_cut);
-  check_min_distance(mesh, samples, disks, regions, options.facing_cut, out);
-  check_maximality(mesh, samples, lrpd, disks, options, out);
+  check_min_distance(mesh, samples, disks, regions, triangles, options.facing_cut, out);
+  check_maximality(mesh, samples, lrpd, disks, triangles, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
   out.time_s = seconds_since(start);
   return out;
@@ -490,6 +514,7 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   out.facing_cut = options.facing_cut;
   Diagram lrpd;
   LocalRegions regions(mesh);
+  const std::vector<std::vector<int>> triangles = sample_triangles(samples, regions);
   std::optional<SampleDisks> disks;
   // The diagram and the distance checks read only the mesh and the samples.
   tbb::parallel_invoke(
@@ -500,9 +525,9 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
       },
       [&] {
         disks.emplace(samples, regions, options.facing_cut);
-        check_min_distance(mesh, samples, *disks, regions, options.facing_cut, out);
+        check_min_distance(mesh, samples, *disks, regions, triangles, options.facing_cut, out);
       });
-  check_maximality(mesh, samples, lrpd, *disks, options, out);
+  check_maximality(mesh, samples, lrpd, *disks, triangles, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
   if (lrpd_out) *lrpd_out = std::move(lrpd);
   out.time_s = seconds_since(start);

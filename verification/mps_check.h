@@ -55,6 +55,9 @@ struct MpsVerification {
   //! Triangles holding such polygons that are covered all the same: by disks of samples that reach
   //! the triangle but are no LRPD candidate there.
   std::int64_t triangles_covered_by_other_disks = 0;
+  //! Polygons of the maximality check outside their own ball that samples cover whose balls
+  //! their spots' regions reach (the paper's rule read from the spot's side, a reach certificate).
+  std::int64_t polygons_covered_from_spot_side = 0;
   std::int64_t polygons_of_remote_balls = 0;  //!< LRPD polygons in their cell's ball where that cell's disk does not reach
   nlohmann::json to_json() const;
   std::string summary() const;

@@ -468,6 +468,20 @@ int sample_features(const SurfaceMesh& m, Sampler& sampler, double angle_deg) {
 
 }  // namespace
 
+FeatureEdges count_feature_edges(const SurfaceMesh& mesh, double angle_deg) {
+  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
+  FeatureEdges f;
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh.neighbor(t, e);
+      if (n < 0)
+        ++f.boundary;
+      else if (n > t && dot(mesh.triangle_normal(t), mesh.triangle_normal(n)) < cos_limit)
+        ++f.sharp;
+    }
+  return f;
+}
+
 double expected_sample_count(const SurfaceMesh& mesh, double radius) {
   return mesh.area() / (std::sqrt(3.0) / 2 * radius * radius);
 }
@@ -701,6 +715,9 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       }
       if (!sampler.try_insert(p, t, barycentric_in_triangle(m, t, p))) {
         ++rejections;
+        // Refused by a sample from the dart's side: where that sample's ball reaches it from
+        // the whole piece, the sample covers the piece like a disk reaching it.
+        if (sampler.refused_by() >= 0 && gaps.carve(piece, sampler.refused_by())) continue;
         if (local) gaps.dart_refused(piece);
         continue;
       }
@@ -722,7 +739,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
           // A disk reaching the triangle covers the corner: the noise is at that disk's rim, and
           // the triangle closes as it does when no piece was given up. Refused by the radius
           // conditions instead: the corner may be a gap no dart fits.
-          if (!sampler.disks().in_some_disk(d.point, d.triangle)) gaps.note_open(d.triangle);
+          if (!sampler.disks().in_some_disk(d.point, d.triangle) && sampler.refused_by() < 0) gaps.note_open(d.triangle);
           continue;
         }
         gaps.note_open(d.triangle);
@@ -767,6 +784,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     }
   }
   result.dropped_gap_pieces = gaps.dropped();
+  result.carved_gap_pieces = gaps.carved();
   result.clamped_radii = sampler.clamped();
   result.power_cell_exceptions = sampler.power_cell_exceptions();
   result.samples = sampler.disks().samples();

@@ -90,6 +90,9 @@ struct MpsResult {
   int part_lrpd_triangles = 0;    //!< triangles of those computed on a part of the mesh (later rounds)
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
+  //! Gap pieces split by a sample whose centre their darts' regions reach (the paper's rule read
+  //! from the dart's side), as by a disk reaching them.
+  int carved_gap_pieces = 0;
   int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
   int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the
@@ -115,6 +118,14 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
 //! times the radius of curvature where it bends — then limited so that it changes by at most
 //! `gradation` per unit length along edges. The sampler interpolates it linearly in triangles.
 std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min, const MpsOptions& options);
+
+//! The mesh's feature edges as MpsOptions::sample_features reads them: boundary edges, and edges
+//! whose two triangles' normals are more than `angle_deg` apart.
+struct FeatureEdges {
+  int boundary = 0, sharp = 0;
+  bool any() const { return boundary + sharp > 0; }
+};
+FeatureEdges count_feature_edges(const SurfaceMesh& mesh, double angle_deg);
 
 //! Expected number of samples for a radius (absolute) on this mesh: area / (√3/2 · r²), the
 //! count of a hexagonal packing at spacing r (an upper estimate for MPS).

@@ -44,6 +44,27 @@ Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p) {
   return {1 - u - v, u, v};
 }
 
+bool reach_chain(const SurfaceMesh& mesh, int t, const Vec3* points, int count, double w, const std::vector<int>& targets) {
+  auto target = [&](int u) { return std::find(targets.begin(), targets.end(), u) != targets.end(); };
+  auto met = [&](int u) {
+    const Triangle& tri = mesh.triangle(u);
+    for (int k = 0; k < count; ++k)
+      if (!ball_meets_triangle(points[k], w, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2])))
+        return false;
+    return true;
+  };
+  if (target(t)) return true;
+  std::vector<int> queue{t};
+  for (size_t k = 0; k < queue.size(); ++k)
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh.neighbor(queue[k], e);
+      if (n < 0 || std::find(queue.begin(), queue.end(), n) != queue.end() || !met(n)) continue;
+      if (target(n)) return true;
+      queue.push_back(n);
+    }
+  return false;
+}
+
 DiskIndex::DiskIndex(const SurfaceMesh& mesh, bool facing_cut)
     : mesh_(mesh),
       facing_cut_(facing_cut),

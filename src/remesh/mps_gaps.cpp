@@ -416,6 +416,17 @@ void GapSet::dart_refused(int piece) {
   }
 }
 
+bool GapSet::carve(int piece, int sample) {
+  if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return false;
+  const Piece& pc = pieces_[piece];
+  std::vector<int> targets;
+  mesh_.triangles_at(disks_.triangle(sample), disks_.barycentric(sample), targets);
+  if (!reach_chain(mesh_, pc.triangle, points_.data() + pc.first, pc.count, disks_.weight(sample), targets)) return false;
+  ++carved_;
+  split(piece, sample);
+  return true;
+}
+
 std::vector<int> GapSet::open_triangles() const {
   std::vector<int> t(open_);
   for (const Piece& p : pieces_)

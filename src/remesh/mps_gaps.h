@@ -152,6 +152,12 @@ class DiskIndex {
   std::vector<double> areas_;                 // per triangle
 };
 
+//! Whether a chain of edge-adjacent triangles leads from t to one of `targets` through triangles
+//! that the ball of weight w about every one of the `count` points meets (exactly). For points of
+//! a convex polygon in t, the ball about any point of the polygon then meets them too (the
+//! distance to a triangle is convex): the region of that ball reaches the target from t.
+bool reach_chain(const SurfaceMesh& mesh, int t, const Vec3* points, int count, double w, const std::vector<int>& targets);
+
 //! Squared distance from p to triangle t of the mesh.
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
 
@@ -221,6 +227,12 @@ class GapSet {
   //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
+  //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
+  //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
+  //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
+  //! a disk reaching its triangle would, and the piece is split by it. Returns whether it was.
+  bool carve(int piece, int sample);
+  int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
   //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
@@ -293,7 +305,7 @@ class GapSet {
   double total_ = 0;
   std::vector<Dust> dust_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
-  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
   // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.

@@ -28,7 +28,8 @@ struct MpsSettings {
   double split_factor = MpsOptions{}.split_factor;
   bool split_factor_given = false;
   bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
-  bool features = false;
+  bool features = false;     //!< --features: sample the feature lines first whatever the mesh
+  bool no_features = false;  //!< --no-features; with neither, features are sampled when the mesh has some
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
 };
@@ -41,6 +42,7 @@ struct MpsRun {
   MpsOptions options;
   MpsResult result;
   MpsVerification check;
+  FeatureEdges feature_edges;  //!< of the input, at the feature angle
   bool maximal = false, min_distance_ok = false;
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
