@@ -230,7 +230,9 @@ class GapSet {
   //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
   //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
   //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
-  //! a disk reaching its triangle would, and the piece is split by it. Returns whether it was.
+  //! a disk reaching its triangle would, and the piece is split by it; else the piece is halved
+  //! (up to 10 times), so that the chains hold on the parts near the dart. Returns whether either
+  //! was done.
   bool carve(int piece, int sample);
   int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
@@ -275,6 +277,7 @@ class GapSet {
     double area = 0;           // area of Q: the draw weight
     int next_in_triangle = -1;
     int refused = 0;
+    int halvings = 0;  // carve(): times its polygon was halved for want of a chain
     bool alive = false;
   };
 
