@@ -87,6 +87,13 @@ bool ball_meets_triangle(const Vec3& x, double w, const Vec3& a, const Vec3& b, 
 }
 
 bool ball_meets_triangle(const ExactPoint& x, const Q& w, const Vec3& a, const Vec3& b, const Vec3& c) {
+  {
+    // The rationals' enclosing intervals first.
+    CGAL::Protect_FPU_rounding<true> upward;
+    const V<Interval> xi{Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)), Interval(CGAL::to_interval(x.z))};
+    const int r = meets<Interval>(xi, Interval(CGAL::to_interval(w)), lift<Interval>(a), lift<Interval>(b), lift<Interval>(c));
+    if (r >= 0) return r == 1;
+  }
   return meets<Q>({x.x, x.y, x.z}, w, lift<Q>(a), lift<Q>(b), lift<Q>(c)) == 1;
 }
 

@@ -155,7 +155,7 @@ std::vector<std::vector<int>> sample_triangles(const Samples& s, LocalRegions& r
 }
 
 // Halvings of a polygon the reach certificate may take (ReachCover::covers).
-constexpr int kReachCoverDepth = 8;
+constexpr int kReachCoverDepth = 14;
 
 // The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
 struct SampleDisks {
