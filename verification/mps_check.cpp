@@ -33,6 +33,8 @@ CGAL::Sign squared_distance_minus(const Vec3& a, const Vec3& b, double w) {
     const double margin = 1e-15 * (d + w);
     if (d - w > margin) return CGAL::POSITIVE;
     if (w - d > margin) return CGAL::NEGATIVE;
+  } else if (w > 1e-240) {
+    return CGAL::NEGATIVE;  // |a - b|² is below 1e-249 however the squares rounded
   }
   return CGAL::sign(exact_power_distance(to_exact(a), Site{b, w, 0}));
 }

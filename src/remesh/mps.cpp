@@ -214,6 +214,12 @@ class Sampler {
   }
   //! Sample j's region at weight w reaches one of the triangles p lies on.
   bool reaches_dart(int j, double w) {
+    // At j's own weight its region is its disk, which the triangles list.
+    if (w == disks_.weight(j)) {
+      bool found = false;
+      for (int t : seeds_) disks_.for_each_disk(t, [&](int k) { found = found || k == j; });
+      return found;
+    }
     for (int t : seeds_)
       if (disks_.sample_reaches(j, w, t)) return true;
     return false;

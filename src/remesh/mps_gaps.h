@@ -30,6 +30,8 @@ inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
     const double margin = 1e-15 * (d + w);
     if (d - w > margin) return false;
     if (w - d > margin) return true;
+  } else if (w > 1e-240) {
+    return true;  // |p - c|² is below 1e-249 however the squares rounded (a centre on a mesh vertex: 0)
   }
   return inside_disk_exact(p, c, w);
 }
