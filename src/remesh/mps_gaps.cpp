@@ -256,16 +256,11 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     }
     if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {
       // Halve across the polygon's longest diagonal; halves inside the disk vanish.
-      size_t a = 0, b = 0;
-      double best = -1;
-      for (size_t i = 0; i < q.size(); ++i)
-        for (size_t j = i + 1; j < q.size(); ++j)
-          if (squared_distance(q[i], q[j]) > best) best = squared_distance(q[i], q[j]), a = i, b = j;
-      const Vec3 dir = q[b] - q[a], mid = 0.5 * (q[a] + q[b]);
+      const Halving side = longest_diagonal_halving(q);
       std::vector<Vec3> half;
-      clip(q, [&](const Vec3& y) { return dot(y - mid, dir); }, half);
+      clip(q, side, half);
       if (!half.empty()) self(half, self, depth + 1);
-      clip(q, [&](const Vec3& y) { return -dot(y - mid, dir); }, half);
+      clip(q, [&](const Vec3& y) { return -side(y); }, half);
       if (!half.empty()) self(half, self, depth + 1);
       return;
     }
@@ -433,15 +428,10 @@ bool GapSet::carve(int piece, int sample) {
   const std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
   const int t = pc.triangle, owner = pc.owner, halvings = pc.halvings + 1;
   kill(piece);
-  size_t a = 0, b = 0;
-  double best = -1;
-  for (size_t i = 0; i < q.size(); ++i)
-    for (size_t j = i + 1; j < q.size(); ++j)
-      if (squared_distance(q[i], q[j]) > best) best = squared_distance(q[i], q[j]), a = i, b = j;
-  const Vec3 dir = q[b] - q[a], mid = 0.5 * (q[a] + q[b]);
+  const Halving halving = longest_diagonal_halving(q);
   std::vector<Vec3> half;
   for (double side : {1.0, -1.0}) {
-    clip(q, [&](const Vec3& y) { return side * dot(y - mid, dir); }, half);
+    clip(q, [&](const Vec3& y) { return side * halving(y); }, half);
     const size_t before = pieces_.size();
     if (half.size() >= 3) add_outside(half, t, owner);
     for (size_t i = before; i < pieces_.size(); ++i) pieces_[i].halvings = halvings;
