@@ -41,7 +41,6 @@ PAPER = {
 SHARED_MODELS = ["feline", "vaselion", "dragon_100k", "gargoyle_100k"]
 CGAL_MODELS = ["armadillo", "ChineseDragon-10kv", "bunny00"]
 RADIUS = {"uniform": 0.005, "adaptive": 0.004}
-NO_FEATURES = ["--no-features"]
 
 
 def find_meshes(args):
@@ -71,10 +70,8 @@ def run(binary, path, mode, seed, workdir):
     report = os.path.join(workdir, "report.json")
     if os.path.exists(report):
         os.remove(report)
-    # The paper's configuration: no samples placed on feature lines first (a scanned model's noise
-    # has hundreds of edges sharper than the default feature angle).
     command = [binary, "mps", path, "--radius", str(RADIUS[mode]), "--seed", str(seed), "--threads", "1",
-               "-o", os.path.join(workdir, "samples.xyz"), "--report", report] + NO_FEATURES
+               "-o", os.path.join(workdir, "samples.xyz"), "--report", report]
     if mode == "adaptive":
         command.append("--adaptive")
     done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -95,11 +92,7 @@ def main():
     parser.add_argument("--cgal", default="build/cgal-data", help="folder of CGAL's extracted meshes")
     parser.add_argument("--out", default="", help="markdown file (default: standard output)")
     parser.add_argument("--json", default="", help="also write every run as JSON")
-    parser.add_argument("--before-features-default", action="store_true",
-                        help="the lrvd binary predates --no-features (it samples no feature lines unless asked)")
     args = parser.parse_args()
-    if args.before_features_default:
-        NO_FEATURES.clear()
     if not (os.path.isfile(args.lrvd) and os.access(args.lrvd, os.X_OK)):
         sys.exit(f"mps_table3: {args.lrvd} is not an executable (build the project first)")
     if args.runs < 1:

@@ -317,8 +317,7 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
     options.radius = 0.01;
     options.seed = seed;
     options.refinement = MpsRefinement::MinRadius;  // the splitting these samples were found with,
-    options.refine_order = RefineOrder::Input;      // in that order,
-    options.conflict = MpsConflict::Facing;         // with the conflict rule they were found with
+    options.refine_order = RefineOrder::Input;      // in that order
     const MpsResult r = maximal_poisson_disk_sampling(dragon, options);
     const Samples samples = locate_points(dragon, r.samples.positions, r.samples.weights);
     INFO("seed " << seed);

@@ -40,16 +40,17 @@ Diagram lrpd_of(const MpsResult& r) {
   return compute_lrvd(r.mesh, r.samples, options);
 }
 
-// The three promises of a maximal Poisson-disk sampling and of its remesh, checked from scratch.
+// The three promises of a maximal Poisson-disk sampling and of its remesh, checked from scratch;
+// `reach`: judged by the paper's rule (samples placed with MpsConflict::Reach), else by the facing cut.
 MpsVerification check_sampling(const SurfaceMesh& input, const MpsResult& r, bool check_remesh, bool exact = false,
-                               bool facing_cut = false) {
+                               bool reach = false) {
   INFO("samples " << r.samples.size() << ", dart samples " << r.dart_samples << ", LRPDs " << r.lrpd_evaluations);
   CHECK(r.gaps_closed);
   for (int i = 0; i < r.samples.size(); ++i) REQUIRE(r.radii[i] >= r.radius * (1 - 1e-12));
   const Diagram lrpd = lrpd_of(r);
   MpsVerifyOptions options;
   options.exact_maximality = exact;
-  options.facing_cut = facing_cut;  // judged by the rule the samples were placed by
+  options.facing_cut = !reach;
   const MpsVerification v = verify_mps(r.mesh, r.samples, lrpd, options);
   INFO(v.summary());
   CHECK(v.min_distance.passed);
@@ -797,13 +798,10 @@ TEST_CASE("MPS fills a real gap too small for its area to be told from rounding:
   options.adaptive = true;
   options.seed = 1;
   options.refine_order = RefineOrder::Input;
-  // The samples the case was found with: the facing cut (no seed of 1-60 shows it with the paper's
-  // rule; the dust darts are the same code under either rule).
-  options.conflict = MpsConflict::Facing;
   const MpsResult r = maximal_poisson_disk_sampling(pinion, options);
   CHECK(r.dropped_gap_pieces > 0);
   CHECK(r.dust_samples > 0);  // the case this test is about: if it vanishes, find a seed that shows it
-  check_sampling(pinion, r, false, false, true);
+  check_sampling(pinion, r, false);
 }
 
 TEST_CASE("The MPS coverage check decides slivers exactly: CGAL's mpi", "[mps][verification]") {
@@ -910,6 +908,19 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
   CHECK(j["features"].is_null());
+  CHECK(j["conflict"]["rule"] == "facing");  // the default
+  CHECK(j["conflict"]["close_pairs_let_through"].is_number_integer());
+  // --conflict reach: the paper's rule, judged by it.
+  const std::string reach_report = dir + "report_reach.json";
+  std::remove(reach_report.c_str());
+  REQUIRE(run(mesh + " --radius 0.1 --conflict reach -o " + dir + "samples_reach.xyz --report " + reach_report) == 0);
+  std::ifstream reach_in(reach_report);
+  const nlohmann::json reach = nlohmann::json::parse(reach_in);
+  CHECK(reach["conflict"]["rule"] == "reach");
+  CHECK(reach["conflict"]["close_pairs_let_through"].is_null());
+  CHECK(reach["mps_verification"]["conflict"] == "reach");
+  CHECK(reach["verification"]["passed"].get<bool>());
+  CHECK(run(mesh + " --radius 0.1 --conflict paper -o " + dir + "bad.xyz") == 2);
   // --features: corners and feature lines first; on an open square the LRRT keeps its corners.
   const std::string square = dir + "square.off", feature_report = dir + "report_features.json";
   write_mesh(square, test::grid(1, 1));
@@ -921,8 +932,7 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(features["features"]["angle_deg"].get<double>() == 45);
   CHECK(features["features"]["samples"].get<int>() > 4);
   CHECK(features["verification"]["passed"].get<bool>());
-  CHECK(run(square + " --radius 0.1 --feature-angle 45 --no-features -o " + dir + "bad.xyz") == 2);
-  CHECK(run(square + " --radius 0.1 --features --no-features -o " + dir + "bad.xyz") == 2);
+  CHECK(run(square + " --radius 0.1 --feature-angle 45 -o " + dir + "bad.xyz") == 2);  // without --features
   CHECK(run(square + " --radius 0.1 --features --feature-angle 0 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-factor 0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-to rmin --split-factor 3 -o " + dir + "bad.xyz") == 2);  // one or the other
@@ -1003,9 +1013,10 @@ TEST_CASE("MPS by the paper's rule keeps r on sharp edges, corners, tips and bou
           options.adaptive = adaptive;
           options.sample_features = features;
           options.seed = seed;
+          options.conflict = MpsConflict::Reach;
           const MpsResult r = maximal_poisson_disk_sampling(mesh, options);
           CHECK(all_close_pairs(r.samples).empty());
-          check_sampling(mesh, r, false);
+          check_sampling(mesh, r, false, false, true);
         }
   MpsOptions facing;
   facing.radius = 0.08;
@@ -1013,13 +1024,13 @@ TEST_CASE("MPS by the paper's rule keeps r on sharp edges, corners, tips and bou
   const MpsResult r = maximal_poisson_disk_sampling(cube, facing);
   const size_t close = all_close_pairs(r.samples).size();
   CHECK(close > 0);
-  MpsVerifyOptions judge;
-  judge.facing_cut = true;
-  const MpsVerification v = verify_mps(r.mesh, r.samples, judge);
+  const MpsVerification v = verify_mps(r.mesh, r.samples);  // by the facing cut, the default
   CHECK(v.passed);
   CHECK(static_cast<size_t>(v.close_pairs_local_past_facing_cut) == close);
   // The paper's rule judges the same samples: those pairs violate it.
-  CHECK(!verify_mps(r.mesh, r.samples).min_distance.passed);
+  MpsVerifyOptions paper;
+  paper.facing_cut = false;
+  CHECK(!verify_mps(r.mesh, r.samples, paper).min_distance.passed);
 }
 
 TEST_CASE("MPS by the paper's rule on a thin plate: pairs across the plate only away from its rim", "[mps][conflict]") {
@@ -1032,6 +1043,7 @@ TEST_CASE("MPS by the paper's rule on a thin plate: pairs across the plate only 
     MpsOptions options;
     options.radius = 0.02;
     options.seed = seed;
+    options.conflict = MpsConflict::Reach;
     const MpsResult r = maximal_poisson_disk_sampling(plate, options);
     const std::vector<std::pair<int, int>> close = all_close_pairs(r.samples);
     CHECK(close.size() > 100);
@@ -1041,7 +1053,7 @@ TEST_CASE("MPS by the paper's rule on a thin plate: pairs across the plate only 
       CHECK(a.z * b.z < 0);  // across the plate
       for (const Vec3& x : {a, b}) CHECK(0.5 - std::max(std::abs(x.x), std::abs(x.y)) > 0.5 * r_abs);
     }
-    const MpsVerification v = check_sampling(plate, r, false);
+    const MpsVerification v = check_sampling(plate, r, false, false, true);
     CHECK(static_cast<size_t>(v.close_pairs_not_local) == close.size());
   }
 }

@@ -19,19 +19,21 @@ struct MpsVerifyOptions {
   //! Decide every polygon vertex of the maximality check with rational arithmetic; otherwise only
   //! those whose power distance's sign the interval enclosure of their position leaves open.
   bool exact_maximality = false;
-  //! Judge by the facing cut (MpsConflict::Facing: regions stop where the surface turns by 90° or
-  //! more, and both samples must reach each other) instead of the paper's rule.
-  bool facing_cut = false;
+  //! Judge by the facing cut (MpsConflict::Facing, the sampler's default: regions stop where the
+  //! surface turns by 90° or more, and both samples must reach each other); false: by the paper's
+  //! rule (MpsConflict::Reach).
+  bool facing_cut = true;
 };
 
 struct MpsVerification {
   bool passed = true;  //!< min_distance, maximal and diagram_covers all hold
   double time_s = 0;  //!< the whole call: with the overload that computes the LRPD, that LRPD too
   //! Local samples are at least ρ = max(r_i, r_j) apart (exact). Samples i and j are local to each
-  //! other when the local region of one's ball of radius ρ holds a triangle of the other: the
-  //! triangles the ball meets, edge-connected to the centre's triangle through such triangles
-  //! (the paper's rule). With MpsVerifyOptions::facing_cut: only triangles facing like the
-  //! centre's (normals at less than 90°), and each region must hold the other's triangle.
+  //! other when, with MpsVerifyOptions::facing_cut (the default), each one's triangle lies in the
+  //! local region of the other's ball of radius ρ: the triangles the ball meets that face like the
+  //! centre's triangle (normals at less than 90°), edge-connected to it through such triangles.
+  //! Without it (the paper's rule): the local region of one's ball holds a triangle of the other,
+  //! the region being all the triangles the ball meets, edge-connected to the centre's.
   PropertyResult min_distance;
   //! Every point of the surface is covered (checked = triangles): it lies in the ball of the sample
   //! whose LRPD cell (weights r²) holds it, or in the disk of a sample whose local region reaches

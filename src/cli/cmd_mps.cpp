@@ -72,14 +72,6 @@ int run_mps_command(const MpsCommandOptions& opt) {
                                                   ? "no two samples local to each other, the only kind it bounds"
                                                   : "no two samples near each other")
                                 : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
-  if (run.options.sample_features) {
-    const std::string why = opt.settings.features
-                                ? std::string("--features")
-                                : fmt::format("the mesh has {} edges sharper than {:g} degrees and {} boundary edges",
-                                              run.feature_edges.sharp, opt.settings.feature_angle, run.feature_edges.boundary);
-    std::printf("features: %d samples on the corners and feature lines first (%s; --no-features turns this off)\n",
-                result.feature_samples, why.c_str());
-  }
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
   // Closer pairs the disk condition does not cover (docs/algorithms/mps.md, "Conflict rule"): said, not hidden.
@@ -126,9 +118,10 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::IsMember({"local", "lrpd"}))
       ->capture_default_str();
   cmd->add_option("--conflict", opt->settings.conflict,
-                  "reach: samples whose balls' regions (grown over every edge-adjacent triangle the ball meets) "
-                  "reach each other keep r apart (the paper's rule, default); facing: regions stop where the surface "
-                  "turns by 90 degrees or more, letting samples sit closer than r across sharp edges and rims")
+                  "facing: regions stop where the surface turns by 90 degrees or more, letting samples sit closer "
+                  "than r across sharp edges and rims (default); reach: samples whose balls' regions (grown over "
+                  "every edge-adjacent triangle the ball meets) reach each other keep r apart (the paper's rule; "
+                  "on sheets thinner than r and thin boxes it may end not maximal)")
       ->check(CLI::IsMember({"reach", "facing"}))
       ->capture_default_str();
   cmd->add_option("--split-to", opt->settings.split_to,
@@ -142,13 +135,10 @@ Action add_mps_command(CLI::App& app) {
       ->each([opt](const std::string&) { opt->settings.split_factor_given = true; })
       ->capture_default_str();
   cmd->add_flag("--features", opt->settings.features,
-                "Samples on the corners and feature lines first (the boundary, and edges sharper than --feature-angle) "
-                "even on a mesh without any; the default when the mesh has some");
-  cmd->add_flag("--no-features", opt->settings.no_features,
-                "No samples placed on the feature lines first: every sample uniform over the surface (the LRRT may "
-                "then fail at sharp edges and boundary corners)");
+                "Samples on the corners and feature lines first (the boundary, and edges sharper than --feature-angle): "
+                "the LRRT then keeps them; the samples there are not uniform");
   cmd->add_option("--feature-angle", opt->settings.feature_angle,
-                  "An edge is a feature when its triangles' normals are more than this many "
+                  "With --features: an edge is a feature when its triangles' normals are more than this many "
                   "degrees apart")
       ->check(CLI::Range(1.0, 179.0))
       ->each([opt](const std::string&) { opt->settings.feature_angle_given = true; })

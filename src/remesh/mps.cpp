@@ -203,20 +203,6 @@ int sample_features(const SurfaceMesh& m, Sampler& sampler, double angle_deg) {
 
 }  // namespace
 
-FeatureEdges count_feature_edges(const SurfaceMesh& mesh, double angle_deg) {
-  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
-  FeatureEdges f;
-  for (int t = 0; t < mesh.triangle_count(); ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int n = mesh.neighbor(t, e);
-      if (n < 0)
-        ++f.boundary;
-      else if (n > t && dot(mesh.triangle_normal(t), mesh.triangle_normal(n)) < cos_limit)
-        ++f.sharp;
-    }
-  return f;
-}
-
 double expected_sample_count(const SurfaceMesh& mesh, double radius) {
   return mesh.area() / (std::sqrt(3.0) / 2 * radius * radius);
 }

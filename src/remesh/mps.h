@@ -29,8 +29,9 @@ enum class MpsRefinement {
 
 //! Which samples must keep their distance (docs/algorithms/mps.md, "Conflict rule").
 enum class MpsConflict {
-  Reach,  //!< the paper's: the ball's region grows over every edge-adjacent triangle it meets
-  Facing  //!< regions stop where the surface turns by 90° or more: lets samples sit closer than r across sharp edges
+  Facing,  //!< regions stop where the surface turns by 90° or more: lets samples sit closer than r across sharp edges
+  Reach    //!< the paper's (§4.2): the ball's region grows over every edge-adjacent triangle it meets; on sheets
+           //!< thinner than r and thin boxes the sampling may end not maximal (docs/algorithms/mps.md)
 };
 
 //! The largest MpsOptions::radius taken (relative: one disk of it covers any sheet many times over).
@@ -46,7 +47,7 @@ struct MpsOptions {
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
-  MpsConflict conflict = MpsConflict::Reach;
+  MpsConflict conflict = MpsConflict::Facing;
   //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
   //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
   //! half the time (0.42-0.77 of it on the Table 3 models); nothing needs a triangle smaller than a disk.
@@ -118,14 +119,6 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
 //! times the radius of curvature where it bends — then limited so that it changes by at most
 //! `gradation` per unit length along edges. The sampler interpolates it linearly in triangles.
 std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min, const MpsOptions& options);
-
-//! The mesh's feature edges as MpsOptions::sample_features reads them: boundary edges, and edges
-//! whose two triangles' normals are more than `angle_deg` apart.
-struct FeatureEdges {
-  int boundary = 0, sharp = 0;
-  bool any() const { return boundary + sharp > 0; }
-};
-FeatureEdges count_feature_edges(const SurfaceMesh& mesh, double angle_deg);
 
 //! Expected number of samples for a radius (absolute) on this mesh: area / (√3/2 · r²), the
 //! count of a hexagonal packing at spacing r (an upper estimate for MPS).

@@ -51,12 +51,8 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   if (settings.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
   options.split_factor = settings.split_factor;
-  if (settings.features && settings.no_features) throw InputError("--features and --no-features contradict each other");
-  if (settings.feature_angle_given && settings.no_features)
-    throw InputError("--feature-angle applies to the feature lines, which --no-features turns off");
-  // Sharp edges or a boundary: sampled first unless asked not to (docs/algorithms/mps.md, "Features").
-  run.feature_edges = count_feature_edges(input, settings.feature_angle);
-  options.sample_features = settings.features || (!settings.no_features && run.feature_edges.any());
+  if (settings.feature_angle_given && !settings.features) throw InputError("--feature-angle applies to --features");
+  options.sample_features = settings.features;
   options.feature_angle = settings.feature_angle;
   options.on_progress = on_progress;
   reset_predicate_stats();
@@ -109,13 +105,8 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
                                                         ? nlohmann::json(check.close_pairs_local_past_facing_cut)
                                                         : nlohmann::json(nullptr)}};
   report["samples"] = samples.size();
-  report["features"] = options.sample_features
-                           ? nlohmann::json{{"angle_deg", settings.feature_angle},
-                                            {"samples", result.feature_samples},
-                                            {"by", settings.features ? "--features" : "default"},
-                                            {"sharp_edges", run.feature_edges.sharp},
-                                            {"boundary_edges", run.feature_edges.boundary}}
-                           : nlohmann::json(nullptr);
+  report["features"] = settings.features ? nlohmann::json{{"angle_deg", settings.feature_angle}, {"samples", result.feature_samples}}
+                                     : nlohmann::json(nullptr);
   report["dart_samples"] = result.dart_samples;
   report["gap_samples"] = result.gap_samples;
   report["darts"] = result.darts;

@@ -24,12 +24,11 @@ struct MpsSettings {
   std::uint64_t seed = 1;
   std::string gap_update = "local";  //!< local | lrpd
   std::string split_to = "field";    //!< field | rmin
-  std::string conflict = "reach";    //!< reach (the paper's rule) | facing (MpsConflict::Facing)
+  std::string conflict = "facing";   //!< facing (MpsConflict::Facing) | reach (the paper's rule)
   double split_factor = MpsOptions{}.split_factor;
   bool split_factor_given = false;
   bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
-  bool features = false;     //!< --features: sample the feature lines first whatever the mesh
-  bool no_features = false;  //!< --no-features; with neither, features are sampled when the mesh has some
+  bool features = false;
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
 };
@@ -42,7 +41,6 @@ struct MpsRun {
   MpsOptions options;
   MpsResult result;
   MpsVerification check;
-  FeatureEdges feature_edges;  //!< of the input, at the feature angle
   bool maximal = false, min_distance_ok = false;
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
