@@ -919,7 +919,8 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(reach["conflict"]["rule"] == "reach");
   CHECK(reach["conflict"]["close_pairs_let_through"].is_null());
   CHECK(reach["mps_verification"]["conflict"] == "reach");
-  CHECK(reach["verification"]["passed"].get<bool>());
+  CHECK(reach["maximal"].get<bool>());
+  CHECK(reach["min_distance_ok"].get<bool>());
   CHECK(run(mesh + " --radius 0.1 --conflict paper -o " + dir + "bad.xyz") == 2);
   // --features: corners and feature lines first; on an open square the LRRT keeps its corners.
   const std::string square = dir + "square.off", feature_report = dir + "report_features.json";
