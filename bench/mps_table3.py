@@ -65,13 +65,13 @@ def find_meshes(args):
     return found
 
 
-def run(binary, path, mode, seed, workdir):
+def run(binary, path, mode, seed, conflict, workdir):
     """One fresh `lrvd mps` process; its report, or an error message."""
     report = os.path.join(workdir, "report.json")
     if os.path.exists(report):
         os.remove(report)
     command = [binary, "mps", path, "--radius", str(RADIUS[mode]), "--seed", str(seed), "--threads", "1",
-               "-o", os.path.join(workdir, "samples.xyz"), "--report", report]
+               "-o", os.path.join(workdir, "samples.xyz"), "--report", report, "--conflict", conflict]
     if mode == "adaptive":
         command.append("--adaptive")
     done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -90,6 +90,8 @@ def main():
     parser.add_argument("--models", default="", help="comma-separated subset of the models")
     parser.add_argument("--shared", default="/work/shared/data/meshes", help="folder of the paper's models")
     parser.add_argument("--cgal", default="build/cgal-data", help="folder of CGAL's extracted meshes")
+    parser.add_argument("--conflict", default="facing", choices=["facing", "reach"],
+                        help="lrvd mps --conflict: facing (the default) or reach (the paper's rule)")
     parser.add_argument("--out", default="", help="markdown file (default: standard output)")
     parser.add_argument("--json", default="", help="also write every run as JSON")
     args = parser.parse_args()
@@ -109,7 +111,7 @@ def main():
     with tempfile.TemporaryDirectory() as workdir:
         for k in range(args.runs):
             for name, path, mode, seed in cases:  # the models in turn: drift hits them all
-                report, error = run(args.lrvd, path, mode, seed, workdir)
+                report, error = run(args.lrvd, path, mode, seed, args.conflict, workdir)
                 if error:
                     failures.append(f"{name} {mode} seed {seed}: {error}")
                     continue
@@ -121,7 +123,8 @@ def main():
                       f"{report['time_s']['total']:.3f} s", file=sys.stderr)
 
     lines = [
-        f"`bench/mps_table3.py --runs {args.runs}`: fresh `lrvd mps --threads 1` processes, for each row the run "
+        f"`bench/mps_table3.py --runs {args.runs} --conflict {args.conflict}`: fresh `lrvd mps --threads 1 "
+        f"--conflict {args.conflict}` processes, for each row the run "
         "with the least sampler total (init / dart throwing / gap filling / total, seconds); s per 50k samples "
         "of that run and the median of all runs; the paper: init / dart throwing / MPS / total on its 2014 CPU.",
         "",

@@ -46,6 +46,9 @@ std::optional<CGAL::Sign> enclosed_power_sign(const SymbolicVertex& q, const Sit
 
 //! Exact point from doubles.
 ExactPoint to_exact(const Vec3& p);
+//! Whether the open ball B(x, √w) meets the closed triangle abc, in rationals (ball_triangle.h
+//! decides it for a centre given in doubles).
+bool ball_meets_triangle(const ExactPoint& x, const CGAL::Gmpq& w, const Vec3& a, const Vec3& b, const Vec3& c);
 
 //! Nearest doubles (each coordinate rounded independently).
 Vec3 to_double(const ExactPoint& p);

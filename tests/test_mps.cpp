@@ -41,14 +41,17 @@ Diagram lrpd_of(const MpsResult& r) {
   return compute_lrvd(r.mesh, r.samples, options);
 }
 
-// The three promises of a maximal Poisson-disk sampling and of its remesh, checked from scratch.
-MpsVerification check_sampling(const SurfaceMesh& input, const MpsResult& r, bool check_remesh, bool exact = false) {
+// The three promises of a maximal Poisson-disk sampling and of its remesh, checked from scratch;
+// `reach`: judged by the paper's rule (samples placed with MpsConflict::Reach), else by the facing cut.
+MpsVerification check_sampling(const SurfaceMesh& input, const MpsResult& r, bool check_remesh, bool exact = false,
+                               bool reach = false) {
   INFO("samples " << r.samples.size() << ", dart samples " << r.dart_samples << ", LRPDs " << r.lrpd_evaluations);
   CHECK(r.gaps_closed);
   for (int i = 0; i < r.samples.size(); ++i) REQUIRE(r.radii[i] >= r.radius * (1 - 1e-12));
   const Diagram lrpd = lrpd_of(r);
   MpsVerifyOptions options;
   options.exact_maximality = exact;
+  options.facing_cut = !reach;
   const MpsVerification v = verify_mps(r.mesh, r.samples, lrpd, options);
   INFO(v.summary());
   CHECK(v.min_distance.passed);
@@ -906,6 +909,20 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
   CHECK(j["features"].is_null());
+  CHECK(j["conflict"]["rule"] == "facing");  // the default
+  CHECK(j["conflict"]["close_pairs_let_through"].is_number_integer());
+  // --conflict reach: the paper's rule, judged by it.
+  const std::string reach_report = dir + "report_reach.json";
+  std::remove(reach_report.c_str());
+  REQUIRE(run(mesh + " --radius 0.1 --conflict reach -o " + dir + "samples_reach.xyz --report " + reach_report) == 0);
+  std::ifstream reach_in(reach_report);
+  const nlohmann::json reach = nlohmann::json::parse(reach_in);
+  CHECK(reach["conflict"]["rule"] == "reach");
+  CHECK(reach["conflict"]["close_pairs_let_through"].is_null());
+  CHECK(reach["mps_verification"]["conflict"] == "reach");
+  CHECK(reach["maximal"].get<bool>());
+  CHECK(reach["min_distance_ok"].get<bool>());
+  CHECK(run(mesh + " --radius 0.1 --conflict paper -o " + dir + "bad.xyz") == 2);
   // --features: corners and feature lines first; on an open square the LRRT keeps its corners.
   const std::string square = dir + "square.off", feature_report = dir + "report_features.json";
   write_mesh(square, test::grid(1, 1));
@@ -940,4 +957,105 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(lone["maximal"].get<bool>());
   CHECK(lone["quality"].is_null());
   CHECK(!lone["verification"]["passed"].get<bool>());
+}
+
+namespace {
+
+// A closed prism over an equilateral triangle (side 1, length 1): its three long edges turn by 120°
+// (60° between the faces).
+SurfaceMesh wedge() {
+  const double h = std::sqrt(3.0) / 2;
+  return SurfaceMesh({{0, 0, 0}, {1, 0, 0}, {0.5, h, 0}, {0, 0, 1}, {1, 0, 1}, {0.5, h, 1}},
+                     {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}});
+}
+
+// A closed cone 1 high over a disk of radius 0.15 (24 sides): a tip of about 17°.
+SurfaceMesh sharp_cone() {
+  std::vector<Vec3> p{{0, 0, 1}, {0, 0, 0}};
+  std::vector<Triangle> t;
+  const int n = 24;
+  for (int k = 0; k < n; ++k) p.push_back({0.15 * std::cos(2 * M_PI * k / n), 0.15 * std::sin(2 * M_PI * k / n), 0});
+  for (int k = 0; k < n; ++k) {
+    const int a = 2 + k, b = 2 + (k + 1) % n;
+    t.push_back({0, a, b});
+    t.push_back({1, b, a});
+  }
+  return SurfaceMesh(p, t);
+}
+
+// Pairs of samples closer than the larger radius, over all pairs (independent of any region).
+std::vector<std::pair<int, int>> all_close_pairs(const Samples& s) {
+  std::vector<std::pair<int, int>> pairs;
+  for (int i = 0; i < s.size(); ++i)
+    for (int j = i + 1; j < s.size(); ++j)
+      if (squared_distance(s.positions[i], s.positions[j]) < std::max(s.weights[i], s.weights[j])) pairs.emplace_back(i, j);
+  return pairs;
+}
+
+}  // namespace
+
+TEST_CASE("MPS by the paper's rule keeps r on sharp edges, corners, tips and boundaries", "[mps][conflict]") {
+  // The region of a ball grows over every edge-adjacent triangle it meets: across a cube's edges, a
+  // 60° wedge's, round a cone's tip of 17°, along an open sheet's boundary, two samples closer than
+  // r are always local. Counted over all pairs, none may be closer than r; with the facing cut the
+  // cube has such pairs on its edges (the cut lets them through and says how many).
+  const SurfaceMesh cube({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+                         {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                          {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}});
+  const SurfaceMesh sheet = test::grid(3, 3);
+  const std::vector<std::pair<const char*, SurfaceMesh>> meshes{
+      {"cube", cube}, {"wedge", wedge()}, {"cone", sharp_cone()}, {"open sheet", sheet}};
+  for (const auto& [name, mesh] : meshes)
+    for (bool features : {false, true})
+      for (bool adaptive : {false, true})
+        for (std::uint64_t seed : {1, 2}) {
+          INFO(name << (features ? ", features" : "") << (adaptive ? ", adaptive" : "") << ", seed " << seed);
+          MpsOptions options;
+          options.radius = 0.08;
+          options.adaptive = adaptive;
+          options.sample_features = features;
+          options.seed = seed;
+          options.conflict = MpsConflict::Reach;
+          const MpsResult r = maximal_poisson_disk_sampling(mesh, options);
+          CHECK(all_close_pairs(r.samples).empty());
+          check_sampling(mesh, r, false, false, true);
+        }
+  MpsOptions facing;
+  facing.radius = 0.08;
+  facing.conflict = MpsConflict::Facing;
+  const MpsResult r = maximal_poisson_disk_sampling(cube, facing);
+  const size_t close = all_close_pairs(r.samples).size();
+  CHECK(close > 0);
+  const MpsVerification v = verify_mps(r.mesh, r.samples);  // by the facing cut, the default
+  CHECK(v.passed);
+  CHECK(static_cast<size_t>(v.close_pairs_local_past_facing_cut) == close);
+  // The paper's rule judges the same samples: those pairs violate it.
+  MpsVerifyOptions paper;
+  paper.facing_cut = false;
+  CHECK(!verify_mps(r.mesh, r.samples, paper).min_distance.passed);
+}
+
+TEST_CASE("MPS by the paper's rule on a thin plate: pairs across the plate only away from its rim", "[mps][conflict]") {
+  // thin_plate: 1 x 1 x 0.01. At r = 0.02 a ball on one face meets the other; round the rim its
+  // region reaches it, deep inside it does not. Samples on the two faces closer than r exist, and
+  // each such pair lies away from the rim: within r/2 of it the balls reach round.
+  const SurfaceMesh plate = make_stress_mesh("thin_plate");
+  for (std::uint64_t seed : {1, 2}) {
+    INFO("seed " << seed);
+    MpsOptions options;
+    options.radius = 0.02;
+    options.seed = seed;
+    options.conflict = MpsConflict::Reach;
+    const MpsResult r = maximal_poisson_disk_sampling(plate, options);
+    const std::vector<std::pair<int, int>> close = all_close_pairs(r.samples);
+    CHECK(close.size() > 100);
+    const double r_abs = r.radius;
+    for (const auto& [i, j] : close) {
+      const Vec3 &a = r.samples.positions[i], &b = r.samples.positions[j];
+      CHECK(a.z * b.z < 0);  // across the plate
+      for (const Vec3& x : {a, b}) CHECK(0.5 - std::max(std::abs(x.x), std::abs(x.y)) > 0.5 * r_abs);
+    }
+    const MpsVerification v = check_sampling(plate, r, false, false, true);
+    CHECK(static_cast<size_t>(v.close_pairs_not_local) == close.size());
+  }
 }

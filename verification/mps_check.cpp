@@ -10,7 +10,6 @@
 #include <memory>
 #include <optional>
 #include <unordered_map>
-#include <unordered_set>
 
 #include <fmt/format.h>
 #include <tbb/parallel_invoke.h>
@@ -19,8 +18,10 @@
 #include "common/timing.h"
 #include "diagram/clip.h"
 #include "mesh/closest_point.h"
+#include "predicates/ball_triangle.h"
 #include "predicates/exact.h"
 #include "verification/diagram_geometry.h"
+#include "verification/mps_reach_cover.h"
 
 namespace lrvd {
 
@@ -33,6 +34,8 @@ CGAL::Sign squared_distance_minus(const Vec3& a, const Vec3& b, double w) {
     const double margin = 1e-15 * (d + w);
     if (d - w > margin) return CGAL::POSITIVE;
     if (w - d > margin) return CGAL::NEGATIVE;
+  } else if (w > 1e-240) {
+    return CGAL::NEGATIVE;  // |a - b|² is below 1e-249 however the squares rounded
   }
   return CGAL::sign(exact_power_distance(to_exact(a), Site{b, w, 0}));
 }
@@ -57,13 +60,9 @@ struct TriangleSamples {
   }
 };
 
-std::uint64_t pair_key(int i, int j) {
-  return (static_cast<std::uint64_t>(std::min(i, j)) << 32) | static_cast<std::uint32_t>(std::max(i, j));
-}
-
 // Local regions of balls, grown independently of the sampler: the triangles the ball B(x, r)
-// meets that face like x's triangle t (normals at less than 90°), edge-connected to t through
-// such triangles.
+// meets, edge-connected to x's triangle t through such triangles (the paper's rule); with the
+// facing cut (`cut`), only those that face like t (normals at less than 90°).
 class LocalRegions {
  public:
   explicit LocalRegions(const SurfaceMesh& mesh) : mesh_(mesh), info_(mesh.triangle_count()) {
@@ -79,7 +78,7 @@ class LocalRegions {
   }
   //! Calls f(triangle) for each triangle of the region until f returns true; returns whether it did.
   template <class F>
-  bool search(const Vec3& x, int t, double w, F&& f) {
+  bool search(const Vec3& x, int t, double w, bool cut, F&& f) {
     ++epoch_;
     queue_.assign(1, t);
     info_[t].stamp = epoch_;
@@ -91,14 +90,14 @@ class LocalRegions {
         const int n = mesh_.neighbor(queue_[k], e);
         if (n < 0 || info_[n].stamp == epoch_) continue;
         info_[n].stamp = epoch_;
-        if (!(dot(info_[n].normal, facing) > 0) || !meets(n, x, w, r)) continue;
+        if ((cut && !(dot(info_[n].normal, facing) > 0)) || !meets(n, x, w, r)) continue;
         queue_.push_back(n);
         if (f(n)) return true;
       }
     return false;
   }
-  bool reaches(const Vec3& x, int t, double w, int target) {
-    return search(x, t, w, [&](int n) { return n == target; });
+  bool reaches(const Vec3& x, int t, double w, bool cut, int target) {
+    return search(x, t, w, cut, [&](int n) { return n == target; });
   }
   //! The triangles sample i lies on: its own, and with barycentric coordinates that put it exactly
   //! on an edge or a corner, the other triangles there (SurfaceMesh::triangles_at). Its ball's
@@ -122,24 +121,20 @@ class LocalRegions {
     return seeds_;
   }
   //! Whether `target` is in the region of sample i's ball at weight w.
-  bool sample_reaches(const Samples& s, int i, double w, int target) {
+  bool sample_reaches(const Samples& s, int i, double w, bool cut, int target) {
     for (int t : seeds(s, i))  // search() leaves seeds_ alone
-      if (reaches(s.positions[i], t, w, target)) return true;
+      if (reaches(s.positions[i], t, w, cut, target)) return true;
     return false;
   }
 
  private:
-  // Whether the ball B(x, r), w = r², meets triangle t: the distance from x to t's closest point
-  // is below r. Two shortcuts that the closest point would confirm: a ball far from t's bounding
-  // sphere (by more than rounding) misses it, a ball holding a corner meets it.
+  // Whether the ball B(x, r), w = r², meets triangle t, exactly (ball_meets_triangle), after
+  // one shortcut: a ball far from t's bounding sphere (by more than rounding) misses it.
   bool meets(int t, const Vec3& x, double w, double r) const {
     const double reach = r + info_[t].radius;
     if (squared_distance(x, info_[t].center) > reach * reach * (1 + 1e-9)) return false;
     const Triangle& tri = mesh_.triangle(t);
-    for (int c = 0; c < 3; ++c)
-      if (squared_distance(x, mesh_.position(tri[c])) < w) return true;
-    const ClosestPoint c = closest_point_on_triangle(x, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
-    return squared_distance(x, c.point) < w;
+    return ball_meets_triangle(x, w, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
   }
 
   // What a search reads of a triangle, in one cache line.
@@ -155,10 +150,20 @@ class LocalRegions {
   int epoch_ = 0;
 };
 
+// The triangles each sample lies on (LocalRegions::seeds).
+std::vector<std::vector<int>> sample_triangles(const Samples& s, LocalRegions& regions) {
+  std::vector<std::vector<int>> triangles(s.size());
+  for (int i = 0; i < s.size(); ++i) triangles[i] = regions.seeds(s, i);
+  return triangles;
+}
+
+// Halvings of a polygon the reach certificate may take (ReachCover::covers).
+constexpr int kReachCoverDepth = 14;
+
 // The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
 struct SampleDisks {
   std::vector<int> offset, triangles;
-  SampleDisks(const Samples& s, LocalRegions& regions) {
+  SampleDisks(const Samples& s, LocalRegions& regions, bool cut) {
     // Grown in the order of the samples' triangles (neighbouring samples touch the same
     // triangles, which stay in cache), then listed by sample.
     std::vector<int> order(s.size());
@@ -169,7 +174,7 @@ struct SampleDisks {
       first[i] = static_cast<int>(found.size());
       const std::vector<int>& seeds = regions.seeds(s, i);  // search() leaves it alone
       for (int t : seeds)
-        regions.search(s.positions[i], t, s.weights[i], [&](int n) {
+        regions.search(s.positions[i], t, s.weights[i], cut, [&](int n) {
           found.push_back(n);
           return false;
         });
@@ -188,70 +193,14 @@ struct SampleDisks {
   bool reaches(int i, int t) const { return std::binary_search(begin(i), end(i), t); }
 };
 
-// Two samples are local to each other when each one's triangle lies in the local region of the
-// other's ball of radius ρ = max(r_i, r_j); local samples closer than ρ violate the property. A
-// sample exactly on an edge or corner lies on every triangle there (LocalRegions::seeds): any of
-// them counts as its triangle. Returns those pairs.
-std::unordered_set<std::uint64_t> check_min_distance(const SurfaceMesh& mesh, const Samples& s, const SampleDisks& disks,
-                                                     LocalRegions& regions, MpsVerification& out) {
-  std::vector<std::vector<int>> extra_seeds(s.size());  // the triangles of samples on an edge or corner
-  const TriangleSamples by_triangle(mesh, s, [&](int i) -> const std::vector<int>& {
-    const std::vector<int>& seeds = regions.seeds(s, i);
-    if (seeds.size() > 1) extra_seeds[i] = seeds;
-    return seeds;
-  });
-  auto triangles_of = [&](int i) -> std::vector<int> {
-    return extra_seeds[i].empty() ? std::vector<int>{s.triangles[i]} : extra_seeds[i];
-  };
-  std::unordered_set<std::uint64_t> close;
-  std::vector<int> seen(s.size(), -1);  // the last sample i from which j was looked at
-  double min_ratio2 = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < s.size(); ++i) {
-    const Vec3& x = s.positions[i];
-    const double w = s.weights[i];
-    // Every violating pair is seen from the sample with the larger radius: the other's centre
-    // lies in its ball and, the pair being local, one of the other's triangles in its region.
-    for (const int* it = disks.begin(i); it != disks.end(i); ++it) {
-      for (int k = by_triangle.offset[*it]; k < by_triangle.offset[*it + 1]; ++k) {
-        const int j = by_triangle.items[k];
-        if (j == i || seen[j] == i) continue;
-        seen[j] = i;
-        const double d2 = squared_distance(x, s.positions[j]);
-        const double rho2 = std::max(w, s.weights[j]);
-        if (squared_distance_minus(s.positions[j], x, w) != CGAL::NEGATIVE) {
-          if (d2 >= rho2) min_ratio2 = std::min(min_ratio2, d2 / rho2);
-          continue;
-        }
-        ++out.min_distance.checked;
-        // i's region at ρ holds one of j's triangles (at ρ = r_i, i's disk tells), and j's one of i's.
-        auto reaches_one = [&](int a, int b) {
-          for (int t : triangles_of(b))
-            if (a == i && s.weights[j] <= w ? disks.reaches(i, t) : regions.sample_reaches(s, a, rho2, t)) return true;
-          return false;
-        };
-        if (!reaches_one(i, j) || !reaches_one(j, i)) {
-          ++out.one_sided_close_pairs;
-          continue;
-        }
-        min_ratio2 = std::min(min_ratio2, d2 / rho2);
-        close.insert(pair_key(i, j));
-        out.min_distance.fail(fmt::format("sample {} lies in the disk of sample {} (distance {:.6g}, radius {:.6g})", j, i,
-                                          std::sqrt(d2), std::sqrt(w)));
-      }
-    }
-  }
-  out.min_distance_ratio = std::isfinite(min_ratio2) ? std::sqrt(min_ratio2) : std::numeric_limits<double>::quiet_NaN();
-  return close;
-}
-
-// Pairs closer than max(r_i, r_j) anywhere in space (a grid of cells at least r_max wide, the
-// samples sorted by cell) that are not local to each other: on different sheets or past a notch
-// (allowed, reported).
-std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::uint64_t>& local) {
-  if (s.size() < 2) return 0;
+// Pairs closer than max(r_i, r_j), decided exactly, anywhere in space: a grid of cells at least
+// r_max wide, the samples sorted by cell. Each pair once, i < j.
+std::vector<std::pair<int, int>> close_pairs(const Samples& s) {
+  std::vector<std::pair<int, int>> pairs;
+  if (s.size() < 2) return pairs;
   double r_max = 0;
   for (double w : s.weights) r_max = std::max(r_max, std::sqrt(w));
-  if (!(r_max > 0)) return 0;
+  if (!(r_max > 0)) return pairs;
   Vec3 lo = s.positions[0], hi = s.positions[0];
   for (const Vec3& p : s.positions) {
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
@@ -260,7 +209,7 @@ std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::u
   // 21 bits per axis, so that a cell packs into one 64-bit key: cells grow past r_max if needed.
   constexpr double kCellsPerAxis = 1 << 20;
   const double cell = std::max({r_max, (hi.x - lo.x) / kCellsPerAxis, (hi.y - lo.y) / kCellsPerAxis,
-                                (hi.z - lo.z) / kCellsPerAxis});
+                                (hi.z - lo.z) / kCellsPerAxis}) * (1 + 1e-12);
   // Coordinates start at 1, so that the neighbours of a cell at 0 are still inside the 21 bits.
   auto coordinate = [&](double x, double origin) { return static_cast<std::uint64_t>((x - origin) / cell) + 1; };
   auto key = [](std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (x << 42) | (y << 21) | z; };
@@ -273,7 +222,6 @@ std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::u
   std::unordered_map<std::uint64_t, int> first;  // the first entry of each cell in by_cell
   first.reserve(by_cell.size());
   for (int k = static_cast<int>(by_cell.size()) - 1; k >= 0; --k) first[by_cell[k].first] = k;
-  std::int64_t pairs = 0;
   for (int i = 0; i < s.size(); ++i) {
     const Vec3& p = s.positions[i];
     const std::uint64_t cx = coordinate(p.x, lo.x), cy = coordinate(p.y, lo.y), cz = coordinate(p.z, lo.z);
@@ -286,12 +234,68 @@ std::int64_t count_close_pairs(const Samples& s, const std::unordered_set<std::u
           for (int k = it->second; k < static_cast<int>(by_cell.size()) && by_cell[k].first == c; ++k) {
             const int j = by_cell[k].second;
             if (j <= i) continue;
-            const double w = std::max(s.weights[i], s.weights[j]);
-            if (squared_distance(p, s.positions[j]) < w && !local.count(pair_key(i, j))) ++pairs;
+            if (squared_distance_minus(s.positions[j], p, std::max(s.weights[i], s.weights[j])) == CGAL::NEGATIVE)
+              pairs.emplace_back(i, j);
           }
         }
   }
   return pairs;
+}
+
+// The minimum distance. Samples i and j are local to each other when the local region of one's
+// ball of radius ρ = max(r_i, r_j) reaches a triangle of the other (the paper's rule: a dart
+// conflicts with the disks its region reaches, and with the disks that reach it); local samples
+// closer than ρ violate the property. With the facing cut (MpsConflict::Facing) the regions stop
+// where the surface turns by 90° or more and each must reach the other's triangle; the close
+// pairs the paper's rule calls local and the cut lets through are counted. A sample exactly on an
+// edge or corner lies on every triangle there (LocalRegions::seeds): any of them counts as its
+// triangle. Every pair closer than ρ is looked at (close_pairs), whatever the regions.
+void check_min_distance(const SurfaceMesh& mesh, const Samples& s, const SampleDisks& disks, LocalRegions& regions,
+                        const std::vector<std::vector<int>>& triangles, bool cut, MpsVerification& out) {
+  double min_ratio2 = std::numeric_limits<double>::infinity();
+  // The ratio over the pairs that keep their distance: the centres in each sample's disk.
+  const TriangleSamples by_triangle(mesh, s, [&](int i) -> const std::vector<int>& { return triangles[i]; });
+  std::vector<int> seen(s.size(), -1);  // the last sample i from which j was looked at
+  for (int i = 0; i < s.size(); ++i) {
+    const Vec3& x = s.positions[i];
+    for (const int* it = disks.begin(i); it != disks.end(i); ++it)
+      for (int k = by_triangle.offset[*it]; k < by_triangle.offset[*it + 1]; ++k) {
+        const int j = by_triangle.items[k];
+        if (j == i || seen[j] == i) continue;
+        seen[j] = i;
+        const double rho2 = std::max(s.weights[i], s.weights[j]);
+        if (squared_distance_minus(s.positions[j], x, rho2) != CGAL::NEGATIVE)
+          min_ratio2 = std::min(min_ratio2, squared_distance(x, s.positions[j]) / rho2);
+      }
+  }
+  for (const auto& [i, j] : close_pairs(s)) {
+    ++out.min_distance.checked;
+    const double rho2 = std::max(s.weights[i], s.weights[j]);
+    // a's region at ρ reaches one of b's triangles.
+    auto reaches = [&](int a, int b, bool facing_cut) {
+      for (int t : triangles[b])
+        if (regions.sample_reaches(s, a, rho2, facing_cut, t)) return true;
+      return false;
+    };
+    const bool ij = reaches(i, j, false), ji = reaches(j, i, false);
+    bool local = ij || ji;
+    if (ij != ji) ++out.one_sided_close_pairs;
+    if (cut) {
+      const bool paper = local;
+      local = reaches(i, j, true) && reaches(j, i, true);
+      if (paper && !local) ++out.close_pairs_local_past_facing_cut;
+    }
+    if (!local) {
+      ++out.close_pairs_not_local;
+      continue;
+    }
+    const double d2 = squared_distance(s.positions[i], s.positions[j]);
+    min_ratio2 = std::min(min_ratio2, d2 / rho2);
+    out.min_distance.fail(fmt::format("samples {} and {} are local to each other and {:.6g} apart, closer than "
+                                      "their larger radius {:.6g}",
+                                      i, j, std::sqrt(d2), std::sqrt(rho2)));
+  }
+  out.min_distance_ratio = std::isfinite(min_ratio2) ? std::sqrt(min_ratio2) : std::numeric_limits<double>::quiet_NaN();
 }
 
 // Whether corner q (at p) of a polygon lies outside the ball of `site`: decided on the interval
@@ -322,7 +326,8 @@ bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, cons
 // is no LRPD candidate of t (its cell was kept connected, or its power cell has a piece there the
 // LRPD does not have).
 void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
-                      const MpsVerifyOptions& options, MpsVerification& out) {
+                      const std::vector<std::vector<int>>& sample_triangles, const MpsVerifyOptions& options,
+                      MpsVerification& out) {
   const int nt = mesh.triangle_count();
   const SymbolicContext ctx = d.context(mesh);
   std::vector<double> area_sum(nt, 0);
@@ -363,6 +368,9 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
       if (slot[*t] >= 0) around[slot[*t]].push_back(i);
 
   const std::vector<Site> sites = make_sites(s, true);
+  std::optional<verify_detail::ReachCover> reach;
+  if (!options.facing_cut) reach.emplace(mesh, s, sample_triangles);
+  std::vector<ExactPoint> exact_polygon;
   const SymbolicContext around_ctx{mesh.positions().data(), sites.data()};
   std::vector<SymbolicVertex> polygon, scratch;
   for (size_t u = 0; u < undecided.size(); ++u) {
@@ -374,17 +382,26 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
     for (size_t c = 0; c < a.size() && covered; ++c) {
       const int k = a[c];
       clip_triangle(mesh, t, k, a.data(), static_cast<int>(a.size()), around_ctx, polygon, scratch);
-      for (const SymbolicVertex& q : polygon) {
-        double pd = 0;
-        if (!outside_ball(q, position(q, around_ctx), sites[k], around_ctx, options.exact_maximality,
-                          out.exact_vertex_tests, pd))
+      double pd = 0, worst = -std::numeric_limits<double>::infinity();
+      for (const SymbolicVertex& q : polygon)
+        if (outside_ball(q, position(q, around_ctx), sites[k], around_ctx, options.exact_maximality,
+                         out.exact_vertex_tests, pd))
+          worst = std::max(worst, pd);
+      if (!(worst > -std::numeric_limits<double>::infinity())) continue;
+      // The paper's rule from the spot's side: a sample whose ball the spot's region reaches.
+      if (reach) {
+        exact_polygon.clear();
+        for (const SymbolicVertex& q : polygon) exact_polygon.push_back(exact_position(q, around_ctx));
+        if (reach->covers(t, exact_polygon, k, kReachCoverDepth)) {
+          ++out.polygons_covered_from_spot_side;
           continue;
-        out.maximal.fail(fmt::format("triangle {}: a point {:.4g}·r_k from sample k = {}, the nearest in power of "
-                                     "the {} around, is in no disk reaching it nor in its cell's ball (uncovered)",
-                                     t, std::sqrt(std::max(0.0, 1 + pd / sites[k].w)), k, a.size()));
-        covered = false;
-        break;
+        }
       }
+      out.maximal.fail(fmt::format("triangle {}: a point {:.4g}·r_k from sample k = {}, the nearest in power of "
+                                   "the {} around, is in no disk reaching it nor in its cell's ball{} (uncovered)",
+                                   t, std::sqrt(std::max(0.0, 1 + worst / sites[k].w)), k, a.size(),
+                                   reach ? ", nor within r_s of a sample s its ball's region reaches" : ""));
+      covered = false;
     }
     if (covered) ++out.triangles_covered_by_other_disks;
   }
@@ -437,10 +454,13 @@ nlohmann::json MpsVerification::to_json() const {
           {"min_distance_ratio", min_distance_ratio},
           {"close_pairs_not_local", close_pairs_not_local},
           {"one_sided_close_pairs", one_sided_close_pairs},
+          {"conflict", facing_cut ? "facing" : "reach"},
+          {"close_pairs_local_past_facing_cut", facing_cut ? nlohmann::json(close_pairs_local_past_facing_cut) : nlohmann::json(nullptr)},
           {"exact_vertex_tests", exact_vertex_tests},
           {"polygons_outside_own_ball", polygons_outside_own_ball},
           {"triangles_covered_by_other_disks", triangles_covered_by_other_disks},
           {"polygons_of_remote_balls", polygons_of_remote_balls},
+          {"polygons_covered_from_spot_side", polygons_covered_from_spot_side},
           {"properties",
            {{"min_distance", min_distance.to_json()},
             {"maximal", maximal.to_json()},
@@ -474,10 +494,12 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   if (const std::string error = diagram_layout_error(lrpd, mesh); !error.empty())
     throw InputError("verify_mps: the LRPD does not fit the mesh: " + error);
   MpsVerification out;
+  out.facing_cut = options.facing_cut;
   LocalRegions regions(mesh);
-  const SampleDisks disks(samples, regions);
-  out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, disks, regions, out));
-  check_maximality(mesh, samples, lrpd, disks, options, out);
+  const std::vector<std::vector<int>> triangles = sample_triangles(samples, regions);
+  const SampleDisks disks(samples, regions, options.facing_cut);
+  check_min_distance(mesh, samples, disks, regions, triangles, options.facing_cut, out);
+  check_maximality(mesh, samples, lrpd, disks, triangles, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
   out.time_s = seconds_since(start);
   return out;
@@ -488,17 +510,19 @@ MpsVerification verify_mps(const SurfaceMesh& mesh, const Samples& samples, cons
   const auto start = std::chrono::steady_clock::now();
   check_mps_samples(mesh, samples);
   MpsVerification out;
+  out.facing_cut = options.facing_cut;
   Diagram lrpd;
   LocalRegions regions(mesh);
+  const std::vector<std::vector<int>> triangles = sample_triangles(samples, regions);
   std::optional<SampleDisks> disks;
   // The diagram and the distance checks read only the mesh and the samples.
   tbb::parallel_invoke(
       [&] { lrpd = compute_lrpd(); },
       [&] {
-        disks.emplace(samples, regions);
-        out.close_pairs_not_local = count_close_pairs(samples, check_min_distance(mesh, samples, *disks, regions, out));
+        disks.emplace(samples, regions, options.facing_cut);
+        check_min_distance(mesh, samples, *disks, regions, triangles, options.facing_cut, out);
       });
-  check_maximality(mesh, samples, lrpd, *disks, options, out);
+  check_maximality(mesh, samples, lrpd, *disks, triangles, options, out);
   out.passed = out.min_distance.passed && out.maximal.passed && out.diagram_covers.passed;
   if (lrpd_out) *lrpd_out = std::move(lrpd);
   out.time_s = seconds_since(start);

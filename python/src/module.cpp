@@ -191,7 +191,7 @@ py::tuple remesh(const py::object& V, const py::object& F, const py::object& n, 
 py::tuple mps(const py::object& V, const py::object& F, double radius, bool adaptive, const py::object& max_radius_ratio,
               const py::object& seed, const std::string& gap_update, const std::string& split_to,
               const py::object& split_factor, bool features, const py::object& feature_angle, bool exact, bool lrrt,
-              const py::object& threads) {
+              const py::object& threads, const std::string& conflict) {
   MpsSettings settings;
   settings.radius = radius;
   settings.adaptive = adaptive;
@@ -200,6 +200,7 @@ py::tuple mps(const py::object& V, const py::object& F, double radius, bool adap
   settings.split_to = split_to;
   settings.exact = exact;
   settings.features = features;
+  settings.conflict = conflict;
   if ((settings.max_radius_ratio_given = !max_radius_ratio.is_none())) settings.max_radius_ratio = number(max_radius_ratio, "max_radius_ratio");
   if ((settings.split_factor_given = !split_factor.is_none())) settings.split_factor = number(split_factor, "split_factor");
   if ((settings.feature_angle_given = !feature_angle.is_none())) settings.feature_angle = number(feature_angle, "feature_angle");
@@ -304,7 +305,7 @@ PYBIND11_MODULE(lrvd, m) {
         py::arg("max_radius_ratio") = py::none(), py::arg("seed") = 1, py::arg("gap_update") = "local",
         py::arg("split_to") = "field", py::arg("split_factor") = py::none(), py::arg("features") = false,
         py::arg("feature_angle") = py::none(), py::arg("exact") = false, py::arg("lrrt") = false,
-        py::arg("threads") = py::none(),
+        py::arg("threads") = py::none(), py::arg("conflict") = "facing",
         "Maximal Poisson-disk sampling: (points, report), with lrrt=True (points, report, V2, F2)");
   m.def("quality", &quality, py::arg("V_ref"), py::arg("F_ref"), py::arg("V"), py::arg("F"),
         py::arg("threads") = py::none(), "Quality and validity of (V, F) against the reference: the report dict");

@@ -4,6 +4,7 @@ import json
 import os
 
 import numpy as np
+import pytest
 
 import lrvd
 from conftest import without_times_and_paths
@@ -85,6 +86,9 @@ def test_mps_maximal_on_a_stress_mesh(cli, tmp_path):
     points, report = lrvd.mps(V, F, 0.05)
     assert report["maximal"] and report["min_distance_ok"] and report["mps_verification"]["passed"]
     assert points.shape == (report["samples"], 3)
+    assert report["conflict"]["rule"] == "facing" and report["mps_verification"]["conflict"] == "facing"
+    with pytest.raises(ValueError, match="--conflict is reach or facing"):
+        lrvd.mps(V, F, 0.05, conflict="paper")
     lrvd.write_mesh(str(tmp_path / "s.off"), V, F)
     cli("mps", tmp_path / "s.off", "--radius", 0.05, "-o", tmp_path / "s.xyz", "--report", tmp_path / "m.json")
     assert without_times_and_paths(report) == without_times_and_paths(json.load(open(tmp_path / "m.json")))

@@ -76,11 +76,18 @@ int run_mps_command(const MpsCommandOptions& opt) {
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
   // Closer pairs the disk condition does not cover (docs/algorithms/mps.md, "Conflict rule"): said, not hidden.
+  if (check.facing_cut)
+    std::printf("  conflict rule: facing cut (--conflict facing): %s of samples closer than their radius that the "
+                "paper's rule calls local %s let through\n",
+                counted(check.close_pairs_local_past_facing_cut, "pair", "pairs").c_str(),
+                check.close_pairs_local_past_facing_cut == 1 ? "is" : "are");
   if (check.close_pairs_not_local > 0)
     std::printf("  %s of samples closer than their radius %s not local to each other (another component, "
-                "the other side of a sheet, or past a turn of the surface of 90 degrees or more): allowed\n",
+                "the other side of a sheet, or %s): allowed\n",
                 counted(check.close_pairs_not_local, "pair", "pairs").c_str(),
-                check.close_pairs_not_local == 1 ? "is" : "are");
+                check.close_pairs_not_local == 1 ? "is" : "are",
+                check.facing_cut ? "past a turn of the surface of 90 degrees or more"
+                                 : "beyond what their balls reach along the surface");
   if (check.polygons_outside_own_ball > 0)
     std::printf("  %lld LRPD polygons reach outside their cell's ball; in %lld of their triangles disks of samples "
                 "that are no LRPD candidate there cover them\n",
@@ -110,6 +117,13 @@ Action add_mps_command(CLI::App& app) {
                   "local: one LRPD, gaps clipped as disks are added (default); lrpd: a new LRPD after every round "
                   "of darts (the paper's loop)")
       ->check(CLI::IsMember({"local", "lrpd"}))
+      ->capture_default_str();
+  cmd->add_option("--conflict", opt->settings.conflict,
+                  "facing: regions stop where the surface turns by 90 degrees or more, letting samples sit closer "
+                  "than r across sharp edges and rims (default); reach: samples whose balls' regions (grown over "
+                  "every edge-adjacent triangle the ball meets) reach each other keep r apart (the paper's rule; "
+                  "on sheets thinner than r and thin boxes it may end not maximal)")
+      ->check(CLI::IsMember({"reach", "facing"}))
       ->capture_default_str();
   cmd->add_option("--split-to", opt->settings.split_to,
                   "Split edges longer than --split-factor times the radius at their ends (field, default) or "

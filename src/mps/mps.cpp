@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <queue>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -15,6 +16,7 @@
 #include "common/timing.h"
 #include "mesh/curvature.h"
 #include "mps/mps_gaps.h"
+#include "mps/mps_sampler.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -70,154 +72,6 @@ Vec3 dart_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bary
   const double u1 = random.uniform(), u2 = random.uniform();
   return point_in_triangle(mesh, t, u1, u2, bary);
 }
-
-//! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each
-//! other when each one's triangle lies in the local region of the other's ball of radius
-//! ρ = max(r_i, r_j); local samples must be at least ρ apart. A dart p in triangle t is rejected
-//! when it lies in the disk of a sample (the disks are what the gaps are made of). With a uniform
-//! radius nothing else can conflict. Adaptive: p's radius r(p) is cut to just below the distance
-//! of every local sample closer than that (which is at least that sample's radius, so never below
-//! r_min; a local sample closer than its own radius rejects the dart); and against every sample
-//! around, local or not (another sheet, past a notch), it keeps |r_p² − r_j²| <= |p − x_j|², so
-//! that no sample falls into another's power cell and the LRPD keeps one cell per sample. Where no
-//! radius meets that against every sample around (a sheet thinner than r, a big disk across it)
-//! and the spot would otherwise stay uncovered, the condition is kept only against the samples on
-//! triangles facing like p's: the dart goes in, and a sample across may then lie outside its power
-//! cell (`power_cell_exceptions`). Where even that leaves no radius (a sample past a sharp fold,
-//! on a triangle at right angles to p's, whose ball holds p but whose disk does not reach it), the
-//! condition is kept only against the samples local to p.
-class Sampler {
- public:
-  Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius)
-      : mesh_(mesh), r_min2_(r_min * r_min), vertex_radius_(std::move(vertex_radius)), disks_(mesh) {}
-
-  DiskIndex& disks() { return disks_; }
-  const std::vector<int>& last_region() const { return region_; }
-  int clamped() const { return clamped_; }
-  int power_cell_exceptions() const { return power_cell_exceptions_; }
-  //! From now on, a dart no radius admits against every sample around is tried against those
-  //! facing like it only (the sampler turns this on for spots that would stay uncovered).
-  void allow_power_cell_exceptions() { allow_exceptions_ = true; }
-
-  double weight_at(int t, const Vec3& bary) const {
-    if (vertex_radius_.empty()) return r_min2_;
-    const Triangle& tri = mesh_.triangle(t);
-    const double r = bary.x * vertex_radius_[tri[0]] + bary.y * vertex_radius_[tri[1]] + bary.z * vertex_radius_[tri[2]];
-    return std::max(r * r, r_min2_);
-  }
-
-  //! Radius at vertex v of the mesh.
-  double radius_at(int v) const { return vertex_radius_.empty() ? std::sqrt(r_min2_) : std::max(vertex_radius_[v], std::sqrt(r_min2_)); }
-
-  //! Inserts the dart if it is accepted; its local region is then last_region(). A dart exactly on
-  //! an edge or a corner (a feature sample, a dust dart at a polygon's corner) lies on every
-  //! triangle there: a disk reaching any of them holds it, and a sample local to any is local to it.
-  bool try_insert(const Vec3& p, int t, const Vec3& bary) {
-    seeds_.clear();
-    mesh_.triangles_at(t, bary, seeds_);  // t first
-    for (int s : seeds_)
-      if (disks_.in_some_disk(p, s)) return false;
-    const double w = weight_at(t, bary);
-    if (vertex_radius_.empty()) {
-      region_of(p, w);
-      disks_.insert(p, t, bary, w, region_);
-      return true;
-    }
-    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets
-    // (edge-connected to t, so to every triangle p lies on).
-    met_ = disks_.met(p, t, kScan * kScan * w);
-    double hi = 0;
-    const Admission admitted = admit(p, w, Against::All, hi);
-    if (admitted == Admission::Rejected) return false;
-    if (admitted == Admission::NoRadius) {
-      if (!allow_exceptions_) return false;
-      if (admit(p, w, Against::Facing, hi) != Admission::Radius && admit(p, w, Against::Local, hi) != Admission::Radius)
-        return false;
-      ++power_cell_exceptions_;
-    }
-    if (hi < w) ++clamped_;
-    region_of(p, hi);
-    disks_.insert(p, t, bary, hi, region_);
-    return true;
-  }
-
- private:
-  static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
-
-  //! region_ = the local region of (p, w): grown from each triangle p lies on (seeds_: one, or on
-  //! an edge or a corner every triangle there), so that on a sharp edge or corner the darts on
-  //! every face around keep their distance.
-  void region_of(const Vec3& p, double w) {
-    region_ = disks_.grow(p, seeds_[0], w);
-    if (seeds_.size() == 1) return;
-    for (size_t k = 1; k < seeds_.size(); ++k) {
-      const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
-      region_.insert(region_.end(), more.begin(), more.end());
-    }
-    std::sort(region_.begin(), region_.end());
-    region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
-  }
-
-  //! Triangle s faces like one of the triangles p lies on (seeds_).
-  bool faces_dart(int s) const {
-    for (int t : seeds_)
-      if (disks_.faces_like(s, t)) return true;
-    return false;
-  }
-  //! Sample j's region at weight w reaches one of the triangles p lies on.
-  bool reaches_dart(int j, double w) {
-    for (int t : seeds_)
-      if (disks_.sample_reaches(j, w, t)) return true;
-    return false;
-  }
-
-  enum class Admission { Radius, NoRadius, Rejected };
-  //! The samples around p whose power cells p's radius must keep apart from its own.
-  enum class Against { All, Facing, Local };
-  //! Adaptive: the largest weight `hi` ≤ w that p (on the triangles seeds_) may take against the
-  //! samples around (met_): below the squared distance of every local sample within reach, and
-  //! keeping both in their power cells against every sample around (All), only against those on
-  //! triangles facing like p's (Facing), or only against the samples local to p (Local: one of p's
-  //! triangles lies in the sample's region at radius max(r(p), r_j)). Rejected: a local sample is
-  //! closer than its own radius. A sample on an edge or corner is met on each of its triangles.
-  Admission admit(const Vec3& p, double w, Against against, double& hi) {
-    double lo = r_min2_;  // the allowed range of p's weight
-    hi = w;
-    bool reject = false;
-    for (int s : met_) {
-      const bool faces = faces_dart(s);
-      if (against != Against::All && !faces) continue;
-      disks_.for_each_center(s, [&](int j) {
-        if (reject) return;
-        const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
-        if (against == Against::Local && !reaches_dart(j, std::max(w, wj))) return;
-        hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
-        lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
-        if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
-        // x_j is within p's radius: local if one of p's triangles is in x_j's region at radius
-        // max(r_p, r_j) (on p's side, meeting the ball and facing alike is taken as enough:
-        // cutting more is safe).
-        if (!reaches_dart(j, std::max(hi, wj))) return;
-        if (inside_disk(p, disks_.center(j), wj)) {
-          reject = true;  // closer than r_j: no radius for p helps
-          return;
-        }
-        hi = d2 * (1 - 1e-14);  // |p - x_j|² > hi exactly
-      });
-      if (reject) return Admission::Rejected;
-    }
-    return lo > hi ? Admission::NoRadius : Admission::Radius;
-  }
-
-  const SurfaceMesh& mesh_;
-  double r_min2_;
-  std::vector<double> vertex_radius_;
-  std::vector<int> seeds_;  // the triangles the dart of try_insert() lies on, t first
-  DiskIndex disks_;
-  std::vector<int> region_, met_;
-  int clamped_ = 0, power_cell_exceptions_ = 0;
-  bool allow_exceptions_ = false;
-};
 
 //! Feature-first sampling: samples on the mesh's corners and along its feature lines (boundary
 //! edges, and edges whose triangles' normals are more than `angle` apart) before any dart on the
@@ -465,7 +319,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
   }
   result.max_radius = options.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min;
   const SurfaceMesh& m = result.mesh;
-  Sampler sampler(m, r_min, std::move(vertex_radius));
+  Sampler sampler(m, r_min, std::move(vertex_radius), options.conflict == MpsConflict::Facing);
   const std::vector<double>& areas = sampler.disks().triangle_areas();
   const AliasTable by_area(areas);
   Random random(options.seed);
@@ -581,6 +435,9 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
       }
       if (!sampler.try_insert(p, t, barycentric_in_triangle(m, t, p))) {
         ++rejections;
+        // Refused by a sample from the dart's side: where that sample's ball reaches it from
+        // the whole piece, the sample covers the piece like a disk reaching it.
+        if (sampler.refused_by() >= 0 && gaps.carve(piece, sampler.refused_by())) continue;
         if (local) gaps.dart_refused(piece);
         continue;
       }
@@ -602,7 +459,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
           // A disk reaching the triangle covers the corner: the noise is at that disk's rim, and
           // the triangle closes as it does when no piece was given up. Refused by the radius
           // conditions instead: the corner may be a gap no dart fits.
-          if (!sampler.disks().in_some_disk(d.point, d.triangle)) gaps.note_open(d.triangle);
+          if (!sampler.disks().in_some_disk(d.point, d.triangle) && sampler.refused_by() < 0) gaps.note_open(d.triangle);
           continue;
         }
         gaps.note_open(d.triangle);
@@ -647,6 +504,7 @@ MpsResult maximal_poisson_disk_sampling(const SurfaceMesh& mesh, const MpsOption
     }
   }
   result.dropped_gap_pieces = gaps.dropped();
+  result.carved_gap_pieces = gaps.carved();
   result.clamped_radii = sampler.clamped();
   result.power_cell_exceptions = sampler.power_cell_exceptions();
   result.samples = sampler.disks().samples();

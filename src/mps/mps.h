@@ -27,6 +27,13 @@ enum class MpsRefinement {
   MinRadius     //!< every edge no longer than r_min (the paper's §4.2 rule; split_factor is not used)
 };
 
+//! Which samples must keep their distance (docs/algorithms/mps.md, "Conflict rule").
+enum class MpsConflict {
+  Facing,  //!< regions stop where the surface turns by 90° or more: lets samples sit closer than r across sharp edges
+  Reach    //!< the paper's (§4.2): the ball's region grows over every edge-adjacent triangle it meets; on sheets
+           //!< thinner than r and thin boxes the sampling may end not maximal (docs/algorithms/mps.md)
+};
+
 //! The largest MpsOptions::radius taken (relative: one disk of it covers any sheet many times over).
 constexpr double kMaxMpsRadius = 10;
 
@@ -40,6 +47,7 @@ struct MpsOptions {
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
+  MpsConflict conflict = MpsConflict::Facing;
   //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
   //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
   //! half the time (0.42-0.77 of it on the Table 3 models); nothing needs a triangle smaller than a disk.
@@ -83,6 +91,9 @@ struct MpsResult {
   int part_lrpd_triangles = 0;    //!< triangles of those computed on a part of the mesh (later rounds)
   int gap_pieces = 0;             //!< gap pieces the first LRPD showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
+  //! Gap pieces split by a sample whose centre their darts' regions reach (the paper's rule read
+  //! from the dart's side), as by a disk reaching them.
+  int carved_gap_pieces = 0;
   int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
   int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the

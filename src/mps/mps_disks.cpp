@@ -8,6 +8,7 @@
 
 #include "mesh/closest_point.h"
 #include "mps/mps_gaps.h"
+#include "predicates/ball_triangle.h"
 #include "predicates/exact.h"
 
 namespace lrvd::mps_detail {
@@ -44,8 +45,30 @@ Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p) {
   return {1 - u - v, u, v};
 }
 
-DiskIndex::DiskIndex(const SurfaceMesh& mesh)
+bool reach_chain(const SurfaceMesh& mesh, int t, const Vec3* points, int count, double w, const std::vector<int>& targets) {
+  auto target = [&](int u) { return std::find(targets.begin(), targets.end(), u) != targets.end(); };
+  auto met = [&](int u) {
+    const Triangle& tri = mesh.triangle(u);
+    for (int k = 0; k < count; ++k)
+      if (!ball_meets_triangle(points[k], w, mesh.position(tri[0]), mesh.position(tri[1]), mesh.position(tri[2])))
+        return false;
+    return true;
+  };
+  if (target(t)) return true;
+  std::vector<int> queue{t};
+  for (size_t k = 0; k < queue.size(); ++k)
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh.neighbor(queue[k], e);
+      if (n < 0 || std::find(queue.begin(), queue.end(), n) != queue.end() || !met(n)) continue;
+      if (target(n)) return true;
+      queue.push_back(n);
+    }
+  return false;
+}
+
+DiskIndex::DiskIndex(const SurfaceMesh& mesh, bool facing_cut)
     : mesh_(mesh),
+      facing_cut_(facing_cut),
       covered_head_(mesh.triangle_count(), -1),
       partial_head_(mesh.triangle_count(), -1),
       center_head_(mesh.triangle_count(), -1),
@@ -100,11 +123,11 @@ inline bool DiskIndex::meets(int t, const Vec3& p, double w, double r) const {
   const TriangleInfo& info = triangles_info_[t];
   const double reach = r + info.radius;
   if (squared_distance(p, Vec3{info.center[0], info.center[1], info.center[2]}) > reach * reach * (1 + 1e-9)) return false;
-  // The ball meets t: a corner inside decides at once (most calls), else t's closest point.
+  // The ball meets t: a corner inside decides at once (most calls), else the exact test.
   const Triangle& tri = mesh_.triangle(t);
   for (int c = 0; c < 3; ++c)
-    if (squared_distance(p, mesh_.position(tri[c])) < w) return true;
-  return triangle_squared_distance(mesh_, t, p) < w;
+    if (inside_disk(mesh_.position(tri[c]), p, w)) return true;
+  return ball_meets_triangle(p, w, mesh_.position(tri[0]), mesh_.position(tri[1]), mesh_.position(tri[2]));
 }
 
 bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
@@ -117,13 +140,15 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
 }
 
 template <class F>
-bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) {
+bool DiskIndex::search(const Vec3& p, int t, double w, bool region, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
     for (TriangleInfo& info : triangles_info_) info.stamp = 0;
     stamp_value_ = 1;
   }
-  // Breadth-first over the triangles the ball meets (only through those facing like t when
-  // facing_only); f sees those facing like t.
+  // Breadth-first over the triangles the ball meets. With the facing cut, a region (region:
+  // true) grows only through those facing like t, and f sees only those; the paper's rule
+  // (no cut) and met() take every one.
+  const bool cut = facing_cut_;
   queue_.assign(1, t);
   triangles_info_[t].stamp = stamp_value_;
   if (f(t)) return true;
@@ -137,10 +162,10 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool facing_only, F&& f) 
       TriangleInfo& info = triangles_info_[n];
       if (info.stamp == stamp_value_) continue;
       info.stamp = stamp_value_;
-      const bool faces_t = faces(n, facing);
-      if ((facing_only && !faces_t) || !meets(n, p, w, r)) continue;
+      const bool counted = !cut || faces(n, facing);
+      if ((region && !counted) || !meets(n, p, w, r)) continue;
       queue_.push_back(n);
-      if (faces_t && f(n)) return true;
+      if (counted && f(n)) return true;
     }
   }
   return false;

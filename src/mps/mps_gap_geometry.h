@@ -73,6 +73,21 @@ void clip(const std::vector<Vec3>& in, H h, std::vector<Vec3>& out) {
   if (out.size() < 3) out.clear();
 }
 
+// The plane across convex polygon q's longest diagonal, at its middle: halves are the parts where
+// side(y) <= 0 and -side(y) <= 0.
+struct Halving {
+  Vec3 mid, dir;
+  double operator()(const Vec3& y) const { return dot(y - mid, dir); }
+};
+inline Halving longest_diagonal_halving(const std::vector<Vec3>& q) {
+  size_t a = 0, b = 0;
+  double best = -1;
+  for (size_t i = 0; i < q.size(); ++i)
+    for (size_t j = i + 1; j < q.size(); ++j)
+      if (squared_distance(q[i], q[j]) > best) best = squared_distance(q[i], q[j]), a = i, b = j;
+  return {0.5 * (q[a] + q[b]), q[b] - q[a]};
+}
+
 // The ball (x, w) meets the convex polygon q[0..count).
 inline bool ball_meets_polygon(const Vec3* q, int count, const Vec3& x, double w) {
   for (int k = 0; k < count; ++k)

@@ -12,6 +12,7 @@ namespace lrvd::mps_detail {
 
 namespace {
 
+constexpr int kMaxCarveHalvings = 10;    // carve(): halvings of a piece no refusing sample's chain covers whole
 constexpr int kMaxBisections = 6;        // depth of the halving that tightens a loose piece polygon
 constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fraction of the polygon
 constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
@@ -255,16 +256,11 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     }
     if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {
       // Halve across the polygon's longest diagonal; halves inside the disk vanish.
-      size_t a = 0, b = 0;
-      double best = -1;
-      for (size_t i = 0; i < q.size(); ++i)
-        for (size_t j = i + 1; j < q.size(); ++j)
-          if (squared_distance(q[i], q[j]) > best) best = squared_distance(q[i], q[j]), a = i, b = j;
-      const Vec3 dir = q[b] - q[a], mid = 0.5 * (q[a] + q[b]);
+      const Halving side = longest_diagonal_halving(q);
       std::vector<Vec3> half;
-      clip(q, [&](const Vec3& y) { return dot(y - mid, dir); }, half);
+      clip(q, side, half);
       if (!half.empty()) self(half, self, depth + 1);
-      clip(q, [&](const Vec3& y) { return -dot(y - mid, dir); }, half);
+      clip(q, [&](const Vec3& y) { return -side(y); }, half);
       if (!half.empty()) self(half, self, depth + 1);
       return;
     }
@@ -414,6 +410,33 @@ void GapSet::dart_refused(int piece) {
     ++given_up_;
     open_.push_back(pieces_[piece].triangle);
   }
+}
+
+bool GapSet::carve(int piece, int sample) {
+  if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return false;
+  const Piece& pc = pieces_[piece];
+  std::vector<int> targets;
+  mesh_.triangles_at(disks_.triangle(sample), disks_.barycentric(sample), targets);
+  if (reach_chain(mesh_, pc.triangle, points_.data() + pc.first, pc.count, disks_.weight(sample), targets)) {
+    ++carved_;
+    split(piece, sample);
+    return true;
+  }
+  if (pc.halvings >= kMaxCarveHalvings || pc.count < 3) return false;
+  // Halved across the longest diagonal: the chain may hold on the half near the sample, and the
+  // part where it does not (a real gap, maybe thin) gets a piece of its own.
+  const std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
+  const int t = pc.triangle, owner = pc.owner, halvings = pc.halvings + 1;
+  kill(piece);
+  const Halving halving = longest_diagonal_halving(q);
+  std::vector<Vec3> half;
+  for (double side : {1.0, -1.0}) {
+    clip(q, [&](const Vec3& y) { return side * halving(y); }, half);
+    const size_t before = pieces_.size();
+    if (half.size() >= 3) add_outside(half, t, owner);
+    for (size_t i = before; i < pieces_.size(); ++i) pieces_[i].halvings = halvings;
+  }
+  return true;
 }
 
 std::vector<int> GapSet::open_triangles() const {

@@ -30,20 +30,26 @@ inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
     const double margin = 1e-15 * (d + w);
     if (d - w > margin) return false;
     if (w - d > margin) return true;
+  } else if (w > 1e-240) {
+    return true;  // |p - c|² is below 1e-249 however the squares rounded (a centre on a mesh vertex: 0)
   }
   return inside_disk_exact(p, c, w);
 }
 
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
-//! ball B(x, r) around a point of triangle t: the triangles that the ball meets and that face the
-//! same way as t (normals at less than 90°), edge-connected to t through such triangles — the
-//! paper's region growing, kept from wrapping around a sheet thinner than r onto its other side
-//! or across a fold. The disk of sample i is B(x_i, r_i) on the triangles of its local region.
+//! ball B(x, r) around a point of triangle t: the triangles that the ball meets, edge-connected to
+//! t through such triangles — the paper's region growing ("until the disk does not intersect with
+//! a neighboring triangle"). With the facing cut (MpsConflict::Facing) only triangles facing the
+//! same way as t (normals at less than 90°) count. The disk of sample i is B(x_i, r_i) on the
+//! triangles of its local region.
 //! Each triangle lists the disks that cover it fully and those that reach it only partly, and the
 //! sample centres it holds.
 class DiskIndex {
  public:
-  explicit DiskIndex(const SurfaceMesh& mesh);
+  //! facing_cut: regions grow only through triangles facing like the centre's (MpsConflict::Facing).
+  explicit DiskIndex(const SurfaceMesh& mesh, bool facing_cut = false);
+  //! Regions stop where the surface turns by 90° or more (MpsConflict::Facing).
+  bool facing_cut() const { return facing_cut_; }
 
   int size() const { return static_cast<int>(disk_records_.size()); }
   const Vec3& center(int i) const { return disk_records_[i].center; }
@@ -121,11 +127,12 @@ class DiskIndex {
     return dot(normals_[s], facing) > kFacingCosine;
   }
   template <class F>
-  bool search(const Vec3& p, int t, double w, bool facing_only, F&& f);
+  bool search(const Vec3& p, int t, double w, bool region, F&& f);
   //! The ball (p, w), r = √w, meets triangle t (triangle_squared_distance < w), balls far from t's
   //! bounding sphere rejected at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
   const SurfaceMesh& mesh_;
+  bool facing_cut_;
   //! A disk's centre and weight together: the disk tests read both.
   struct Disk {
     Vec3 center;
@@ -146,6 +153,12 @@ class DiskIndex {
   std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
 };
+
+//! Whether a chain of edge-adjacent triangles leads from t to one of `targets` through triangles
+//! that the ball of weight w about every one of the `count` points meets (exactly). For points of
+//! a convex polygon in t, the ball about any point of the polygon then meets them too (the
+//! distance to a triangle is convex): the region of that ball reaches the target from t.
+bool reach_chain(const SurfaceMesh& mesh, int t, const Vec3* points, int count, double w, const std::vector<int>& targets);
 
 //! Squared distance from p to triangle t of the mesh.
 double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
@@ -216,6 +229,14 @@ class GapSet {
   //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
+  //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
+  //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
+  //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
+  //! a disk reaching its triangle would, and the piece is split by it; else the piece is halved
+  //! (up to 10 times), so that the chains hold on the parts near the dart. Returns whether either
+  //! was done.
+  bool carve(int piece, int sample);
+  int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
   //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
@@ -258,6 +279,7 @@ class GapSet {
     double area = 0;           // area of Q: the draw weight
     int next_in_triangle = -1;
     int refused = 0;
+    int halvings = 0;  // carve(): times its polygon was halved for want of a chain
     bool alive = false;
   };
 
@@ -288,7 +310,7 @@ class GapSet {
   double total_ = 0;
   std::vector<Dust> dust_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
-  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
   // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.

@@ -38,6 +38,8 @@ void check_mps_settings(const MpsSettings& settings) {
   range(settings.feature_angle, "--feature-angle", 1, 179);
   if (settings.gap_update != "local" && settings.gap_update != "lrpd")
     throw InputError(fmt::format("--gap-update is local or lrpd, not '{}'", settings.gap_update));
+  if (settings.conflict != "reach" && settings.conflict != "facing")
+    throw InputError(fmt::format("--conflict is reach or facing, not '{}'", settings.conflict));
   if (settings.split_to != "field" && settings.split_to != "rmin")
     throw InputError(fmt::format("--split-to is field or rmin, not '{}'", settings.split_to));
 }
@@ -52,6 +54,7 @@ MpsOptions mps_options(const MpsSettings& settings, const ProgressFn& on_progres
   options.max_radius_ratio = settings.max_radius_ratio;
   options.seed = settings.seed;
   options.gap_update = settings.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
+  options.conflict = settings.conflict == "facing" ? MpsConflict::Facing : MpsConflict::Reach;
   options.refinement = settings.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
   if (settings.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
@@ -93,6 +96,11 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
                       {"adaptive", settings.adaptive}};
   report["seed"] = settings.seed;
   report["gap_update"] = settings.gap_update;
+  // The facing cut gives up the paper's rule: how many close pairs that let through is said.
+  report["conflict"] = {{"rule", settings.conflict},
+                        {"close_pairs_let_through", options.conflict == MpsConflict::Facing
+                                                        ? nlohmann::json(check.close_pairs_local_past_facing_cut)
+                                                        : nlohmann::json(nullptr)}};
   report["samples"] = samples.size();
   report["features"] = settings.features ? nlohmann::json{{"angle_deg", settings.feature_angle}, {"samples", result.feature_samples}}
                                      : nlohmann::json(nullptr);
@@ -104,6 +112,7 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
   report["gap_pieces"] = result.gap_pieces;
   report["dropped_gap_pieces"] = result.dropped_gap_pieces;
   report["dust_samples"] = result.dust_samples;
+  report["carved_gap_pieces"] = result.carved_gap_pieces;
   report["clamped_radii"] = result.clamped_radii;
   report["power_cell_exceptions"] = result.power_cell_exceptions;
   report["gaps_closed"] = result.gaps_closed;
@@ -147,6 +156,7 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
   MpsVerifyOptions verify_options;
   verify_options.exact_maximality = settings.exact;
+  verify_options.facing_cut = options.conflict == MpsConflict::Facing;
   Diagram lrpd;
   run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
   const MpsVerification& check = run.check;

@@ -1,0 +1,100 @@
+// Ball–triangle intersection, exactly: the closest point of a triangle lies in the relative
+// interior of one of its features (a corner, an edge, the face), so the ball meets the triangle
+// iff a corner lies in it, or the foot of x on an edge's line lies strictly inside that edge and
+// within the ball, or the foot on the plane lies strictly inside the face and within the ball.
+// Each is a conjunction of polynomial signs (no division): intervals decide them unless a sign is
+// uncertain, rationals then.
+#include "predicates/ball_triangle.h"
+
+#include <CGAL/Gmpq.h>
+#include <CGAL/Interval_nt.h>
+
+#include "predicates/exact.h"
+
+namespace lrvd {
+namespace {
+
+using Interval = CGAL::Interval_nt<false>;
+using Q = CGAL::Gmpq;
+
+template <class NT>
+struct V {
+  NT x, y, z;
+};
+template <class NT>
+V<NT> sub(const V<NT>& a, const V<NT>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class NT>
+NT dot(const V<NT>& a, const V<NT>& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class NT>
+V<NT> cross(const V<NT>& a, const V<NT>& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Three-valued logic: 1 true, 0 false, -1 not known (an interval holding 0).
+int positive(const Interval& v) { return v.inf() > 0 ? 1 : (v.sup() <= 0 ? 0 : -1); }
+int positive(const Q& v) { return CGAL::sign(v) == CGAL::POSITIVE ? 1 : 0; }
+int both(int a, int b) { return (a == 0 || b == 0) ? 0 : (a == 1 && b == 1 ? 1 : -1); }
+int either(int a, int b) { return (a == 1 || b == 1) ? 1 : (a == 0 && b == 0 ? 0 : -1); }
+
+// 1 when B(x, √w) meets abc, 0 when not, -1 when the number type cannot tell (intervals).
+template <class NT>
+int meets(const V<NT>& x, const NT& w, const V<NT>& a, const V<NT>& b, const V<NT>& c) {
+  const V<NT> p[3] = {sub(a, x), sub(b, x), sub(c, x)};  // the corners about x
+  int result = 0;
+  for (int k = 0; k < 3 && result != 1; ++k) result = either(result, positive(w - dot(p[k], p[k])));
+  for (int k = 0; k < 3 && result != 1; ++k) {
+    // Edge p -> q: the foot x + ... at parameter s = -p·e / |e|² strictly inside (0, 1), and the
+    // squared distance |p|² - (p·e)²/|e|² below w, i.e. (w - |p|²)|e|² + (p·e)² > 0.
+    const V<NT>& u = p[k];
+    const V<NT>& v = p[(k + 1) % 3];
+    const V<NT> e = sub(v, u);
+    const NT ue = dot(u, e), ee = dot(e, e);
+    const int inside = both(positive(-ue), positive(ee + ue));
+    if (inside == 0) continue;
+    result = either(result, both(inside, positive((w - dot(u, u)) * ee + ue * ue)));
+  }
+  if (result == 1) return 1;
+  // The face: the foot of x on the plane strictly inside (x seen from each edge on the side of
+  // the normal), and (n·a)² < w |n|².
+  const V<NT> n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+  int inside = 1;
+  for (int k = 0; k < 3 && inside != 0; ++k) inside = both(inside, positive(dot(cross(p[k], p[(k + 1) % 3]), n)));
+  if (inside != 0) {
+    const NT h = dot(n, p[0]);
+    result = either(result, both(inside, positive(w * dot(n, n) - h * h)));
+  }
+  return result;
+}
+
+template <class NT>
+V<NT> lift(const Vec3& a) {
+  return {NT(a.x), NT(a.y), NT(a.z)};
+}
+
+}  // namespace
+
+bool ball_meets_triangle(const Vec3& x, double w, const Vec3& a, const Vec3& b, const Vec3& c) {
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    const int r = meets<Interval>(lift<Interval>(x), Interval(w), lift<Interval>(a), lift<Interval>(b), lift<Interval>(c));
+    if (r >= 0) return r == 1;
+  }
+  return meets<Q>(lift<Q>(x), Q(w), lift<Q>(a), lift<Q>(b), lift<Q>(c)) == 1;
+}
+
+bool ball_meets_triangle(const ExactPoint& x, const Q& w, const Vec3& a, const Vec3& b, const Vec3& c) {
+  {
+    // The rationals' enclosing intervals first.
+    CGAL::Protect_FPU_rounding<true> upward;
+    const V<Interval> xi{Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)), Interval(CGAL::to_interval(x.z))};
+    const int r = meets<Interval>(xi, Interval(CGAL::to_interval(w)), lift<Interval>(a), lift<Interval>(b), lift<Interval>(c));
+    if (r >= 0) return r == 1;
+  }
+  return meets<Q>({x.x, x.y, x.z}, w, lift<Q>(a), lift<Q>(b), lift<Q>(c)) == 1;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,288 @@
+// The dart test and the insertion of maximal Poisson-disk sampling (paper §4.2, second change),
+// internal to mps.cpp: the Sampler and the grid of centres its adaptive rule reads. Not part of
+// the public API.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "mps/mps_gaps.h"
+
+namespace lrvd::mps_detail {
+
+//! Sample centres in a hash grid of cells as wide as the largest radius: near() gives every
+//! centre within that radius of a point (and some farther).
+class CentreGrid {
+ public:
+  void reset(double cell) { cell_ = cell; cells_.clear(); }
+  void insert(const Vec3& p, int i) {
+    if (cell_ > 0) cells_[key(coordinate(p.x), coordinate(p.y), coordinate(p.z))].push_back(i);
+  }
+  void near(const Vec3& p, std::vector<int>& out) const {
+    const std::int64_t x = coordinate(p.x), y = coordinate(p.y), z = coordinate(p.z);
+    for (std::int64_t a = x - 1; a <= x + 1; ++a)
+      for (std::int64_t b = y - 1; b <= y + 1; ++b)
+        for (std::int64_t c = z - 1; c <= z + 1; ++c) {
+          const auto it = cells_.find(key(a, b, c));
+          if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+        }
+  }
+
+ private:
+  std::int64_t coordinate(double v) const { return static_cast<std::int64_t>(std::floor(v / cell_)); }
+  static std::uint64_t key(std::int64_t a, std::int64_t b, std::int64_t c) {
+    return (static_cast<std::uint64_t>(a & 0x1fffff) << 42) | (static_cast<std::uint64_t>(b & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(c & 0x1fffff);
+  }
+  double cell_ = 0;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+//! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each
+//! other when each one's triangle lies in the local region of the other's ball of radius
+//! ρ = max(r_i, r_j); local samples must be at least ρ apart. A dart p in triangle t is rejected
+//! when it lies in the disk of a sample (the disks are what the gaps are made of). With a uniform
+//! radius nothing else can conflict. Adaptive: p's radius r(p) is cut to just below the distance
+//! of every local sample closer than that (which is at least that sample's radius, so never below
+//! r_min; a local sample closer than its own radius rejects the dart); and against every sample
+//! around, local or not (another sheet, past a notch), it keeps |r_p² − r_j²| <= |p − x_j|², so
+//! that no sample falls into another's power cell and the LRPD keeps one cell per sample. Where no
+//! radius meets that against every sample around (a sheet thinner than r, a big disk across it)
+//! and the spot would otherwise stay uncovered, the condition is kept only against the samples on
+//! triangles facing like p's: the dart goes in, and a sample across may then lie outside its power
+//! cell (`power_cell_exceptions`). Where even that leaves no radius (a sample past a sharp fold,
+//! on a triangle at right angles to p's, whose ball holds p but whose disk does not reach it), the
+//! condition is kept only against the samples local to p.
+class Sampler {
+ public:
+  Sampler(const SurfaceMesh& mesh, double r_min, std::vector<double> vertex_radius, bool facing_cut)
+      : mesh_(mesh), r_min2_(r_min * r_min), vertex_radius_(std::move(vertex_radius)), disks_(mesh, facing_cut) {
+    max_weight_ = r_min2_;
+    for (double r : vertex_radius_) max_weight_ = std::max(max_weight_, r * r);
+    if (!vertex_radius_.empty() && !facing_cut) grid_.reset(std::sqrt(max_weight_));
+  }
+
+  DiskIndex& disks() { return disks_; }
+  const std::vector<int>& last_region() const { return region_; }
+  int clamped() const { return clamped_; }
+  int power_cell_exceptions() const { return power_cell_exceptions_; }
+  //! The sample that refused the last dart though the dart lay in no disk reaching its triangle
+  //! (its centre lies in the dart's region, closer than its radius: the paper's rule read from the
+  //! dart's side); -1 when none did.
+  int refused_by() const { return refused_by_; }
+  //! From now on, a dart no radius admits against every sample around is tried against those
+  //! facing like it only (the sampler turns this on for spots that would stay uncovered).
+  void allow_power_cell_exceptions() { allow_exceptions_ = true; }
+
+  double weight_at(int t, const Vec3& bary) const {
+    if (vertex_radius_.empty()) return r_min2_;
+    const Triangle& tri = mesh_.triangle(t);
+    const double r = bary.x * vertex_radius_[tri[0]] + bary.y * vertex_radius_[tri[1]] + bary.z * vertex_radius_[tri[2]];
+    return std::max(r * r, r_min2_);
+  }
+
+  //! Radius at vertex v of the mesh.
+  double radius_at(int v) const { return vertex_radius_.empty() ? std::sqrt(r_min2_) : std::max(vertex_radius_[v], std::sqrt(r_min2_)); }
+
+  //! Inserts the dart if it is accepted; its local region is then last_region(). A dart exactly on
+  //! an edge or a corner (a feature sample, a dust dart at a polygon's corner) lies on every
+  //! triangle there: a disk reaching any of them holds it, and a sample local to any is local to it.
+  bool try_insert(const Vec3& p, int t, const Vec3& bary) {
+    seeds_.clear();
+    refused_by_ = -1;
+    mesh_.triangles_at(t, bary, seeds_);  // t first
+    for (int s : seeds_)
+      if (disks_.in_some_disk(p, s)) return false;
+    const double w = weight_at(t, bary);
+    if (vertex_radius_.empty()) {
+      region_of(p, w);
+      // The other half of locality: a sample whose triangle p's region reaches, closer than r.
+      if (!disks_.facing_cut())
+        for (int s : region_) {
+          disks_.for_each_center(s, [&](int j) {
+            if (refused_by_ < 0 && inside_disk(disks_.center(j), p, w)) refused_by_ = j;
+          });
+          if (refused_by_ >= 0) return false;
+        }
+      disks_.insert(p, t, bary, w, region_);
+      return true;
+    }
+    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets
+    // (edge-connected to t, so to every triangle p lies on).
+    met_ = disks_.met(p, t, kScan * kScan * w);
+    double hi = 0;
+    const Admission admitted = admit(p, w, Against::All, hi);
+    if (admitted == Admission::Rejected) return false;
+    if (admitted == Admission::NoRadius) {
+      if (!allow_exceptions_) return false;
+      if (admit(p, w, Against::Facing, hi) != Admission::Radius && admit(p, w, Against::Local, hi) != Admission::Radius)
+        return false;
+      ++power_cell_exceptions_;
+    }
+    if (refused_by_others(p, hi)) return false;
+    if (hi < w) ++clamped_;
+    region_of(p, hi);
+    grid_.insert(p, disks_.insert(p, t, bary, hi, region_));
+    return true;
+  }
+
+ private:
+  static constexpr double kScan = 1.5;  // adaptive: scan radius / r(p) for the power-cell condition
+
+  //! region_ = the local region of (p, w): grown from each triangle p lies on (seeds_: one, or on
+  //! an edge or a corner every triangle there), so that on a sharp edge or corner the darts on
+  //! every face around keep their distance.
+  void region_of(const Vec3& p, double w) {
+    region_ = disks_.grow(p, seeds_[0], w);
+    if (seeds_.size() == 1) return;
+    for (size_t k = 1; k < seeds_.size(); ++k) {
+      const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
+      region_.insert(region_.end(), more.begin(), more.end());
+    }
+    std::sort(region_.begin(), region_.end());
+    region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
+  }
+
+  //! Triangle s faces like one of the triangles p lies on (seeds_).
+  bool faces_dart(int s) const {
+    for (int t : seeds_)
+      if (disks_.faces_like(s, t)) return true;
+    return false;
+  }
+  //! Sample j's region at weight w reaches one of the triangles p lies on.
+  bool reaches_dart(int j, double w) {
+    // At j's own weight its region is its disk, which the triangles list.
+    if (w == disks_.weight(j)) {
+      bool found = false;
+      for (int t : seeds_) disks_.for_each_disk(t, [&](int k) { found = found || k == j; });
+      return found;
+    }
+    for (int t : seeds_)
+      if (disks_.sample_reaches(j, w, t)) return true;
+    return false;
+  }
+  //! p and sample j (centred on triangle s) are local at weight w: j's region reaches p's
+  //! triangle, or (the paper's rule; the facing cut asks for the first only) p's reaches s.
+  bool local_to_dart(const Vec3& p, int j, int s, double w) {
+    if (reaches_dart(j, w)) return true;
+    if (disks_.facing_cut()) return false;
+    j_triangles_.clear();
+    mesh_.triangles_at(disks_.triangle(j), disks_.barycentric(j), j_triangles_);  // s among them
+    (void)s;
+    for (int t : seeds_)
+      for (int u : j_triangles_)
+        if (disks_.reaches(p, t, w, u)) return true;
+    return false;
+  }
+
+  //! Adaptive, the paper's rule, the samples admit() does not see (it scans p's region at
+  //! 1.5·r(p)): x_j within max(r_p, r_j) of p whose region reaches p's triangle from its side (an
+  //! asymmetric notch) or whose radius is far above p's (across a sheet). Local at r_j and closer
+  //! than r_j: rejected; local at max(r_p, r_j) and closer than r_p: p's radius cut below the
+  //! distance (again until no sample cuts it). Every centre within the largest radius is looked at.
+  bool refused_by_others(const Vec3& p, double& hi) {
+    if (disks_.facing_cut()) return false;
+    near_.clear();
+    grid_.near(p, near_);
+    for (bool cut = true; cut;) {
+      cut = false;
+      for (int j : near_) {
+        const Vec3& x = disks_.center(j);
+        const double wj = disks_.weight(j);
+        if (!inside_disk(p, x, std::max(hi, wj))) continue;
+        const int s = disks_.triangle(j);
+        if (inside_disk(p, x, wj) && local_to_dart(p, j, s, wj)) {
+          refused_by_ = j;
+          return true;
+        }
+        if (!(hi > wj) || !local_to_dart(p, j, s, hi)) continue;
+        hi = squared_distance(p, x) * (1 - 1e-14);
+        cut = true;
+      }
+    }
+    return hi < r_min2_;
+  }
+
+  enum class Admission { Radius, NoRadius, Rejected };
+  //! The samples around p whose power cells p's radius must keep apart from its own.
+  enum class Against { All, Facing, Local };
+  //! Adaptive: the largest weight `hi` ≤ w that p (on the triangles seeds_) may take against the
+  //! samples around (met_): below the squared distance of every local sample within reach, and
+  //! keeping both in their power cells against every sample around (All), only against those on
+  //! triangles facing like p's (Facing), or only against the samples local to p (Local: one of p's
+  //! triangles lies in the sample's region at radius max(r(p), r_j)). Rejected: a local sample is
+  //! closer than its own radius. A sample on an edge or corner is met on each of its triangles.
+  Admission admit(const Vec3& p, double w, Against against, double& hi) {
+    return disks_.facing_cut() ? admit_facing_cut(p, w, against, hi) : admit_reach(p, w, against, hi);
+  }
+  //! admit() by the paper's rule: a sample closer than its own radius and local to p at that radius
+  //! rejects p; any other sample closer than p's radius and local at max(r_p, r_j) cuts p's radius
+  //! to below the distance. The power-cell conditions are kept against the samples `against` names.
+  Admission admit_reach(const Vec3& p, double w, Against against, double& hi) {
+    double lo = r_min2_;  // the allowed range of p's weight
+    hi = w;
+    for (int s : met_) {
+      const bool faces = against != Against::Facing || faces_dart(s);
+      disks_.for_each_center(s, [&](int j) {
+        if (refused_by_ >= 0) return;
+        const Vec3& x = disks_.center(j);
+        const double d2 = squared_distance(x, p), wj = disks_.weight(j);
+        if (inside_disk(p, x, wj) && local_to_dart(p, j, s, wj)) {
+          refused_by_ = j;  // no radius for p helps
+          return;
+        }
+        if (against == Against::All || (against == Against::Facing ? faces : local_to_dart(p, j, s, std::max(w, wj)))) {
+          hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
+          lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
+        }
+        if (inside_disk(x, p, hi) && local_to_dart(p, j, s, std::max(hi, wj))) hi = d2 * (1 - 1e-14);
+      });
+      if (refused_by_ >= 0) return Admission::Rejected;
+    }
+    return lo > hi ? Admission::NoRadius : Admission::Radius;
+  }
+  //! admit() with the facing cut: locality is read from x_j's side (one of p's triangles in its
+  //! region at max(r_p, r_j); on p's side meeting the ball and facing alike is taken as enough:
+  //! cutting more is safe); a local sample closer than its own radius rejects the dart.
+  Admission admit_facing_cut(const Vec3& p, double w, Against against, double& hi) {
+    double lo = r_min2_;  // the allowed range of p's weight
+    hi = w;
+    bool reject = false;
+    for (int s : met_) {
+      const bool faces = faces_dart(s);
+      if (against != Against::All && !faces) continue;
+      disks_.for_each_center(s, [&](int j) {
+        if (reject) return;
+        const double d2 = squared_distance(disks_.center(j), p), wj = disks_.weight(j);
+        if (against == Against::Local && !reaches_dart(j, std::max(w, wj))) return;
+        hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
+        lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
+        if (!faces || !inside_disk(disks_.center(j), p, hi)) return;
+        if (!reaches_dart(j, std::max(hi, wj))) return;
+        if (inside_disk(p, disks_.center(j), wj)) {
+          reject = true;  // closer than r_j: no radius for p helps
+          return;
+        }
+        hi = d2 * (1 - 1e-14);  // |p - x_j|² > hi exactly
+      });
+      if (reject) return Admission::Rejected;
+    }
+    return lo > hi ? Admission::NoRadius : Admission::Radius;
+  }
+
+  const SurfaceMesh& mesh_;
+  double r_min2_;
+  std::vector<double> vertex_radius_;
+  std::vector<int> seeds_;  // the triangles the dart of try_insert() lies on, t first
+  DiskIndex disks_;
+  std::vector<int> region_, met_, near_, j_triangles_;
+  CentreGrid grid_;  // adaptive, the paper's rule: every centre, in cells of the largest radius
+  double max_weight_;  // the largest weight of the radius field
+  int clamped_ = 0, power_cell_exceptions_ = 0, refused_by_ = -1;
+  bool allow_exceptions_ = false;
+};
+
+}  // namespace lrvd::mps_detail
