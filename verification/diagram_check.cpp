@@ -226,7 +226,7 @@ class DiagramChecker {
       return;
     }
     if (options_.exact_geometry) load_frame_vertices(tri, begin, end, f);
-    bool areas_known = true;
+    bool areas_known = true, polygons_sound = true;
     for (int p = begin; p < end; ++p) {
       ++out_.disjoint.checked;
       if (!polygon_ok_[p]) {
@@ -244,14 +244,18 @@ class DiagramChecker {
       if (!problem.empty()) {
         out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
         area_sign_[p] = area_sign(points_, f);
+        polygons_sound = false;
       }
     }
     if (!options_.exact_geometry) return;
+    // Sound polygons whose edges add up to the triangle's boundary tile it: (5) and (4) pairwise
+    // hold without arithmetic (bounded_by_triangle). Otherwise both are decided in full.
+    const bool tiled = areas_known && polygons_sound && bounded_by_triangle(tri, begin, end);
     if (!areas_known)
       out_.coverage.fail(fmt::format("triangle {}: a polygon's area is unknown (malformed vertex)", t));
-    else
+    else if (!tiled)
       check_area_sum(t, begin, end, f);
-    check_overlaps(t, begin, end, f);
+    if (!tiled) check_overlaps(t, begin, end, f);
     check_equidistance(t, begin, end);
   }
 
@@ -367,6 +371,62 @@ class DiagramChecker {
       previous = direction;
     }
     return changes == 2;
+  }
+
+  // Whether the polygons' directed edges, as a 1-chain, are the triangle's boundary (a, b) +
+  // (b, c) + (c, a): every edge off the mesh edges cancels with edges of the same two exact
+  // vertices in the opposite direction, and along each mesh edge e = (tri[e], tri[e + 1]) the
+  // edges' ends less their starts are 1 at tri[e + 1], -1 at tri[e] and 0 at every other vertex
+  // (the edges along one line then add up to that segment). Decided on exact vertex ids alone: two
+  // ids at one point (a degenerate input) make it false, never wrongly true. When it holds and the
+  // polygons are sound (convex, counterclockwise, inside), the polygons tile the triangle: the sum
+  // of their winding numbers is the triangle's, 1 inside and 0 outside, and each polygon of
+  // positive area winds once around its interior, so no two interiors meet (4) and the areas add
+  // up to the triangle's (5), which is what check_area_sum and check_overlaps would find.
+  bool bounded_by_triangle(const Triangle& tri, int begin, int end) {
+    interior_.clear();
+    boundary_.clear();
+    for (int p = begin; p < end; ++p) {
+      const CellPolygon& poly = d_.polygons[p];
+      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      const FrameVertex* fv = frame_vertices(p);
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
+        const std::uint32_t u = static_cast<std::uint32_t>(ids[k]), w = static_cast<std::uint32_t>(ids[k1]);
+        const int along = fv[k].edges & fv[k1].edges;
+        if (along == 0) {  // (lower id, higher id), and the direction in the lowest bit
+          interior_.push_back(u < w ? (std::uint64_t{u} << 33 | std::uint64_t{w} << 1)
+                                    : (std::uint64_t{w} << 33 | std::uint64_t{u} << 1 | 1));
+          continue;
+        }
+        if (along & (along - 1)) return false;  // one vertex twice: not a boundary edge
+        const std::uint64_t e = along == 1 ? 0 : (along == 2 ? 1 : 2);
+        boundary_.push_back({e << 32 | w, 1});
+        boundary_.push_back({e << 32 | u, -1});
+      }
+    }
+    std::sort(interior_.begin(), interior_.end());
+    for (std::size_t k = 0; k < interior_.size();) {
+      std::size_t m = k;
+      int net = 0;
+      for (; m < interior_.size() && (interior_[m] >> 1) == (interior_[k] >> 1); ++m) net += (interior_[m] & 1) ? -1 : 1;
+      if (net != 0) return false;
+      k = m;
+    }
+    std::sort(boundary_.begin(), boundary_.end());
+    int ends_seen = 0;  // the ends each mesh edge must have, found with the right count
+    for (std::size_t k = 0; k < boundary_.size();) {
+      std::size_t m = k;
+      int net = 0;
+      for (; m < boundary_.size() && boundary_[m].first == boundary_[k].first; ++m) net += boundary_[m].second;
+      const int e = static_cast<int>(boundary_[k].first >> 32), id = static_cast<int>(boundary_[k].first & 0xffffffffu);
+      k = m;
+      if (net == 0) continue;
+      if (net == -1 && id == mesh_vertex_[tri[e]]) ++ends_seen;
+      else if (net == 1 && id == mesh_vertex_[tri[e == 2 ? 0 : e + 1]]) ++ends_seen;
+      else return false;
+    }
+    return ends_seen == 6;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
@@ -684,6 +744,8 @@ class DiagramChecker {
   };
   std::vector<DirectedEdge> edges_;
   std::vector<std::array<int, 3>> along_bc_;
+  std::vector<std::uint64_t> interior_;                  // bounded_by_triangle: edges off the mesh edges
+  std::vector<std::pair<std::uint64_t, int>> boundary_;  // bounded_by_triangle: (mesh edge, vertex id), +-1
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
   // check_overlaps: the polygons to compare; above kAllPairsUpTo of them, their boxes in the frame.
