@@ -384,49 +384,57 @@ class DiagramChecker {
   // positive area winds once around its interior, so no two interiors meet (4) and the areas add
   // up to the triangle's (5), which is what check_area_sum and check_overlaps would find.
   bool bounded_by_triangle(const Triangle& tri, int begin, int end) {
-    interior_.clear();
-    boundary_.clear();
+    forward_.clear();
+    backward_.clear();
+    for (auto& ids : from_) ids.clear();
+    for (auto& ids : to_) ids.clear();
     for (int p = begin; p < end; ++p) {
       const CellPolygon& poly = d_.polygons[p];
       const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
       const FrameVertex* fv = frame_vertices(p);
       for (int k = 0; k < poly.vertex_count; ++k) {
         const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
-        const std::uint32_t u = static_cast<std::uint32_t>(ids[k]), w = static_cast<std::uint32_t>(ids[k1]);
-        const int along = fv[k].edges & fv[k1].edges;
-        if (along == 0) {  // (lower id, higher id), and the direction in the lowest bit
-          interior_.push_back(u < w ? (std::uint64_t{u} << 33 | std::uint64_t{w} << 1)
-                                    : (std::uint64_t{w} << 33 | std::uint64_t{u} << 1 | 1));
-          continue;
+        const int u = ids[k], w = ids[k1];
+        switch (fv[k].edges & fv[k1].edges) {
+          case 0:  // off the mesh edges: (lower id, higher id), by direction
+            if (u < w) forward_.push_back(std::uint64_t(std::uint32_t(u)) << 32 | std::uint32_t(w));
+            else backward_.push_back(std::uint64_t(std::uint32_t(w)) << 32 | std::uint32_t(u));
+            break;
+          case 1: from_[0].push_back(u), to_[0].push_back(w); break;
+          case 2: from_[1].push_back(u), to_[1].push_back(w); break;
+          case 4: from_[2].push_back(u), to_[2].push_back(w); break;
+          default: return false;  // one vertex twice: no edge of the boundary
         }
-        if (along & (along - 1)) return false;  // one vertex twice: not a boundary edge
-        const std::uint64_t e = along == 1 ? 0 : (along == 2 ? 1 : 2);
-        boundary_.push_back({e << 32 | w, 1});
-        boundary_.push_back({e << 32 | u, -1});
       }
     }
-    std::sort(interior_.begin(), interior_.end());
-    for (std::size_t k = 0; k < interior_.size();) {
-      std::size_t m = k;
-      int net = 0;
-      for (; m < interior_.size() && (interior_[m] >> 1) == (interior_[k] >> 1); ++m) net += (interior_[m] & 1) ? -1 : 1;
-      if (net != 0) return false;
-      k = m;
+    // Each pair of vertices as often in one direction as in the other.
+    if (!same_multiset(forward_, backward_)) return false;
+    // Along mesh edge e: the edges' ends and tri[e] are, as a multiset, their starts and tri[e + 1].
+    for (int e = 0; e < 3; ++e) {
+      from_[e].push_back(mesh_vertex_[tri[e == 2 ? 0 : e + 1]]);
+      to_[e].push_back(mesh_vertex_[tri[e]]);
+      if (!same_multiset(from_[e], to_[e])) return false;
     }
-    std::sort(boundary_.begin(), boundary_.end());
-    int ends_seen = 0;  // the ends each mesh edge must have, found with the right count
-    for (std::size_t k = 0; k < boundary_.size();) {
-      std::size_t m = k;
-      int net = 0;
-      for (; m < boundary_.size() && boundary_[m].first == boundary_[k].first; ++m) net += boundary_[m].second;
-      const int e = static_cast<int>(boundary_[k].first >> 32), id = static_cast<int>(boundary_[k].first & 0xffffffffu);
-      k = m;
-      if (net == 0) continue;
-      if (net == -1 && id == mesh_vertex_[tri[e]]) ++ends_seen;
-      else if (net == 1 && id == mesh_vertex_[tri[e == 2 ? 0 : e + 1]]) ++ends_seen;
-      else return false;
+    return true;
+  }
+
+  // Whether a and b hold the same values as often (b reordered; a sorted when they are long).
+  template <class T>
+  static bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
+    if (a.size() != b.size()) return false;
+    if (a.size() > 32) {
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      return a == b;
     }
-    return ends_seen == 6;
+    std::uint32_t used = 0;
+    for (const T& x : a) {
+      std::size_t k = 0;
+      while (k < b.size() && ((used >> k & 1) || b[k] != x)) ++k;
+      if (k == b.size()) return false;
+      used |= std::uint32_t{1} << k;
+    }
+    return true;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
@@ -600,7 +608,7 @@ class DiagramChecker {
     present_.clear();
     for (int p = begin; p < end; ++p)
       if (polygon_ok_[p]) present_.push_back(d_.polygons[p].cell);
-    std::sort(present_.begin(), present_.end());
+    if (!std::is_sorted(present_.begin(), present_.end())) std::sort(present_.begin(), present_.end());
     present_.erase(std::unique(present_.begin(), present_.end()), present_.end());
     // Many cells in the triangle: each vertex is compared only with the cells whose sites a
     // certified bound does not rule out (Near), the others being strictly farther from it.
@@ -619,12 +627,13 @@ class DiagramChecker {
         if (near) near->select(x, d_.sites[i], q, compared_);
         {
           CGAL::Protect_FPU_rounding<true> upward;
-          const Interval e_i = terms_[i].e(x);  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
+          std::optional<Interval> e_i;  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
           for (int j : near ? compared_ : present_) {
             if (j == i) continue;
             Sign s = Sign::Zero;
             if (!(q.has_label(i) && q.has_label(j))) {
-              s = filtered_sign(e_i - terms_[j].e(x));
+              if (!e_i) e_i = terms_[i].e(x);
+              s = filtered_sign(*e_i - terms_[j].e(x));
               if (s == Sign::Zero) s = compare_power_distance_exact(x, d_.sites[i], d_.sites[j]);
             }
             if (s == Sign::Zero) ++equidistant;
@@ -744,8 +753,9 @@ class DiagramChecker {
   };
   std::vector<DirectedEdge> edges_;
   std::vector<std::array<int, 3>> along_bc_;
-  std::vector<std::uint64_t> interior_;                  // bounded_by_triangle: edges off the mesh edges
-  std::vector<std::pair<std::uint64_t, int>> boundary_;  // bounded_by_triangle: (mesh edge, vertex id), +-1
+  // bounded_by_triangle: the edges off the mesh edges, by direction; the starts and ends along each.
+  std::vector<std::uint64_t> forward_, backward_;
+  std::array<std::vector<int>, 3> from_, to_;
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
   // check_overlaps: the polygons to compare; above kAllPairsUpTo of them, their boxes in the frame.

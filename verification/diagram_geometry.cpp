@@ -277,7 +277,7 @@ std::vector<SiteTerms> site_terms(const std::vector<Site>& sites) {
     CGAL::Protect_FPU_rounding<true> upward;
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       const Site& s = sites[k];
-      terms[k].x = s.p;
+      terms[k].x2 = 2.0 * s.p;
       terms[k].c = Interval(s.p.x) * s.p.x + Interval(s.p.y) * s.p.y + Interval(s.p.z) * s.p.z - s.w;
     }
   });

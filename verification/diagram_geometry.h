@@ -191,12 +191,10 @@ Sign compare_power_distance_exact(const ExactVertex& q, const Site& a, const Sit
 //! A site's part of the power distances: d_k(q) = |q|^2 + e_k(q) with e_k(q) = c_k - 2 q.x_k and
 //! c_k = |x_k|^2 - w_k, so d_a(q) - d_b(q) = e_a(q) - e_b(q). `c` encloses c_k.
 struct SiteTerms {
-  Vec3 x;
+  Vec3 x2;  //!< 2 x_k (exact in doubles; an overflow to infinity only widens e)
   Interval c{0};
   //! Encloses e_k(q) (the rounding mode upward).
-  Interval e(const ExactVertex& q) const {
-    return c - 2 * (q.box[0] * x.x + q.box[1] * x.y + q.box[2] * x.z);
-  }
+  Interval e(const ExactVertex& q) const { return c - (q.box[0] * x2.x + q.box[1] * x2.y + q.box[2] * x2.z); }
 };
 //! SiteTerms of every site, computed in parallel.
 std::vector<SiteTerms> site_terms(const std::vector<Site>& sites);
