@@ -25,15 +25,14 @@ using namespace verify_detail;
 
 // A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
-  const int nv = q.type == SymbolicVertex::Type::A ? 1 : (q.type == SymbolicVertex::Type::B ? 2 : 3);
-  for (int k = 0; k < nv; ++k)
-    if (q.v[k] < 0 || q.v[k] >= vertex_count) return false;
-  for (int k = 0; k < q.num_labels(); ++k) {
-    if (q.label[k] < 0 || q.label[k] >= sample_count) return false;
-    for (int m = 0; m < k; ++m)
-      if (q.label[m] == q.label[k]) return false;
-  }
-  return true;
+  // One unsigned comparison per index: a negative one wraps to a large value.
+  auto vertex = [&](int v) { return static_cast<unsigned>(v) < static_cast<unsigned>(vertex_count); };
+  auto sample = [&](int s) { return static_cast<unsigned>(s) < static_cast<unsigned>(sample_count); };
+  if (q.type == SymbolicVertex::Type::A) return vertex(q.v[0]);
+  if (q.type == SymbolicVertex::Type::B)
+    return vertex(q.v[0]) && vertex(q.v[1]) && sample(q.label[0]) && sample(q.label[1]) && q.label[0] != q.label[1];
+  return vertex(q.v[0]) && vertex(q.v[1]) && vertex(q.v[2]) && sample(q.label[0]) && sample(q.label[1]) &&
+         sample(q.label[2]) && q.label[0] != q.label[1] && q.label[0] != q.label[2] && q.label[1] != q.label[2];
 }
 
 // Whether q is by definition a point of triangle `tri`: one of its corners, a point of one of its
