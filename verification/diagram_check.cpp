@@ -43,6 +43,7 @@ bool defined_on_triangle(const SymbolicVertex& q, const Triangle& tri) {
     case SymbolicVertex::Type::A: return corner(q.v[0]);
     case SymbolicVertex::Type::B: return corner(q.v[0]) && corner(q.v[1]) && q.v[0] != q.v[1];
     case SymbolicVertex::Type::C: {
+      if (q.v == tri) return true;  // the corners as the builder stores them, in the triangle's order
       std::array<int, 3> a = q.v, b = tri;
       std::sort(a.begin(), a.end());
       std::sort(b.begin(), b.end());
