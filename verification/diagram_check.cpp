@@ -112,7 +112,6 @@ struct Checked {
   void index_vertices() {
     const int n = d.sample_count;
     vertices.of_diagram_vertex.assign(d.vertices.size(), -1);
-    vertices.on_edges.resize(d.vertices.size());
     vertices.exact.reserve(d.vertices.size() / 2 + mesh.vertex_count());  // most vertices are in two or more polygons
     // The mesh vertices first: a polygon corner that is one of them (equal as a symbolic vertex)
     // takes its id without a look-up.
@@ -201,8 +200,7 @@ class DiagramChecker {
  public:
   DiagramChecker(Checked& in, DiagramVerification& out)
       : mesh_(in.mesh), samples_(in.samples), d_(in.d), options_(in.options), out_(out), vertices_(in.vertices),
-        mesh_vertex_(in.mesh_vertex), polygon_ok_(in.polygon_ok), area_sign_(in.area_sign), terms_(in.terms),
-        on_edges_(in.vertices.on_edges.data()) {}
+        mesh_vertex_(in.mesh_vertex), polygon_ok_(in.polygon_ok), area_sign_(in.area_sign), terms_(in.terms) {}
 
   void check_triangles(int begin, int end) {
     for (int t = begin; t < end; ++t) check_triangle(t);
@@ -217,11 +215,6 @@ class DiagramChecker {
     const int begin = d_.triangle_offsets[t], end = d_.triangle_offsets[t + 1];
     const Triangle& tri = mesh_.triangle(t);
     for (int c = 0; c < 3; ++c) corner_[c] = &vertices_.exact[mesh_vertex_[tri[c]]];
-    for (int p = begin; p < end; ++p) {
-      const CellPolygon& poly = d_.polygons[p];
-      const SymbolicVertex* verts = d_.polygon_vertices(poly);
-      for (int k = 0; k < poly.vertex_count; ++k) on_edges_[poly.first_vertex + k] = edges_of(verts[k], tri);
-    }
     const Frame f = triangle_frame(mesh_, t, corner_);
     ++out_.coverage.checked;
     if (!f.valid) {
@@ -281,7 +274,7 @@ class DiagramChecker {
       const SymbolicVertex* verts = d_.polygon_vertices(poly);
       for (int k = 0; k < poly.vertex_count; ++k) {
         const ExactVertex& x = vertex(poly, k);
-        frame_.push_back({x.box[f.u], x.box[f.v], &x, on_edges_[poly.first_vertex + k]});
+        frame_.push_back({x.box[f.u], x.box[f.v], &x, edges_of(verts[k], tri)});
       }
     }
   }
@@ -748,7 +741,6 @@ class DiagramChecker {
   const std::vector<char>& polygon_ok_;
   std::vector<Sign>& area_sign_;
   const std::vector<SiteTerms>& terms_;
-  std::uint8_t* on_edges_;  // VertexIndex::on_edges, written for this worker's triangles
   std::vector<const ExactVertex*> points_;
   std::vector<FrameVertex> frame_;  // the triangle's polygons' vertices (load_frame_vertices)
   std::vector<int> first_;          // where each polygon of the triangle starts in frame_

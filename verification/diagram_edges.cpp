@@ -58,13 +58,17 @@ Sides side_segments(const SurfaceMesh& mesh, const Diagram& diagram, const std::
   sides.first.resize(nt + chunks);
   tbb::parallel_for(0, chunks, [&](int c) {
     std::vector<SideSegment>& out = sides.segments[c];
+    std::vector<std::uint8_t> bits;
     for (int t = c * kCheckChunk; t < std::min(nt, (c + 1) * kCheckChunk); ++t) {
       sides.first[t + c] = static_cast<int>(out.size());
+      const Triangle& tri = mesh.triangle(t);
       for (int p = diagram.triangle_offsets[t]; p < diagram.triangle_offsets[t + 1]; ++p) {
         if (!polygon_ok[p]) continue;
         const CellPolygon& poly = diagram.polygons[p];
+        const SymbolicVertex* verts = diagram.polygon_vertices(poly);
         const int* ids = vertices.of_diagram_vertex.data() + poly.first_vertex;
-        const std::uint8_t* bits = vertices.on_edges.data() + poly.first_vertex;
+        bits.resize(poly.vertex_count);
+        for (int k = 0; k < poly.vertex_count; ++k) bits[k] = edges_of(verts[k], tri);
         for (int k = 0; k < poly.vertex_count; ++k) {
           const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
           const int along = bits[k] & bits[k1];

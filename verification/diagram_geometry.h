@@ -213,9 +213,6 @@ std::string describe(const SymbolicVertex& q);
 struct VertexIndex {
   ExactVertices exact;
   std::vector<int> of_diagram_vertex;
-  //! Per diagram vertex: the edges of its polygon's triangle it lies on by definition (edges_of),
-  //! written by the triangle checks.
-  std::vector<std::uint8_t> on_edges;
 };
 
 //! Triangles or samples a work item of the parallel checks takes; fixed, so that the chunks' results,
