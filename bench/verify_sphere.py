@@ -1,15 +1,16 @@
 #!/usr/bin/env python3
 """The judge's cost against the diagram's on bench_fig9's spheres: verify_diagram vs compute_lrvd.
 
-Each (case, thread count, binary) is one fresh `bench_verify --row N T --threads K` process under
-/usr/bin/time -v (for its peak memory); with --base, a second bench_verify (built from other code)
-runs each case right after the first, so both see the same load. Times are CPU seconds of the
-process (user + sys, all threads) spent in each call; `ratio` = verification / diagram. Prints a
-Markdown table; exits 1 if a verification failed or a run did not finish.
+Each (case, thread count, binary) is --repeat fresh `bench_verify --row N T --threads K` processes
+under /usr/bin/time -v (for its peak memory); with --base, a second bench_verify (built from other
+code) runs each case right after the first, alternating, so both see the same load. Times are CPU
+seconds of the process (user + sys, all threads) spent in each call, min / median / max over the
+processes; `ratio` = median verification / median diagram. Prints a Markdown table; exits 1 if a
+verification failed or a run did not finish.
 
     bench/verify_sphere.py --bench build/bench_verify                        # every case, 1 and 2 threads
     bench/verify_sphere.py --bench build/bench_verify --base ../main-build/bench_verify --cases big
-    bench/verify_sphere.py --bench build/bench_verify --cases 20000:80000 --threads 1
+    bench/verify_sphere.py --bench build/bench_verify --cases 20000:80000 --threads 1 --repeat 5
 
 Cases, comma-separated: `big` (100k samples on 327,680 triangles, 1M on 1,310,720), `fig9` (the
 14 rows of bench_fig9), `all` (both), SAMPLES:TRIANGLES. Standard library only.
@@ -19,6 +20,7 @@ import argparse
 import json
 import os
 import re
+import statistics
 import subprocess
 import sys
 
@@ -49,14 +51,24 @@ def run(bench, n, m, threads, runs):
     return row
 
 
-def cells(row):
-    if row is None:
+def spread(rows, key):
+    """min / median / max of rows[*][key], and the median."""
+    values = sorted(r[key] for r in rows)
+    median = statistics.median(values)
+    if len(values) == 1:
+        return f"{median:.2f}", median
+    return f"{values[0]:.2f} / **{median:.2f}** / {values[-1]:.2f}", median
+
+
+def cells(rows):
+    if not rows or any(r is None for r in rows):
         return "| | | | did not finish "
-    ratio = row["verify_cpu_s"] / max(row["diagram_cpu_s"], 1e-9)
-    wall = row["verify_wall_s"] / max(row["diagram_wall_s"], 1e-9)
-    mark = "" if row["passed"] else " FAIL"
-    return (f"| {row['diagram_cpu_s']:.2f} | {row['verify_cpu_s']:.2f}{mark} | {ratio:.2f} ({wall:.2f}) "
-            f"| {row['peak_mb']:.0f} MB ")
+    diagram, d = spread(rows, "diagram_cpu_s")
+    verify, v = spread(rows, "verify_cpu_s")
+    wall = statistics.median(r["verify_wall_s"] for r in rows) / max(statistics.median(r["diagram_wall_s"] for r in rows), 1e-9)
+    mark = "" if all(r["passed"] for r in rows) else " FAIL"
+    peak = max(r["peak_mb"] for r in rows)
+    return f"| {diagram} | {verify}{mark} | {v / max(d, 1e-9):.2f} ({wall:.2f}) | {peak:.0f} MB "
 
 
 def main():
@@ -67,6 +79,7 @@ def main():
     parser.add_argument("--cases", default="all", help="comma-separated: big, fig9, all, SAMPLES:TRIANGLES")
     parser.add_argument("--threads", default="1,2", help="thread counts, comma-separated")
     parser.add_argument("--runs", type=int, default=1, help="runs per process, minimum kept")
+    parser.add_argument("--repeat", type=int, default=1, help="fresh processes per row and binary, alternated")
     args = parser.parse_args()
     threads = [int(t) for t in args.threads.split(",")]
     binaries = [args.bench] + ([args.base] if args.base else [])
@@ -81,13 +94,17 @@ def main():
     for n, m in cases_of(args.cases):
         for t in threads:
             line = f"| {n} | {m} | {t} "
-            for b in binaries:
-                row = run(b, n, m, t, args.runs)
-                failed = failed or row is None or not row["passed"]
-                line += cells(row)
+            rows = [[] for _ in binaries]
+            for _ in range(max(1, args.repeat)):
+                for k, b in enumerate(binaries):
+                    rows[k].append(run(b, n, m, t, args.runs))
+            for k in range(len(binaries)):
+                failed = failed or any(r is None or not r["passed"] for r in rows[k])
+                line += cells(rows[k])
             print(line + "|", flush=True)
-    print("\nCPU seconds (user + sys, all threads) in compute_lrvd and verify_diagram; ratio = verification /"
-          " diagram, in parentheses the same in wall seconds; peak = the process's maximum resident set.")
+    print("\nCPU seconds (user + sys, all threads) in compute_lrvd and verify_diagram, min / median / max over"
+          " the processes; ratio = median verification / median diagram, in parentheses the same in wall seconds;"
+          " peak = the processes' largest maximum resident set.")
     return 1 if failed else 0
 
 

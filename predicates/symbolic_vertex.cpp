@@ -170,10 +170,13 @@ Vec3 position(const SymbolicVertex& q, const SymbolicContext& ctx) {
 
 namespace {
 
-// Slot of q in a table of mask + 1 slots (a power of two): the high half of a multiplicative mix
-// of its hash, whose low bits alone repeat along runs of consecutive indices.
+// Slot of q in a table of mask + 1 slots (a power of two): the fields paired into three 64-bit
+// words, each multiplied by its own odd constant, summed, and the high half of the sum taken (its
+// low bits alone would repeat along runs of consecutive indices).
 std::size_t home_slot(const SymbolicVertex& q, std::size_t mask) {
-  const std::uint64_t h = static_cast<std::uint64_t>(SymbolicVertexHash()(q)) * 0x9E3779B97F4A7C15ull;
+  auto pair = [](int a, int b) { return std::uint64_t(std::uint32_t(a)) | std::uint64_t(std::uint32_t(b)) << 32; };
+  const std::uint64_t h = (pair(q.v[0], q.v[1]) ^ static_cast<std::uint64_t>(q.type)) * 0x9E3779B97F4A7C15ull +
+                          pair(q.v[2], q.label[0]) * 0xC2B2AE3D27D4EB4Full + pair(q.label[1], q.label[2]) * 0x165667B19E3779F9ull;
   return static_cast<std::size_t>(h >> 32) & mask;
 }
 

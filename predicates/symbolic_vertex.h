@@ -43,7 +43,9 @@ struct SymbolicVertex {
 };
 
 inline bool operator==(const SymbolicVertex& a, const SymbolicVertex& b) {
-  return a.type == b.type && a.v == b.v && a.label == b.label;
+  // Field by field (std::array's == calls memcmp).
+  return a.v[0] == b.v[0] && a.v[1] == b.v[1] && a.v[2] == b.v[2] && a.label[0] == b.label[0] &&
+         a.label[1] == b.label[1] && a.label[2] == b.label[2] && a.type == b.type;
 }
 inline bool operator!=(const SymbolicVertex& a, const SymbolicVertex& b) { return !(a == b); }
 

@@ -25,15 +25,14 @@ using namespace verify_detail;
 
 // A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
-  const int nv = q.type == SymbolicVertex::Type::A ? 1 : (q.type == SymbolicVertex::Type::B ? 2 : 3);
-  for (int k = 0; k < nv; ++k)
-    if (q.v[k] < 0 || q.v[k] >= vertex_count) return false;
-  for (int k = 0; k < q.num_labels(); ++k) {
-    if (q.label[k] < 0 || q.label[k] >= sample_count) return false;
-    for (int m = 0; m < k; ++m)
-      if (q.label[m] == q.label[k]) return false;
-  }
-  return true;
+  // One unsigned comparison per index: a negative one wraps to a large value.
+  auto vertex = [&](int v) { return static_cast<unsigned>(v) < static_cast<unsigned>(vertex_count); };
+  auto sample = [&](int s) { return static_cast<unsigned>(s) < static_cast<unsigned>(sample_count); };
+  if (q.type == SymbolicVertex::Type::A) return vertex(q.v[0]);
+  if (q.type == SymbolicVertex::Type::B)
+    return vertex(q.v[0]) && vertex(q.v[1]) && sample(q.label[0]) && sample(q.label[1]) && q.label[0] != q.label[1];
+  return vertex(q.v[0]) && vertex(q.v[1]) && vertex(q.v[2]) && sample(q.label[0]) && sample(q.label[1]) &&
+         sample(q.label[2]) && q.label[0] != q.label[1] && q.label[0] != q.label[2] && q.label[1] != q.label[2];
 }
 
 // Whether q is by definition a point of triangle `tri`: one of its corners, a point of one of its
@@ -44,6 +43,7 @@ bool defined_on_triangle(const SymbolicVertex& q, const Triangle& tri) {
     case SymbolicVertex::Type::A: return corner(q.v[0]);
     case SymbolicVertex::Type::B: return corner(q.v[0]) && corner(q.v[1]) && q.v[0] != q.v[1];
     case SymbolicVertex::Type::C: {
+      if (q.v == tri) return true;  // the corners as the builder stores them, in the triangle's order
       std::array<int, 3> a = q.v, b = tri;
       std::sort(a.begin(), a.end());
       std::sort(b.begin(), b.end());
@@ -222,7 +222,7 @@ class DiagramChecker {
       return;
     }
     if (options_.exact_geometry) load_frame_vertices(tri, begin, end, f);
-    bool areas_known = true;
+    bool areas_known = true, polygons_sound = true;
     for (int p = begin; p < end; ++p) {
       ++out_.disjoint.checked;
       if (!polygon_ok_[p]) {
@@ -240,14 +240,18 @@ class DiagramChecker {
       if (!problem.empty()) {
         out_.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
         area_sign_[p] = area_sign(points_, f);
+        polygons_sound = false;
       }
     }
     if (!options_.exact_geometry) return;
+    // Sound polygons whose edges add up to the triangle's boundary tile it: (5) and (4) pairwise
+    // hold without arithmetic (bounded_by_triangle). Otherwise both are decided in full.
+    const bool tiled = areas_known && polygons_sound && bounded_by_triangle(tri, begin, end);
     if (!areas_known)
       out_.coverage.fail(fmt::format("triangle {}: a polygon's area is unknown (malformed vertex)", t));
-    else
+    else if (!tiled)
       check_area_sum(t, begin, end, f);
-    check_overlaps(t, begin, end, f);
+    if (!tiled) check_overlaps(t, begin, end, f);
     check_equidistance(t, begin, end);
   }
 
@@ -363,6 +367,70 @@ class DiagramChecker {
       previous = direction;
     }
     return changes == 2;
+  }
+
+  // Whether the polygons' directed edges, as a 1-chain, are the triangle's boundary (a, b) +
+  // (b, c) + (c, a): every edge off the mesh edges cancels with edges of the same two exact
+  // vertices in the opposite direction, and along each mesh edge e = (tri[e], tri[e + 1]) the
+  // edges' ends less their starts are 1 at tri[e + 1], -1 at tri[e] and 0 at every other vertex
+  // (the edges along one line then add up to that segment). Decided on exact vertex ids alone: two
+  // ids at one point (a degenerate input) make it false, never wrongly true. When it holds and the
+  // polygons are sound (convex, counterclockwise, inside), the polygons tile the triangle: the sum
+  // of their winding numbers is the triangle's, 1 inside and 0 outside, and each polygon of
+  // positive area winds once around its interior, so no two interiors meet (4) and the areas add
+  // up to the triangle's (5), which is what check_area_sum and check_overlaps would find.
+  bool bounded_by_triangle(const Triangle& tri, int begin, int end) {
+    forward_.clear();
+    backward_.clear();
+    for (auto& ids : from_) ids.clear();
+    for (auto& ids : to_) ids.clear();
+    for (int p = begin; p < end; ++p) {
+      const CellPolygon& poly = d_.polygons[p];
+      const int* ids = vertices_.of_diagram_vertex.data() + poly.first_vertex;
+      const FrameVertex* fv = frame_vertices(p);
+      for (int k = 0; k < poly.vertex_count; ++k) {
+        const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
+        const int u = ids[k], w = ids[k1];
+        switch (fv[k].edges & fv[k1].edges) {
+          case 0:  // off the mesh edges: (lower id, higher id), by direction
+            if (u < w) forward_.push_back(std::uint64_t(std::uint32_t(u)) << 32 | std::uint32_t(w));
+            else backward_.push_back(std::uint64_t(std::uint32_t(w)) << 32 | std::uint32_t(u));
+            break;
+          case 1: from_[0].push_back(u), to_[0].push_back(w); break;
+          case 2: from_[1].push_back(u), to_[1].push_back(w); break;
+          case 4: from_[2].push_back(u), to_[2].push_back(w); break;
+          default: return false;  // one vertex twice: no edge of the boundary
+        }
+      }
+    }
+    // Each pair of vertices as often in one direction as in the other.
+    if (!same_multiset(forward_, backward_)) return false;
+    // Along mesh edge e: the edges' ends and tri[e] are, as a multiset, their starts and tri[e + 1].
+    for (int e = 0; e < 3; ++e) {
+      from_[e].push_back(mesh_vertex_[tri[e == 2 ? 0 : e + 1]]);
+      to_[e].push_back(mesh_vertex_[tri[e]]);
+      if (!same_multiset(from_[e], to_[e])) return false;
+    }
+    return true;
+  }
+
+  // Whether a and b hold the same values as often (b reordered; a sorted when they are long).
+  template <class T>
+  static bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
+    if (a.size() != b.size()) return false;
+    if (a.size() > 32) {
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      return a == b;
+    }
+    std::uint32_t used = 0;
+    for (const T& x : a) {
+      std::size_t k = 0;
+      while (k < b.size() && ((used >> k & 1) || b[k] != x)) ++k;
+      if (k == b.size()) return false;
+      used |= std::uint32_t{1} << k;
+    }
+    return true;
   }
 
   // Parameter of a vertex of mesh edge (from, to) along it: 0 at from, 1 at to.
@@ -536,7 +604,7 @@ class DiagramChecker {
     present_.clear();
     for (int p = begin; p < end; ++p)
       if (polygon_ok_[p]) present_.push_back(d_.polygons[p].cell);
-    std::sort(present_.begin(), present_.end());
+    if (!std::is_sorted(present_.begin(), present_.end())) std::sort(present_.begin(), present_.end());
     present_.erase(std::unique(present_.begin(), present_.end()), present_.end());
     // Many cells in the triangle: each vertex is compared only with the cells whose sites a
     // certified bound does not rule out (Near), the others being strictly farther from it.
@@ -555,12 +623,13 @@ class DiagramChecker {
         if (near) near->select(x, d_.sites[i], q, compared_);
         {
           CGAL::Protect_FPU_rounding<true> upward;
-          const Interval e_i = terms_[i].e(x);  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
+          std::optional<Interval> e_i;  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
           for (int j : near ? compared_ : present_) {
             if (j == i) continue;
             Sign s = Sign::Zero;
             if (!(q.has_label(i) && q.has_label(j))) {
-              s = filtered_sign(e_i - terms_[j].e(x));
+              if (!e_i) e_i = terms_[i].e(x);
+              s = filtered_sign(*e_i - terms_[j].e(x));
               if (s == Sign::Zero) s = compare_power_distance_exact(x, d_.sites[i], d_.sites[j]);
             }
             if (s == Sign::Zero) ++equidistant;
@@ -680,6 +749,9 @@ class DiagramChecker {
   };
   std::vector<DirectedEdge> edges_;
   std::vector<std::array<int, 3>> along_bc_;
+  // bounded_by_triangle: the edges off the mesh edges, by direction; the starts and ends along each.
+  std::vector<std::uint64_t> forward_, backward_;
+  std::array<std::vector<int>, 3> from_, to_;
   std::vector<int> present_;
   std::array<const ExactVertex*, 3> corner_{};
   // check_overlaps: the polygons to compare; above kAllPairsUpTo of them, their boxes in the frame.

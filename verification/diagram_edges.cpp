@@ -35,14 +35,63 @@ int find_root(std::vector<int>& parent, int x) {
   return x;
 }
 
+// A polygon edge along an edge of its triangle, by its ends' exact vertex ids (lo < hi, or equal for
+// a vertex repeated); a triangle's in polygon order.
+struct SideSegment {
+  int edge, lo, hi, cell, polygon;
+  bool same_split(const SideSegment& o) const { return lo == o.lo && hi == o.hi && cell == o.cell; }
+};
+
+// The SideSegments of every triangle, found in one pass over its polygons' vertices: triangle t's
+// are segments[first[t]] .. segments[first[t + 1] - 1], in chunks of kCheckChunk triangles.
+struct Sides {
+  std::vector<std::vector<SideSegment>> segments;  // per chunk
+  std::vector<int> first;                          // per triangle, into its chunk's list; per chunk one more
+  const SideSegment* begin(int t) const { return segments[t / kCheckChunk].data() + first[t + t / kCheckChunk]; }
+  const SideSegment* end(int t) const { return segments[t / kCheckChunk].data() + first[t + t / kCheckChunk + 1]; }
+};
+
+Sides side_segments(const SurfaceMesh& mesh, const Diagram& diagram, const std::vector<char>& polygon_ok,
+                    const VertexIndex& vertices) {
+  const int nt = mesh.triangle_count(), chunks = (nt + kCheckChunk - 1) / kCheckChunk;
+  Sides sides;
+  sides.segments.resize(chunks);
+  sides.first.resize(nt + chunks);
+  tbb::parallel_for(0, chunks, [&](int c) {
+    std::vector<SideSegment>& out = sides.segments[c];
+    std::vector<std::uint8_t> bits;
+    for (int t = c * kCheckChunk; t < std::min(nt, (c + 1) * kCheckChunk); ++t) {
+      sides.first[t + c] = static_cast<int>(out.size());
+      const Triangle& tri = mesh.triangle(t);
+      for (int p = diagram.triangle_offsets[t]; p < diagram.triangle_offsets[t + 1]; ++p) {
+        if (!polygon_ok[p]) continue;
+        const CellPolygon& poly = diagram.polygons[p];
+        const SymbolicVertex* verts = diagram.polygon_vertices(poly);
+        const int* ids = vertices.of_diagram_vertex.data() + poly.first_vertex;
+        bits.resize(poly.vertex_count);
+        for (int k = 0; k < poly.vertex_count; ++k) bits[k] = edges_of(verts[k], tri);
+        for (int k = 0; k < poly.vertex_count; ++k) {
+          const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
+          const int along = bits[k] & bits[k1];
+          for (int e = 0; e < 3; ++e)
+            if (along >> e & 1)
+              out.push_back({e, std::min(ids[k], ids[k1]), std::max(ids[k], ids[k1]), poly.cell, p});
+        }
+      }
+    }
+    sides.first[std::min(nt, (c + 1) * kCheckChunk) + c] = static_cast<int>(out.size());
+  });
+  return sides;
+}
+
 // The edges of a range of triangles (each edge from its lower triangle): (6) into `conforming`,
 // and for (2) the pairs of polygons an edge joins, in the order met.
 class EdgeChecker {
  public:
   EdgeChecker(const SurfaceMesh& mesh, const Diagram& diagram, const std::vector<char>& polygon_ok,
-              const std::vector<char>& piece, const VertexIndex& vertices, PropertyResult& conforming,
-              std::vector<std::pair<int, int>>& joins)
-      : mesh_(mesh), diagram_(diagram), polygon_ok_(polygon_ok), piece_(piece), vertices_(vertices),
+              const std::vector<char>& piece, const VertexIndex& vertices, const Sides& sides,
+              PropertyResult& conforming, std::vector<std::pair<int, int>>& joins)
+      : mesh_(mesh), diagram_(diagram), polygon_ok_(polygon_ok), piece_(piece), vertices_(vertices), sides_(sides),
         conforming_(conforming), joins_(joins) {}
 
   void check_triangles(int begin, int end) {
@@ -107,14 +156,11 @@ class EdgeChecker {
     });
   }
 
-  // The segments of triangle t's polygons along its edge e, as (lower exact id, higher exact id,
-  // cell, polygon), sorted: no geometry, only the vertex ids.
-  void collect_ids(int t, int e, std::vector<std::array<int, 4>>& out) const {
+  // The SideSegments of triangle t along its edge e, in polygon order.
+  void along(int t, int e, std::vector<const SideSegment*>& out) const {
     out.clear();
-    for_each_segment(t, e, [&](int from, int to, int cell, int p) {
-      out.push_back({std::min(from, to), std::max(from, to), cell, p});
-    });
-    std::sort(out.begin(), out.end());
+    for (const SideSegment* s = sides_.begin(t); s != sides_.end(t); ++s)
+      if (s->edge == e) out.push_back(s);
   }
 
   // Both sides have the same segments, by their ends' exact vertex ids and their cells: then they
@@ -123,17 +169,23 @@ class EdgeChecker {
   // overlapping but not twins, needs two polygons of one side overlapping along the edge, which
   // (4) reports: without it (2) can only find more pieces, never fewer.)
   bool same_ids(int t, int e, int across, int e_across, int lo) {
-    collect_ids(t, e, mine_ids_);
-    collect_ids(across, e_across, theirs_ids_);
+    along(t, e, mine_ids_);
+    along(across, e_across, theirs_ids_);
     if (mine_ids_.size() != theirs_ids_.size()) return false;
-    for (std::size_t k = 0; k < mine_ids_.size(); ++k)
-      for (int c = 0; c < 3; ++c)
-        if (mine_ids_[k][c] != theirs_ids_[k][c]) return false;
+    // Each segment's twin: the first one left of the other side with the same ends and cell.
+    twin_.clear();
+    for (const SideSegment* m : mine_ids_) {
+      std::size_t k = 0;
+      while (k < theirs_ids_.size() && (!theirs_ids_[k] || !m->same_split(*theirs_ids_[k]))) ++k;
+      if (k == theirs_ids_.size()) return false;
+      twin_.push_back(theirs_ids_[k]);
+      theirs_ids_[k] = nullptr;
+    }
     ++conforming_.checked;
     for (std::size_t k = 0; k < mine_ids_.size(); ++k) {
-      const auto& [from, to, cell, p] = mine_ids_[k];
-      const int q = theirs_ids_[k][3];
-      if (piece_[p] && piece_[q] && compare(parameter(from, lo), parameter(to, lo)) != Sign::Zero)
+      const SideSegment& m = *mine_ids_[k];
+      const int p = m.polygon, q = twin_[k]->polygon;
+      if (piece_[p] && piece_[q] && compare(parameter(m.lo, lo), parameter(m.hi, lo)) != Sign::Zero)
         joins_.emplace_back(p, q);
     }
     return true;
@@ -208,10 +260,11 @@ class EdgeChecker {
   const std::vector<char>& polygon_ok_;
   const std::vector<char>& piece_;
   const VertexIndex& vertices_;
+  const Sides& sides_;
   PropertyResult& conforming_;
   std::vector<std::pair<int, int>>& joins_;
   std::vector<Segment> mine_, theirs_;
-  std::vector<std::array<int, 4>> mine_ids_, theirs_ids_;
+  std::vector<const SideSegment*> mine_ids_, theirs_ids_, twin_;
 };
 
 // (2) from the polygons joined along mesh edges (union-find over `parent`).
@@ -266,8 +319,9 @@ void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram&
   const int chunks = (mesh.triangle_count() + kCheckChunk - 1) / kCheckChunk;
   std::vector<PropertyResult> conforming(chunks);
   std::vector<std::vector<std::pair<int, int>>> joins(chunks);
+  const Sides sides = side_segments(mesh, diagram, polygon_ok, vertices);
   tbb::parallel_for(0, chunks, [&](int c) {
-    EdgeChecker(mesh, diagram, polygon_ok, piece, vertices, conforming[c], joins[c])
+    EdgeChecker(mesh, diagram, polygon_ok, piece, vertices, sides, conforming[c], joins[c])
         .check_triangles(c * kCheckChunk, std::min(mesh.triangle_count(), (c + 1) * kCheckChunk));
   });
   std::vector<int> parent(diagram.polygons.size());

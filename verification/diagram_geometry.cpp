@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -95,17 +96,32 @@ int ExactVertices::index(const SymbolicVertex& q) {
 
 int ExactVertices::add(const SymbolicVertex& q) { return symbolic_.insert(q); }
 
+ExactVertices::~ExactVertices() {
+  std::destroy_n(points_, size_);
+  std::allocator<ExactVertex>().deallocate(points_, capacity_);
+}
+
 void ExactVertices::make_points() {
-  const std::size_t from = points_.size(), to = symbolic_.size();
+  const std::size_t from = size_, to = symbolic_.size();
   if (from == to) return;
-  points_.resize(to);
-  if (to - from < 1024) {
-    for (std::size_t k = from; k < to; ++k) points_[k] = ExactVertex::of(symbolic_[k], ctx_);
-    return;
+  if (to > capacity_) {
+    const std::size_t capacity = std::max(to, 2 * capacity_);
+    ExactVertex* points = std::allocator<ExactVertex>().allocate(capacity);
+    std::uninitialized_move_n(points_, size_, points);
+    std::destroy_n(points_, size_);
+    std::allocator<ExactVertex>().deallocate(points_, capacity_);
+    points_ = points;
+    capacity_ = capacity;
   }
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(from, to, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t k = r.begin(); k != r.end(); ++k) points_[k] = ExactVertex::of(symbolic_[k], ctx_);
-  });
+  auto make = [&](std::size_t k) { new (points_ + k) ExactVertex(ExactVertex::of(symbolic_[k], ctx_)); };
+  if (to - from < 1024) {
+    for (std::size_t k = from; k < to; ++k) make(k);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(from, to, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t k = r.begin(); k != r.end(); ++k) make(k);
+    });
+  }
+  size_ = to;
 }
 
 Frame triangle_frame(const SurfaceMesh& mesh, int t, const std::array<const ExactVertex*, 3>& corners) {
@@ -277,7 +293,7 @@ std::vector<SiteTerms> site_terms(const std::vector<Site>& sites) {
     CGAL::Protect_FPU_rounding<true> upward;
     for (std::size_t k = r.begin(); k != r.end(); ++k) {
       const Site& s = sites[k];
-      terms[k].x = s.p;
+      terms[k].x2 = 2.0 * s.p;
       terms[k].c = Interval(s.p.x) * s.p.x + Interval(s.p.y) * s.p.y + Interval(s.p.z) * s.p.z - s.w;
     }
   });

@@ -59,9 +59,9 @@ class Lazy {
 //! computed on first use, when a filter on the enclosure leaves a sign undecided.
 class ExactVertex {
  public:
-  bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
   std::array<Interval, 3> box{Interval(0), Interval(0), Interval(0)};
   Interval parameter_box{0};  //!< type B only: encloses edge_parameter()
+  bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
 
   ExactVertex() = default;
   //! The point q defines; not valid when it defines none (decided exactly). ctx must outlive the
@@ -83,7 +83,7 @@ class ExactVertex {
 
  private:
   enum class Source : std::uint8_t { Symbolic, Barycentric };
-  Source source_ = Source::Symbolic;
+  Source source_ = Source::Symbolic;  // beside `valid`, in the padding before q_
   SymbolicVertex q_;  // Barycentric: q_.v holds the corners
   const Vec3* barycentric_ = nullptr;
   const SymbolicContext* ctx_ = nullptr;
@@ -97,6 +97,9 @@ const Q& coordinate(const ExactPoint& p, int axis);
 class ExactVertices {
  public:
   explicit ExactVertices(const SymbolicContext& ctx) : ctx_(ctx) {}
+  ExactVertices(const ExactVertices&) = delete;  // the points point to ctx_
+  ExactVertices& operator=(const ExactVertices&) = delete;
+  ~ExactVertices();
   //! Index of q, making its point the first time q is seen.
   int index(const SymbolicVertex& q);
   //! Index of q, its point left to make_points() the first time q is seen.
@@ -108,12 +111,16 @@ class ExactVertices {
   const ExactVertex& operator[](int id) const { return points_[id]; }
   const SymbolicVertex& symbolic(int id) const { return symbolic_[id]; }
   const SymbolicContext& context() const { return ctx_; }
-  std::size_t size() const { return points_.size(); }
+  std::size_t size() const { return size_; }
 
  private:
   SymbolicContext ctx_;
   SymbolicVertexIndex symbolic_;
-  std::vector<ExactVertex> points_;
+  // The points, each constructed once in place by make_points (a vector would construct every
+  // one empty first, then move the made one over it: the largest array of the verification
+  // written twice).
+  ExactVertex* points_ = nullptr;
+  std::size_t size_ = 0, capacity_ = 0;
 };
 
 //! A triangle's own 2D frame: the coordinate plane that drops `drop`, where the triangle has
@@ -191,12 +198,10 @@ Sign compare_power_distance_exact(const ExactVertex& q, const Site& a, const Sit
 //! A site's part of the power distances: d_k(q) = |q|^2 + e_k(q) with e_k(q) = c_k - 2 q.x_k and
 //! c_k = |x_k|^2 - w_k, so d_a(q) - d_b(q) = e_a(q) - e_b(q). `c` encloses c_k.
 struct SiteTerms {
-  Vec3 x;
+  Vec3 x2;  //!< 2 x_k (exact in doubles; an overflow to infinity only widens e)
   Interval c{0};
   //! Encloses e_k(q) (the rounding mode upward).
-  Interval e(const ExactVertex& q) const {
-    return c - 2 * (q.box[0] * x.x + q.box[1] * x.y + q.box[2] * x.z);
-  }
+  Interval e(const ExactVertex& q) const { return c - (q.box[0] * x2.x + q.box[1] * x2.y + q.box[2] * x2.z); }
 };
 //! SiteTerms of every site, computed in parallel.
 std::vector<SiteTerms> site_terms(const std::vector<Site>& sites);
