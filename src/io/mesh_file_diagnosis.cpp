@@ -304,7 +304,10 @@ std::string diagnose_ply(const std::string& path) {
   const std::string& format = header.format;
   const auto& elements = header.elements;
   const auto& vertex_properties = header.vertex_properties;
-  long long nv = 0, nf = 0, after_vertices = 0;
+  long long nv = 0, nf = 0;
+  // The header's counts are any long long: their sums, and a line number against them, are taken
+  // in 128 bits, where none overflows.
+  __int128 after_vertices = 0;
   for (const auto& [name, count] : elements) {
     if (name == "vertex") nv = count;
     if (name == "face") nf = count;
@@ -331,7 +334,7 @@ std::string diagnose_ply(const std::string& path) {
       if (std::string problem = check_coordinates(tokens, first, fmt::format("vertex {}", body_lines), line_number);
           !problem.empty())
         return problem;
-    } else if (faces_follow && body_lines < nv + nf) {
+    } else if (faces_follow && body_lines < static_cast<__int128>(nv) + nf) {
       // A face: its vertex count, then that many indices into the vertices (CGAL reads them as
       // ints, and refuses the body at one it cannot).
       const long long f = body_lines - nv;
@@ -351,7 +354,7 @@ std::string diagnose_ply(const std::string& path) {
         "is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
         "vertices",
         nv, nf, body_lines);
-  if (body_lines < nv + after_vertices)
+  if (body_lines < nv + after_vertices)  // in 128 bits
     return fmt::format(
         "is truncated: the header declares {} vertices and {} faces, but the body has only {} "
         "lines after the vertices",
