@@ -243,13 +243,24 @@ Samples locate_points(const SurfaceMesh& mesh, const std::vector<Vec3>& points, 
   return samples;
 }
 
-PointFile read_xyz(const std::string& path) {
+namespace {
+
+// The file at `path` opened for reading, or InputError naming it as a `kind` file ("point",
+// "weight"): a folder, a file that is not a regular one, a file that cannot be opened.
+std::ifstream open_input_file(const std::string& path, const char* kind) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("point file '{}' is a folder", path));
+  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("{} file '{}' is a folder", kind, path));
   if (std::string problem = special_file_problem(path); !problem.empty())
-    throw InputError(fmt::format("point file '{}' {}", path, problem));
+    throw InputError(fmt::format("{} file '{}' {}", kind, path, problem));
   std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("cannot read point file '{}'", path));
+  if (!in) throw InputError(fmt::format("cannot read {} file '{}'", kind, path));
+  return in;
+}
+
+}  // namespace
+
+PointFile read_xyz(const std::string& path) {
+  std::ifstream in = open_input_file(path, "point");
   PointFile file;
   std::string line;
   int columns = 0;
@@ -283,12 +294,7 @@ PointFile read_xyz(const std::string& path) {
 }
 
 std::vector<double> read_weights(const std::string& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) throw InputError(fmt::format("weight file '{}' is a folder", path));
-  if (std::string problem = special_file_problem(path); !problem.empty())
-    throw InputError(fmt::format("weight file '{}' {}", path, problem));
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("cannot read weight file '{}'", path));
+  std::ifstream in = open_input_file(path, "weight");
   std::vector<double> weights;
   std::string line;
   // One weight a line, as the points it goes with; blank lines and '#' comments as in point files.
