@@ -17,6 +17,7 @@
 #include "common/error.h"
 #include "io/mesh_io.h"
 #include "mesh/surface_mesh.h"
+#include "report/report.h"
 #include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
@@ -99,17 +100,18 @@ void compute(const std::uint8_t* data, std::size_t size) {
   const std::string path =
       temporary_file(reinterpret_cast<const std::uint8_t*>(off.data()), off.size(), ".off");
   try {
-    SurfaceMesh mesh = read_mesh(path).mesh;
-    require_workable_model(mesh, "lrvd");
-    // The refinement of `lrvd compute` with its default (auto), within a smaller budget.
-    const double length = suggested_refinement_length(mesh, n);
-    if (length > 0 && mesh.max_edge_length() > length) {
-      if (kRefinedTriangleMargin * expected_refined_triangle_count(mesh, length) > kFuzzRefinedTriangles) return;
-      mesh = refine_long_edges(mesh, length, nullptr, RefineOrder::Input, kFuzzRefinedTriangles);
-    }
-    const Samples samples = sample_uniform(mesh, n, static_cast<std::uint64_t>(seed));
-    const Diagram diagram = compute_lrvd(mesh, samples);
-    const DiagramVerification check = verify_diagram(mesh, samples, diagram);
+    // The samples and the diagram as `lrvd compute` makes them (refinement auto), within a smaller
+    // budget of triangles.
+    Input input;
+    input.loaded = read_mesh(path);
+    require_workable_model(input.loaded.mesh, "lrvd");
+    SampleRequest request;
+    request.count = n;
+    request.seed = static_cast<std::uint64_t>(seed);
+    request.max_refined_triangles = kFuzzRefinedTriangles;
+    prepare_samples(input, request);
+    const Diagram diagram = compute_input_diagram(input, DiagramKind::Lrvd);
+    const DiagramVerification check = verify_diagram(input.mesh, input.samples, diagram);
     if (!check.passed) throw std::logic_error("fuzz: the LRVD failed its verification: " + check.summary());
   } catch (const InputError&) {
   }

@@ -20,6 +20,7 @@
 #include "remesh/cvt.h"
 #include "remesh/remesh_pipeline.h"
 #include "report/mps_report.h"
+#include "report/report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/mps_check.h"
@@ -532,4 +533,38 @@ TEST_CASE("the region growing's entries order as (power distance, sample, vertex
   CHECK_FALSE(VertexEntry(0.0, 1, 2) > VertexEntry(-0.0, 1, 2));
   CHECK(VertexEntry(0.0, 2, 0) > VertexEntry(-0.0, 1, 5));
   CHECK(VertexEntry(-1e-310, 0, 0) > VertexEntry(-1.0, 9, 9));
+}
+
+TEST_CASE("Cells left in pieces on coarse folded triangles are computed again on finer ones", "[lrvd]") {
+  // A box whose faces are folded flat onto each other (six of its corners in the plane x = 0): on
+  // the automatic refinement's 62 triangles, three cells compete for the overlapping sheets and
+  // the connectivity restoration cycles between them (found by fuzz_compute).
+  const std::vector<Vec3> positions = {{0, 10.25, 47}, {0, 0, -256}, {0, 257, 256},  {0, 192, 0},
+                                       {192, 0, 0},    {0, 0, 257},  {256, 0, 5}, {0, 256, 1}};
+  const std::vector<Triangle> triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}, {0, 3, 5}, {0, 5, 4},
+                                           {3, 2, 6}, {3, 6, 5}, {2, 1, 7}, {2, 7, 6}, {1, 0, 4}, {1, 4, 7}};
+  SampleRequest request;
+  request.count = 16;
+  request.seed = 7;
+  auto prepared = [&](const std::string& refine) {
+    Input input;
+    input.loaded.mesh = SurfaceMesh(positions, triangles);
+    request.refine = refine;
+    prepare_samples(input, request);
+    return input;
+  };
+  Input input = prepared("auto");
+  const int coarse = input.mesh.triangle_count();
+  const Diagram diagram = compute_input_diagram(input, DiagramKind::Lrvd);
+  CHECK(input.connectivity_refinements >= 1);
+  CHECK(input.mesh.triangle_count() > coarse);
+  CHECK(input.samples.size() == 16);
+  const DiagramVerification check = verify_diagram(input.mesh, input.samples, diagram);
+  INFO(check.summary());
+  CHECK(check.passed);
+
+  // A refinement given by length is the user's: the diagram is computed once, on it.
+  Input given = prepared(fmt::format("{:.17g}", input.loaded.mesh.max_edge_length()));
+  compute_input_diagram(given, DiagramKind::Lrvd);
+  CHECK(given.connectivity_refinements == 0);
 }

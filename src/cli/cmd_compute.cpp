@@ -53,7 +53,7 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
 
   reset_predicate_stats();
   progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
-  const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
+  const Diagram diagram = compute_input_diagram(input, kind);
   const CellComponents components = cell_components(diagram, input.mesh);
   const int multiple = cells_in_pieces(components);
   nlohmann::json report = compute_report(input, opt.input.mesh_path, opt.kind, diagram, components);

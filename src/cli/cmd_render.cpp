@@ -110,7 +110,7 @@ int run_render(const RenderCommandOptions& opt, const CLI::App& cmd) {
     Input input = load_input(opt.input);
     check_diagram_samples(input, opt.kind);
     progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
-    const Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
+    const Diagram diagram = compute_input_diagram(input, kind);
     DiagramScene cells_scene = diagram_scene(diagram, input.mesh, input.samples);
     scene = std::move(cells_scene.scene);
     if (opt.no_samples) scene.points.clear();

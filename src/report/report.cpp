@@ -77,7 +77,9 @@ nlohmann::json input_json(const Input& input) {
                       {"closed", mesh.is_closed()},
                       {"euler_characteristic", mesh.euler_characteristic()}};
   if (input.refined_from >= 0)
-    j["refined"] = {{"triangles", input.mesh.triangle_count()}, {"max_edge_length", input.mesh.max_edge_length()}};
+    j["refined"] = {{"triangles", input.mesh.triangle_count()},
+                    {"max_edge_length", input.mesh.max_edge_length()},
+                    {"halved_for_connected_cells", input.connectivity_refinements}};
   if (input.repair_requested) j["repair_changes"] = repair_changes(input.loaded.repair);
   if (!input.loaded.repair.notes.empty()) j["repair"] = input.loaded.repair.notes;
   if (input.points_given)
@@ -113,6 +115,8 @@ void prepare_samples(Input& input, const SampleRequest& request) {
   double length = 0;
   if (request.refine == "auto") {
     length = suggested_refinement_length(input.loaded.mesh, n);
+    for (int h = 0; h < input.connectivity_refinements; ++h)
+      length = (length > 0 ? length : input.loaded.mesh.max_edge_length()) / 2;
   } else if (request.refine != "off") {
     try {
       size_t used = 0;
@@ -124,20 +128,21 @@ void prepare_samples(Input& input, const SampleRequest& request) {
   }
   if (length > 0 && input.loaded.mesh.max_edge_length() > length) {
     const double expected = expected_refined_triangle_count(input.loaded.mesh, length);
-    if (kRefinedTriangleMargin * expected > kMaxRefinedTriangles)
+    if (kRefinedTriangleMargin * expected > request.max_refined_triangles)
       throw InputError(fmt::format("refining to edges of {:.6g} would make about {:.3g} triangles, up to {:.3g} (limit "
                                    "{:.3g}): use {}",
-                                   length, expected, kRefinedTriangleMargin * expected, kMaxRefinedTriangles,
+                                   length, expected, kRefinedTriangleMargin * expected, request.max_refined_triangles,
                                    request.refine == "auto" ? "fewer samples" : "a longer --refine length or 'off'"));
     if (request.on_progress) request.on_progress(fmt::format("refining the mesh: edges longer than {:.6g}, about {:.3g} triangles", length, expected));
     input.refined_from = input.loaded.mesh.triangle_count();
     // The automatic refinement stops far beyond its estimate: there triangles far longer than wide
     // (a vertex drawn away from the surface) split into many more pieces than their area asks for.
-    const double most = request.refine == "auto" ? auto_refinement_limit(expected) : kMaxRefinedTriangles;
+    const double most = std::min(request.refine == "auto" ? auto_refinement_limit(expected) : kMaxRefinedTriangles,
+                                 request.max_refined_triangles);
     try {
       input.mesh = refine_long_edges(input.loaded.mesh, length, nullptr, RefineOrder::Input, most);
     } catch (const RefinementLimitError& e) {
-      if (most < kMaxRefinedTriangles)
+      if (most < request.max_refined_triangles)
         throw InputError(fmt::format("{}: refining to edges of {:.6g} for {} would make more than {:.3g} triangles, "
                                      "{:.0f} times the estimate from its area: the mesh has triangles far longer than they are "
                                      "wide: {}; fix the mesh, or use --refine off",
@@ -153,6 +158,7 @@ void prepare_samples(Input& input, const SampleRequest& request) {
     input.mesh = input.loaded.mesh;
   }
 
+  if (&request != &input.request) input.request = request;
   if (!request.points_given) {
     input.samples = sample_uniform(input.mesh, n, request.seed);
     if (!request.points.weights.empty()) {
@@ -178,6 +184,31 @@ void prepare_samples(Input& input, const SampleRequest& request) {
       if (move > kRoundingMove * diagonal) ++input.points_moved;
     }
   }
+}
+
+Diagram compute_input_diagram(Input& input, DiagramKind kind) {
+  Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
+  if (!is_localized(kind) || input.request.refine != "auto") return diagram;
+  while (input.connectivity_refinements < kMaxConnectivityRefinements) {
+    const CellComponents components = cell_components(diagram, input.mesh);
+    const auto split = std::find_if(components.count.begin(), components.count.end(), [](int c) { return c > 1; });
+    if (split == components.count.end()) break;
+    Input finer = input;
+    ++finer.connectivity_refinements;
+    try {
+      prepare_samples(finer, finer.request);
+    } catch (const InputError&) {
+      break;  // past the refinement's limits: the diagram in pieces is the answer, judged as such
+    }
+    if (input.request.on_progress)
+      input.request.on_progress(fmt::format("cell {} is in {} pieces on {}: computing again on {}",
+                                            split - components.count.begin(), *split,
+                                            counted(input.mesh.triangle_count(), "triangle", "triangles"),
+                                            counted(finer.mesh.triangle_count(), "triangle", "triangles")));
+    diagram = compute_diagram(finer.mesh, finer.samples, kind);
+    input = std::move(finer);
+  }
+  return diagram;
 }
 
 void check_diagram_weights(const Samples& samples, const std::string& kind) {

@@ -30,20 +30,6 @@ std::string counted(long long count, const char* one, const char* many);
 //! What --repair changed, as the console's "repair: ..." line lists it ("merged 8 vertices", ...).
 std::vector<std::string> repair_changes(const RepairReport& report);
 
-//! A mesh and the samples of a diagram on it.
-struct Input {
-  LoadedMesh loaded;              //!< as read (and repaired)
-  bool repair_requested = false;  //!< --repair (or --weld) was given
-  SurfaceMesh mesh;               //!< after refinement
-  int refined_from = -1;          //!< triangle count before refinement, -1 if not refined
-  Samples samples;
-  //! Given points: how many moved onto the surface by more than rounding (1e-9 of the
-  //! bounding-box diagonal), and the farthest move
-  bool points_given = false;
-  int points_moved = 0;
-  double points_max_move = 0;
-};
-
 //! Which samples to make on Input::loaded, and the names the messages give the inputs.
 struct SampleRequest {
   bool points_given = false;  //!< `points.points` are the samples; else `count` random ones
@@ -56,12 +42,48 @@ struct SampleRequest {
   //! own bound on the count (remesh: the fewest vertices a mesh of the surface's topology has).
   std::function<void(const SurfaceMesh&, int)> check_count;
   ProgressFn on_progress;
+  //! The most triangles a refinement may make (a smaller budget: the fuzz target).
+  double max_refined_triangles = kMaxRefinedTriangles;
 };
+
+//! A mesh and the samples of a diagram on it.
+struct Input {
+  LoadedMesh loaded;              //!< as read (and repaired)
+  bool repair_requested = false;  //!< --repair (or --weld) was given
+  SurfaceMesh mesh;               //!< after refinement
+  int refined_from = -1;          //!< triangle count before refinement, -1 if not refined
+  Samples samples;
+  //! Times the automatic refinement was halved because a localized diagram left a cell in pieces
+  //! on the coarser mesh (compute_input_diagram)
+  int connectivity_refinements = 0;
+  //! What prepare_samples made the samples from: compute_input_diagram makes them again
+  SampleRequest request;
+  //! Given points: how many moved onto the surface by more than rounding (1e-9 of the
+  //! bounding-box diagonal), and the farthest move
+  bool points_given = false;
+  int points_moved = 0;
+  double points_max_move = 0;
+};
+
 
 //! Refines input.loaded.mesh into input.mesh when the samples would crowd its triangles (or as
 //! `refine` says), then draws the random samples or locates the given points on it.
 //! \throw InputError on any bad input.
 void prepare_samples(Input& input, const SampleRequest& request);
+
+//! How often compute_input_diagram halves the automatic refinement's length at most: each time
+//! makes about four times the triangles.
+constexpr int kMaxConnectivityRefinements = 3;
+
+//! The diagram of `kind` of input.samples on input.mesh. A localized diagram (LRVD, LRPD) that
+//! leaves a cell in pieces on an automatically refined mesh is computed again on the mesh refined
+//! to half the length, with the samples made again by input.request on it (random ones are drawn
+//! anew, given points located anew), up to kMaxConnectivityRefinements times: on coarse triangles
+//! of folded or overlapping sheets the connectivity restoration can run into a cycle that finer
+//! triangles do not have (docs/algorithms/lrvd.md, "Connectivity restoration"). `input` is then
+//! the last one computed on. A refinement past the request's limits ends the retries; the diagram
+//! is the last one made, in pieces, and its verification says so.
+Diagram compute_input_diagram(Input& input, DiagramKind kind);
 
 //! Weights given for a power diagram (lrpd, rpd) and only then. \throw InputError otherwise.
 void check_diagram_weights(const Samples& samples, const std::string& kind);
