@@ -1,17 +1,14 @@
-// LRVD computation (paper §3): cell-to-vertex assignment by region growing (§3.2), triangle label
-// lists (§3.3, §3.5), exact clipping with local propagation (§3.4), and the connectivity
+// LRVD computation (paper §3): triangle label lists (§3.3, §3.5) from the region growing of §3.2
+// (voronoi/region_growing.h), exact clipping with local propagation (§3.4), and the connectivity
 // restoration the fixpoint alone does not give (docs/algorithms/lrvd.md, "Connectivity restoration").
 #include "voronoi/lrvd.h"
 
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <limits>
-#include <memory>
 #include <stdexcept>
 #include <tuple>
 
-#include <boost/container/small_vector.hpp>
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -19,11 +16,13 @@
 #include "common/error.h"
 #include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
-#include "voronoi/growth_entry.h"
+#include "voronoi/lrvd_workspace.h"
 
 namespace lrvd {
 
 namespace {
+
+using namespace detail;
 
 // Fewer out-of-date triangles than this are left to the sequential pass.
 constexpr int kParallelClips = 256;
@@ -33,104 +32,12 @@ constexpr size_t kGuessFromLabels = 3;
 // How many triangles ahead the passes over the triangles prefetch their polygon lists.
 constexpr int kPrefetchDistance = 4;
 
-template <class Sorted>
-bool contains(const Sorted& sorted, int x) {
-  return std::binary_search(sorted.begin(), sorted.end(), x);
-}
-template <class Sorted>
-bool insert_sorted(Sorted& sorted, int x) {
-  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
-  if (it != sorted.end() && *it == x) return false;
-  sorted.insert(it, x);
-  return true;
-}
-template <class Sorted>
-bool erase_sorted(Sorted& sorted, int x) {
-  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
-  if (it == sorted.end() || *it != x) return false;
-  sorted.erase(it);
-  return true;
-}
-
-// A vertex during the region growing of §3.2: the least entry queued for it and the sample it
-// went to (-1 while none). One record, not three arrays: the growth visits the vertices in the
-// order of the distances, all over the mesh, and each visit would miss the cache once per array.
-struct VertexClaim {
-  double best = std::numeric_limits<double>::infinity();
-  int best_sample = -1;
-  int label = -1;
-};
-
-// What few triangles ever hold, allocated on first use: the cells connectivity restoration
-// forbade or pinned, and unpacked vertices (more candidates than the clipper packs).
-struct TriangleExtras {
-  std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
-  std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted
-  std::vector<int> unpinned;   // pinned cells removed again as stray pieces, sorted; pinned for good when let back in
-  std::vector<SymbolicVertex> wide;  // instead of the packed vertices
-};
-
-// Polygons of one triangle during propagation. Most triangles have at most four candidates: their
-// labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
-// as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there),
-// and the rest of the record is kept small (144 bytes): MPS's diagrams have up to a million
-// triangles, and propagation reads the records of neighbours all the time.
-struct TrianglePolygons {
-  boost::container::small_vector<int, 4> labels;  // candidate cells L(t), sorted
-  boost::container::small_vector<TrianglePolygon, 4> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
-  std::vector<PackedVertex> verts;  // packed against `labels` as they were when t was clipped
-  std::unique_ptr<TriangleExtras> extras;
-
-  bool forbids(int k) const { return extras && contains(extras->forbidden, k); }
-  bool pins(int k) const { return extras && contains(extras->pinned, k); }
-  TriangleExtras& extra() {
-    if (!extras) extras = std::make_unique<TriangleExtras>();
-    return *extras;
-  }
-  //! The unpacked vertices, or null when the vertices are packed.
-  const std::vector<SymbolicVertex>* wide() const { return extras && !extras->wide.empty() ? &extras->wide : nullptr; }
-
-  //! Empties every list but keeps its storage for the next diagram.
-  void reset() {
-    labels.clear();
-    polygons.clear();
-    verts.clear();
-    if (extras) {
-      extras->forbidden.clear();
-      extras->pinned.clear();
-      extras->unpinned.clear();
-      extras->wide.clear();
-    }
-  }
-};
-
-// Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
-// diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
-struct LrvdWorkspace {
-  std::vector<TrianglePolygons> state;
-  std::vector<char> queued, clipped;
-  std::vector<int> pending;
-  std::deque<int> queue;
-  std::vector<int> vertex_label, home, conflicts, stuck;
-  std::vector<VertexClaim> claims;
-  std::vector<detail::VertexEntry> heap, seeds;
-  std::vector<unsigned char> along;
-
-  void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
-    queued.assign(triangle_count, 0);
-    stuck.clear();
-    clipped.assign(triangle_count, 0);
-    queue.clear();
-  }
-};
-
 class LrvdBuilder {
  public:
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), claims_(work.claims), heap_(work.heap), seeds_(work.seeds), along_(work.along) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
@@ -157,69 +64,8 @@ class LrvdBuilder {
  private:
   double power_distance(const Vec3& q, int i) const { return squared_distance(q, sites_[i].p) - sites_[i].w; }
 
-  // §3.2: each vertex goes to the cell whose region, grown over the edge graph from the samples'
-  // triangles in order of distance, reaches it first. Every cell's vertex set is connected.
-  void assign_vertices() {
-    const int nv = mesh_.vertex_count();
-    // A vertex goes to the least (power distance, sample) that reaches it; an entry that cannot
-    // be that least one is never queued.
-    using Entry = detail::VertexEntry;
-    claims_.assign(nv, VertexClaim{});
-    heap_.clear();
-    seeds_.clear();
-    auto better = [&](double d, int i, int v) {
-      VertexClaim& c = claims_[v];
-      if (d > c.best || (d == c.best && c.best_sample >= 0 && i >= c.best_sample)) return false;
-      c.best = d;
-      c.best_sample = i;
-      return true;
-    };
-    // The samples' own corners are most of the entries on a dense sampling (MPS): they are sorted
-    // once and merged with the heap of the entries the growth adds, which stays small.
-    for (int i = 0; i < samples_.size(); ++i)
-      for (int v : mesh_.triangle(samples_.triangles[i])) {
-        const double d = power_distance(mesh_.position(v), i);
-        if (better(d, i, v)) seeds_.emplace_back(d, i, v);
-      }
-    std::sort(seeds_.begin(), seeds_.end(), [](const Entry& a, const Entry& b) { return b > a; });
-    size_t next_seed = 0;
-    auto seed_first = [&] { return heap_.empty() || (next_seed < seeds_.size() && heap_.front() > seeds_[next_seed]); };
-    while (next_seed < seeds_.size() || !heap_.empty()) {
-      Entry top;
-      if (seed_first()) {
-        top = seeds_[next_seed++];
-      } else {
-        std::pop_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-        top = heap_.back();
-        heap_.pop_back();
-      }
-      if (claims_[top.vertex()].label >= 0) continue;
-      claims_[top.vertex()].label = top.sample();
-      // On a large mesh the growth waits on memory: the entries come from all over the mesh. While
-      // this vertex is handled, load what the likely next ones will read: the claims and
-      // positions of the next entry's neighbours, and the neighbour lists of the entries after it
-      // (the heap's two children of its front, the next seed). Only loads: the order is the same.
-      if (next_seed < seeds_.size() || !heap_.empty()) {
-        const int next = seed_first() ? seeds_[next_seed].vertex() : heap_.front().vertex();
-        for (const int* u = mesh_.vertex_neighbors_begin(next); u != mesh_.vertex_neighbors_end(next); ++u) {
-          __builtin_prefetch(&claims_[*u]);
-          __builtin_prefetch(&mesh_.position(*u));
-        }
-        for (size_t c = 1; c <= 2 && c < heap_.size(); ++c) __builtin_prefetch(mesh_.vertex_neighbors_begin(heap_[c].vertex()));
-        if (next_seed + 1 < seeds_.size()) __builtin_prefetch(mesh_.vertex_neighbors_begin(seeds_[next_seed + 1].vertex()));
-      }
-      const int grower = top.sample();
-      for (const int* u = mesh_.vertex_neighbors_begin(top.vertex()); u != mesh_.vertex_neighbors_end(top.vertex()); ++u)
-        if (claims_[*u].label < 0) {
-          const double d = power_distance(mesh_.position(*u), grower);
-          if (!better(d, grower, *u)) continue;
-          heap_.emplace_back(d, grower, *u);
-          std::push_heap(heap_.begin(), heap_.end(), std::greater<Entry>());
-        }
-    }
-    vertex_label_.resize(nv);
-    for (int v = 0; v < nv; ++v) vertex_label_[v] = claims_[v].label;
-  }
+  // §3.2 (voronoi/region_growing.h).
+  void assign_vertices() { detail::assign_vertices_to_cells(mesh_, samples_, sites_, growth_, vertex_label_); }
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
@@ -650,9 +496,7 @@ class LrvdBuilder {
   std::vector<int>& pending_;
   std::vector<int>&vertex_label_, &home_, &conflicts_;
   std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
-  std::vector<VertexClaim>& claims_;  // region growing, per vertex
-  std::vector<detail::VertexEntry>& heap_;
-  std::vector<detail::VertexEntry>& seeds_;  // region growing: the samples' corners, sorted
+  detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
@@ -689,7 +533,7 @@ Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const Lrvd
   if (options.shapeless && options.shapeless->size() != static_cast<size_t>(mesh.triangle_count()))
     throw std::logic_error("LRVD: the shapeless mask needs one entry per mesh triangle");
   const auto start = std::chrono::steady_clock::now();
-  thread_local LrvdWorkspace work;
+  thread_local detail::LrvdWorkspace work;
   Diagram diagram = LrvdBuilder(mesh, samples, options, work).run();
   diagram.stats.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return diagram;

@@ -1,0 +1,99 @@
+// The LRVD builder's storage (voronoi/lrvd.cpp): per-triangle candidate lists and polygons during
+// propagation (paper §3.3-3.5), kept per thread between diagrams.
+#pragma once
+
+#include <algorithm>
+#include <deque>
+#include <memory>
+#include <vector>
+
+#include <boost/container/small_vector.hpp>
+
+#include "diagram/clip.h"
+#include "voronoi/region_growing.h"
+
+namespace lrvd::detail {
+
+template <class Sorted>
+bool contains(const Sorted& sorted, int x) {
+  return std::binary_search(sorted.begin(), sorted.end(), x);
+}
+template <class Sorted>
+bool insert_sorted(Sorted& sorted, int x) {
+  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
+  if (it != sorted.end() && *it == x) return false;
+  sorted.insert(it, x);
+  return true;
+}
+template <class Sorted>
+bool erase_sorted(Sorted& sorted, int x) {
+  auto it = std::lower_bound(sorted.begin(), sorted.end(), x);
+  if (it == sorted.end() || *it != x) return false;
+  sorted.erase(it);
+  return true;
+}
+
+// What few triangles ever hold, allocated on first use: the cells connectivity restoration
+// forbade or pinned, and unpacked vertices (more candidates than the clipper packs).
+struct TriangleExtras {
+  std::vector<int> forbidden;  // cells removed for connectivity, sorted; re-added only to be pinned
+  std::vector<int> pinned;     // cells let back in (see settle_stuck_conflicts), sorted
+  std::vector<int> unpinned;   // pinned cells removed again as stray pieces, sorted; pinned for good when let back in
+  std::vector<SymbolicVertex> wide;  // instead of the packed vertices
+};
+
+// Polygons of one triangle during propagation. Most triangles have at most four candidates: their
+// labels and polygons are stored inline, in the triangle array itself (a diagram of a large mesh,
+// as MPS computes once, would otherwise spend a fifth of its allocations and cache misses there),
+// and the rest of the record is kept small (144 bytes): MPS's diagrams have up to a million
+// triangles, and propagation reads the records of neighbours all the time.
+struct TrianglePolygons {
+  boost::container::small_vector<int, 4> labels;  // candidate cells L(t), sorted
+  boost::container::small_vector<TrianglePolygon, 4> polygons;  // by cell; polygon p: verts[polygons[p - 1].end, polygons[p].end)
+  std::vector<PackedVertex> verts;  // packed against `labels` as they were when t was clipped
+  std::unique_ptr<TriangleExtras> extras;
+
+  bool forbids(int k) const { return extras && contains(extras->forbidden, k); }
+  bool pins(int k) const { return extras && contains(extras->pinned, k); }
+  TriangleExtras& extra() {
+    if (!extras) extras = std::make_unique<TriangleExtras>();
+    return *extras;
+  }
+  //! The unpacked vertices, or null when the vertices are packed.
+  const std::vector<SymbolicVertex>* wide() const { return extras && !extras->wide.empty() ? &extras->wide : nullptr; }
+
+  //! Empties every list but keeps its storage for the next diagram.
+  void reset() {
+    labels.clear();
+    polygons.clear();
+    verts.clear();
+    if (extras) {
+      extras->forbidden.clear();
+      extras->pinned.clear();
+      extras->unpinned.clear();
+      extras->wide.clear();
+    }
+  }
+};
+
+// Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
+// diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
+struct LrvdWorkspace {
+  std::vector<TrianglePolygons> state;
+  std::vector<char> queued, clipped;
+  std::vector<int> pending;
+  std::deque<int> queue;
+  std::vector<int> vertex_label, home, conflicts, stuck;
+  detail::RegionGrowingWorkspace growth;
+  std::vector<unsigned char> along;
+
+  void reset(int triangle_count) {
+    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
+    queued.assign(triangle_count, 0);
+    stuck.clear();
+    clipped.assign(triangle_count, 0);
+    queue.clear();
+  }
+};
+
+}  // namespace lrvd::detail
