@@ -91,6 +91,31 @@ TEST_CASE("lrvd compute writes cells and a report with the promised keys", "[cli
   REQUIRE(header == "ply");
 }
 
+TEST_CASE("lrvd compute says when it refined again because a cell was in pieces, and reports it", "[cli]") {
+  // A box folded flat (six corners in the plane x = 0): on the automatic refinement's triangles
+  // the LRVD of these samples leaves a cell in pieces (docs/algorithms/lrvd.md).
+  const std::string mesh = kOut + "folded_box.off", report = kOut + "folded_box.json";
+  {
+    std::ofstream off(mesh);
+    off << "OFF\n8 12 0\n0 10.25 47\n0 0 -256\n0 257 256\n0 192 0\n192 0 0\n0 0 257\n256 0 5\n0 256 1\n"
+           "3 0 1 2\n3 0 2 3\n3 4 5 6\n3 4 6 7\n3 0 3 5\n3 0 5 4\n3 3 2 6\n3 3 6 5\n3 2 1 7\n3 2 7 6\n"
+           "3 1 0 4\n3 1 4 7\n";
+  }
+  const Run r = run("compute " + mesh + " -n 16 --seed 7 --report " + report);
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("refined again, the edges halved once") != std::string::npos);
+  CHECK(r.out.find("verification: passed") != std::string::npos);
+  const json j = read_json(report);
+  CHECK(j["input"]["refined"]["halved_for_connected_cells"] == 1);
+  CHECK(j["diagram"]["cells_with_multiple_components"] == 0);
+  // Refined as the user says, it is computed once and judged as it is.
+  const Run given = run("compute " + mesh + " -n 16 --seed 7 --refine 200");
+  CHECK(given.out.find("refined again") == std::string::npos);
+  std::remove(mesh.c_str());
+  std::remove(report.c_str());
+}
+
 TEST_CASE("Point and weight files: a byte-order mark and comments are read, stray columns and NUL bytes named", "[cli]") {
   const std::string cube = kOut + "pw_cube.off", points = kOut + "pw.xyz", weights = kOut + "pw_w.txt";
   std::ofstream(cube) << "OFF\n8 12 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n0 0 1\n1 0 1\n0 1 1\n1 1 1\n"
