@@ -55,72 +55,100 @@ double suggested_weld(const std::vector<Vec3>& positions, const std::vector<int>
   return weld;
 }
 
-}  // namespace
-
-void mesh_io_detail::refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& positions,
-                          const std::vector<Triangle>& triangles, const std::vector<int>& original, bool repaired,
-                          double weld, const std::string& weld_damage) {
+// The soup's edges with the number of triangles on each, its boundary edges (one triangle) and the
+// vertices on them, in index order.
+struct SoupBoundary {
   std::unordered_map<uint64_t, int> edge_uses;
-  edge_uses.reserve(triangles.size() * 2);
-  const auto key = [](int a, int b) {
+  std::vector<std::pair<int, int>> edges;
+  std::vector<int> vertices;
+  static uint64_t key(int a, int b) {
     return (static_cast<uint64_t>(std::min(a, b)) << 32) | static_cast<uint32_t>(std::max(a, b));
-  };
+  }
+};
+
+SoupBoundary soup_boundary(std::size_t vertex_count, const std::vector<Triangle>& triangles) {
+  SoupBoundary boundary;
+  std::unordered_map<uint64_t, int>& edge_uses = boundary.edge_uses;
+  edge_uses.reserve(triangles.size() * 2);
   for (const Triangle& t : triangles)
-    for (int e = 0; e < 3; ++e) ++edge_uses[key(t[e], t[(e + 1) % 3])];
-  std::vector<char> on_boundary(positions.size(), 0);
-  std::vector<std::pair<int, int>> boundary_edges;
+    for (int e = 0; e < 3; ++e) ++edge_uses[SoupBoundary::key(t[e], t[(e + 1) % 3])];
+  std::vector<char> on_boundary(vertex_count, 0);
   for (const Triangle& t : triangles)
     for (int e = 0; e < 3; ++e)
-      if (edge_uses[key(t[e], t[(e + 1) % 3])] == 1) {
+      if (edge_uses[SoupBoundary::key(t[e], t[(e + 1) % 3])] == 1) {
         on_boundary[t[e]] = on_boundary[t[(e + 1) % 3]] = 1;
-        boundary_edges.push_back({t[e], t[(e + 1) % 3]});
+        boundary.edges.push_back({t[e], t[(e + 1) % 3]});
       }
-  std::vector<int> order;
-  for (int v = 0; v < static_cast<int>(positions.size()); ++v)
-    if (on_boundary[v]) order.push_back(v);
-  if (order.empty()) return;
-  int coincident = 0, first_a = -1, first_b = -1;
-  if (!repaired) {
-    const auto less = [&](int a, int b) {
-      const Vec3 &p = positions[a], &q = positions[b];
-      return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
-    };
-    std::vector<int> sorted = order;
-    std::sort(sorted.begin(), sorted.end(), less);
-    for (std::size_t i = 0; i < sorted.size(); ++i) {
-      const bool same_as_prev = i > 0 && positions[sorted[i]] == positions[sorted[i - 1]];
-      const bool same_as_next = i + 1 < sorted.size() && positions[sorted[i]] == positions[sorted[i + 1]];
-      if (same_as_prev || same_as_next) ++coincident;
-      if (same_as_next && (first_a < 0 || original[sorted[i]] < first_a))
-        first_a = original[sorted[i]], first_b = original[sorted[i + 1]];
-    }
+  for (int v = 0; v < static_cast<int>(vertex_count); ++v)
+    if (on_boundary[v]) boundary.vertices.push_back(v);
+  return boundary;
+}
+
+// The boundary vertices at the same point as another one: how many, and of the pairs, the one
+// whose first vertex comes first in the file.
+struct CoincidentTwins {
+  int count = 0, first_a = -1, first_b = -1;
+};
+
+CoincidentTwins coincident_twins(const std::vector<Vec3>& positions, const std::vector<int>& boundary_vertices,
+                                 const std::vector<int>& original) {
+  CoincidentTwins twins;
+  const auto less = [&](int a, int b) {
+    const Vec3 &p = positions[a], &q = positions[b];
+    return std::tie(p.x, p.y, p.z, a) < std::tie(q.x, q.y, q.z, b);
+  };
+  std::vector<int> sorted = boundary_vertices;
+  std::sort(sorted.begin(), sorted.end(), less);
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    const bool same_as_prev = i > 0 && positions[sorted[i]] == positions[sorted[i - 1]];
+    const bool same_as_next = i + 1 < sorted.size() && positions[sorted[i]] == positions[sorted[i + 1]];
+    if (same_as_prev || same_as_next) ++twins.count;
+    if (same_as_next && (twins.first_a < 0 || original[sorted[i]] < twins.first_a))
+      twins.first_a = original[sorted[i]], twins.first_b = original[sorted[i + 1]];
   }
-  // Neighbours, for the pairs that belong together: an edge's ends, or two corners of one short
-  // boundary path (a disk whose outline has two short edges in a row is no soup).
+  return twins;
+}
+
+// The boundary vertices within `tolerance` of another one that is not at the same point and shares
+// no edge and no neighbour with it. Neighbours, for the pairs that belong together: an edge's ends,
+// or two corners of one short boundary path (a disk whose outline has two short edges in a row is
+// no soup).
+NearTwins near_twins_on_boundary(const std::vector<Vec3>& positions, const SoupBoundary& boundary, double tolerance) {
   std::vector<std::vector<int>> neighbours(positions.size());
-  for (const auto& [a, b] : boundary_edges) {
+  for (const auto& [a, b] : boundary.edges) {
     neighbours[a].push_back(b);
     neighbours[b].push_back(a);
   }
   const auto joined = [&](int a, int b) {
-    if (edge_uses.count(key(a, b))) return true;
+    if (boundary.edge_uses.count(SoupBoundary::key(a, b))) return true;
     for (int c : neighbours[a])
-      if (edge_uses.count(key(c, b))) return true;
+      if (boundary.edge_uses.count(SoupBoundary::key(c, b))) return true;
     return false;
   };
+  return find_near_twins(positions, boundary.vertices, tolerance, joined);
+}
+
+}  // namespace
+
+void mesh_io_detail::refuse_triangle_soup(const std::string& path, const std::vector<Vec3>& positions,
+                                          const std::vector<Triangle>& triangles, const std::vector<int>& original,
+                                          bool repaired, double weld, const std::string& weld_damage) {
+  const SoupBoundary boundary = soup_boundary(positions.size(), triangles);
+  if (boundary.vertices.empty()) return;
+  const CoincidentTwins coincident = repaired ? CoincidentTwins() : coincident_twins(positions, boundary.vertices, original);
   const double diagonal = bounding_box(positions).diagonal();
   // After a --weld W, the copies of one corner that the greedy weld left apart are less than 2 W
   // from each other when they all lay within 2 W: a W a little too small is caught too.
   const double near_fraction = std::max(kNearTwinFraction, 2 * weld);
-  const NearTwins near = find_near_twins(positions, order, near_fraction * diagonal, joined);
+  const NearTwins near = near_twins_on_boundary(positions, boundary, near_fraction * diagonal);
   const std::string weld_advice =
       near.count == 0 ? std::string()
-                      : fmt::format(" --weld {:g}", suggested_weld(positions, order, boundary_edges, diagonal,
+                      : fmt::format(" --weld {:g}", suggested_weld(positions, boundary.vertices, boundary.edges, diagonal,
                                                                     near.max_distance / diagonal));
-  if (coincident > 0)
+  if (coincident.count > 0)
     fail(path, fmt::format("looks like a triangle soup: vertices {} and {} coincide but are not shared ({} boundary "
                            "vertices have a twin{}); rerun with --repair{} to weld them",
-                           first_a, first_b, coincident,
+                           coincident.first_a, coincident.first_b, coincident.count,
                            near.count > 0 ? fmt::format(", and {} a twin nearly at the same point", near.count) : "",
                            weld_advice));
   if (near.count == 0) return;
@@ -137,8 +165,8 @@ void mesh_io_detail::refuse_triangle_soup(const std::string& path, const std::ve
                          near.distance / diagonal, near.count, weld_advice));
 }
 
-void mesh_io_detail::refuse_t_junctions(const std::string& path, const SurfaceMesh& mesh, const std::vector<int>& original,
-                        bool repaired) {
+void mesh_io_detail::refuse_t_junctions(const std::string& path, const SurfaceMesh& mesh,
+                                        const std::vector<int>& original, bool repaired) {
   const std::vector<Triangle>& triangles = mesh.triangles();  // every vertex used: the box is the mesh's
   const std::vector<TJunction> found =
       find_t_junctions(mesh.positions(), triangles, kNearTwinFraction * mesh.bounding_box().diagonal());
