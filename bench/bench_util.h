@@ -1,11 +1,15 @@
-// Small helpers the benchmarks share: comma-separated argument lists and process CPU time.
+// Small helpers the benchmarks share: comma-separated argument lists, process CPU time, a limit
+// of the worker threads.
 #pragma once
 
 #include <time.h>
 
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <tbb/global_control.h>
 
 namespace lrvd::bench {
 
@@ -22,6 +26,12 @@ inline double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+//! The worker threads limited to `threads` while the result lives; no limit for 0 or less (every core).
+inline std::unique_ptr<tbb::global_control> limit_threads(int threads) {
+  if (threads <= 0) return nullptr;
+  return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 }
 
 }  // namespace lrvd::bench

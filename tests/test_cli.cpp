@@ -195,6 +195,11 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
       REQUIRE(r.err.find("move the model nearer the origin") != std::string::npos);
     }
   }
+}
+
+TEST_CASE("lrvd words the command line's mistakes itself, in one line", "[cli]") {
+  const std::string points = kOut + "words.xyz";
+  std::ofstream(points) << "0 0 1000\n";
   REQUIRE(run("nosuchcommand").err.find("unknown subcommand 'nosuchcommand'") != std::string::npos);
   REQUIRE(run("--threads 1 compute " + kData + "/elk.off -n 10 --threads 2").err ==
           "lrvd: error: --threads is given 2 times; give it once (see --help)\n");
@@ -215,6 +220,10 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   REQUIRE(run("compute " + kData + "/elk.off -n").err == "lrvd: error: --samples needs a value (see --help)\n");
   REQUIRE(run("--threads abc compute " + kData + "/elk.off -n 3").err.find("a thread count is a whole number") !=
           std::string::npos);
+  REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
+}
+
+TEST_CASE("lrvd checks where its outputs go before the work: not the console's file, not an unwritable one", "[cli]") {
   // The report on the console's own file: the two would overwrite each other.
   const Run console = run("compute " + kData + "/elk.off -n 10 --no-verify --report /dev/stdout");
   REQUIRE(console.status == 2);
@@ -223,7 +232,6 @@ TEST_CASE("lrvd refuses bad input with one line and exit status 2", "[cli]") {
   // there can overwrite anything, so nothing is refused.
   REQUIRE(std::system((kCli + " mps " + kData + "/elk.off --radius 0.05 -o /dev/null --report /dev/null > /dev/null 2>&1")
                           .c_str()) == 0);
-  REQUIRE(run("verify " + kData + "/elk.off --points " + kData).err.find("is a folder") != std::string::npos);
   // A report no one can write (not even root, under /proc): refused before the remesh, whose mesh
   // is then not written either.
   const std::string unwritten = kOut + "unwritten.off";
@@ -289,15 +297,30 @@ TEST_CASE("lrvd refuses an output on a file it reads, also through a link, and l
   REQUIRE(read_json(target)["samples"].get<int>() > 0);
 }
 
-TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows error lines safely", "[cli]") {
-  const std::string tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
-  const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+namespace {
+
+// A tetrahedron's OFF text: the header and vertices, and the faces.
+const std::string kTetrahedron = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+const std::string kTetrahedronFaces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+// A tetrahedron whose faces end with colours, and its file with a comment and a blank line: what
+// the OFF reader takes. Named by the test case (CTest runs them in parallel, each its own file).
+std::string coloured_tetrahedron(const std::string& name) {
+  const std::string path = kOut + name + ".off";
+  std::ofstream(path) << kTetrahedron << "3 0 2 1 255 0 0\n3 0 1 3 0.5 0.5 0.5 1\n3 0 3 2\n3 1 2 3\n# the end\n\n";
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("lrvd refuses what it would otherwise drop without a word", "[cli]") {
+  const std::string& tet = kTetrahedron;
+  const std::string& faces = kTetrahedronFaces;
   // A header that declares fewer faces than the file has: CGAL's reader stops at the count.
   const std::string short_header = kOut + "short_header.off", word = kOut + "word_after_face.off";
-  const std::string coloured = kOut + "coloured.off", bom = kOut + "bom.off";
+  const std::string coloured = coloured_tetrahedron("coloured"), bom = kOut + "bom.off";
   std::ofstream(short_header) << "OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" << faces;
   std::ofstream(word) << tet << "3 0 2 1 extra\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-  std::ofstream(coloured) << tet << "3 0 2 1 255 0 0\n3 0 1 3 0.5 0.5 0.5 1\n3 0 3 2\n3 1 2 3\n# the end\n\n";
   std::ofstream(bom) << "\xef\xbb\xbf" << tet << faces;
   const std::string truncated_stl = kOut + "truncated.stl";
   std::ofstream(truncated_stl) << "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n";
@@ -357,15 +380,22 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
   CHECK_FALSE(std::filesystem::exists(kOut + "report.off"));
   std::filesystem::remove_all(folder);
   std::filesystem::remove_all(blocked + ".lrvd-part");
-  // A vertex no face uses is left out with a line that says so (it would otherwise widen the
-  // bounding box, the unit of mps --radius, without a word).
-  const std::string stray = kOut + "stray_vertex.off";
-  std::ofstream(stray) << "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 5 5\n" << faces;
+}
+
+// A vertex no face uses is left out with a line that says so (it would otherwise widen the
+// bounding box, the unit of mps --radius, without a word).
+TEST_CASE("lrvd leaves out a vertex no face uses, with a line that says so", "[cli]") {
+  const std::string stray = kOut + "stray_vertex.off", coloured = coloured_tetrahedron("coloured_stray");
+  std::ofstream(stray) << "OFF\n5 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5 5 5\n" << kTetrahedronFaces;
   const Run left_out = run("compute " + stray + " -n 10 --report " + kOut + "stray.json");
   CHECK(left_out.status == 0);
   CHECK(left_out.out.find("input: left out 1 vertex that no face uses") != std::string::npos);
   CHECK(read_json(kOut + "stray.json")["input"]["vertices"] == 4);
   CHECK(run("compute " + coloured + " -n 10").out.find("left out") == std::string::npos);
+}
+
+TEST_CASE("lrvd shows the lines it quotes from files safely", "[cli]") {
+  const std::string coloured = coloured_tetrahedron("coloured_quoted");
   // A control character read from a file is shown escaped; a huge token does not make a huge line.
   const std::string escape = kOut + "escape.xyz", long_token = kOut + "long_token.xyz";
   std::ofstream(escape) << "0.1\x1b[31mRED 0 0\n";
@@ -388,8 +418,10 @@ TEST_CASE("lrvd refuses what it would otherwise drop without a word, and shows e
   CHECK(longer.status == 2);
   CHECK(lines(longer.err) == 1);
   CHECK(longer.err.size() < 500);
-  // Outputs replace the old file whole: nothing is left beside it.
-  const std::string out = kOut + "replaced.off";
+}
+
+TEST_CASE("lrvd's outputs replace the old file whole: nothing is left beside it", "[cli]") {
+  const std::string coloured = coloured_tetrahedron("coloured_replaced"), out = kOut + "replaced.off";
   std::ofstream(out) << "old\n";
   REQUIRE(run("remesh " + coloured + " -n 8 -o " + out).status == 0);
   CHECK(lrvd::read_mesh(out).mesh.vertex_count() == 8);

@@ -41,6 +41,65 @@ struct RemeshCommandOptions {
   std::string output, report;
 };
 
+// Where the repair gave up, on the input surface, and what to try: a thin part or a handle too
+// small for the cells.
+void print_repair_advice(const RemeshResult& remeshed, const ClosedOverHoles& holes) {
+  const DualDefects& left = remeshed.defects;
+  const int first = left.where_to_act().empty() ? -1 : left.where_to_act().front();
+  std::string where;
+  if (first >= 0) {
+    const Vec3& p = remeshed.cvt.samples.positions[first];
+    where = fmt::format("; the first at vertex {}, ({:.6g}, {:.6g}, {:.6g})", first, p.x, p.y, p.z);
+  }
+  std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
+  if (remeshed.path.repair_saturated)
+    // A 10 x 1 x 0.01 plate fails so at 50 vertices and is valid at 20 and at 100 (an audit).
+    std::printf("repair: every cell was at a defect or next to one, where a higher density changes nothing: the "
+                "surface is thinner than the cells everywhere; more vertices (smaller cells) usually mend it, and "
+                "on a part only a few cells wide, fewer sometimes do\n");
+  else if (holes.count == 0)
+    // CGAL's couplingdown (genus 9) fails at 200 vertices with seeds 1-3 and is valid at 500.
+    std::printf("repair: there the surface is thinner, or a handle narrower, than the cells can follow; more "
+                "vertices (smaller cells) may mend it\n");
+}
+
+// Holes of the input too small for the cells: how many, and the --fill-holes that closes them.
+void print_hole_advice(const ClosedOverHoles& holes, double diagonal) {
+  const std::string which = holes.fillable == holes.count ? (holes.count == 1 ? "it" : "them")
+                                                          : fmt::format("{} of them", holes.fillable);
+  const std::string advice =
+      holes.fillable == 0
+          ? fmt::format("--fill-holes cannot close {} (docs/guide/input.md), give more vertices",
+                        holes.count == 1 ? "it" : "them")
+          : fmt::format("--fill-holes {:.2g} closes {} and {} other hole{}{}, or give more vertices", holes.fraction,
+                        which, holes.others, holes.others == 1 ? "" : "s",
+                        holes.fillable < holes.count ? " (it leaves the rest open)" : "");
+  std::printf("repair: %d hole%s met by fewer than three cells, the longest %.6g around (%.3g of the bounding-box "
+              "diagonal): %s\n",
+              holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
+              advice.c_str());
+}
+
+// The failures a picture shows (render --color defects): non-manifold edges and repeated
+// triangles, holes, degenerate and crossing triangles, unused vertices; not a wrong genus alone.
+// For those, the command that draws the triangles each failed check is about, coloured: the
+// picture goes beside the output (a file, not a device such as /dev/null), named after it, unless
+// that name (with the writer's part suffix) is longer than a file name can be.
+void print_defects_picture_command(const RemeshVerification& check, const DualMesh& dual, const std::string& output) {
+  const bool drawable = !check.manifold.passed || !check.closed.passed || !check.non_degenerate.passed ||
+                        !check.no_self_intersection.passed || !check.vertex_count.passed;
+  std::error_code not_a_file;
+  if (!drawable || dual.triangles.empty() || !std::filesystem::is_regular_file(output, not_a_file)) return;
+  namespace fs = std::filesystem;
+  fs::path picture = fs::path(output).replace_extension().string() + "_defects.png";
+  if (picture.filename().string().size() + std::string(".lrvd-part").size() > 255)
+    picture = fs::path(output).parent_path() / "lrvd_defects.png";
+  // A path read as an option when it begins with '-'.
+  auto argument = [](const std::string& path) { return shell_word(path.rfind('-', 0) == 0 ? "./" + path : path); };
+  std::printf("see where: lrvd render %s --color defects -o %s\n", argument(output).c_str(),
+              argument(picture.string()).c_str());
+}
+
 int run_remesh_command(const RemeshCommandOptions& opt) {
   RemeshSettings settings = opt.settings;
   settings.fit = !opt.no_fit;
@@ -55,76 +114,20 @@ int run_remesh_command(const RemeshCommandOptions& opt) {
                              opt.output, progress,
                              [&](const DualMesh& dual) { write_mesh(opt.output, dual.positions, dual.triangles); });
   const RemeshResult& remeshed = run.result;
-  const CvtResult& result = remeshed.cvt;
   const DualMesh& dual = remeshed.dual;
   const RemeshVerification& check = run.check;
-  const bool measurable = run.measurable;
-  const QualityMetrics& quality = run.quality;
-  const ClosedOverHoles& holes = run.holes;
-  const double diagonal = run.diagonal;
-  const nlohmann::json& report = run.report;
-  if (!opt.report.empty()) write_report(opt.report, report, {opt.output});
+  if (!opt.report.empty()) write_report(opt.report, run.report, {opt.output});
 
   std::printf("remesh (%s): %s, %s, %s, %.3f s -> %s\n", settings.kind.c_str(),
               counted(dual.positions.size(), "vertex", "vertices").c_str(),
               counted(dual.triangles.size(), "triangle", "triangles").c_str(),
               counted(remeshed.total_iterations, "iteration", "iterations").c_str(), remeshed.time_s, opt.output.c_str());
-  print_quality(measurable ? &quality : nullptr, false);
+  print_quality(run.measurable ? &run.quality : nullptr, false);
   std::printf("verification: %s%s\n", check.passed ? "passed" : "FAILED", inherited_note(check).c_str());
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
-  if (!check.passed && !remeshed.defects.empty()) {
-    // Where the repair gave up, on the input surface: a thin part or a handle too small for the cells.
-    const DualDefects& left = remeshed.defects;
-    const int first = left.where_to_act().empty() ? -1 : left.where_to_act().front();
-    std::string where;
-    if (first >= 0) {
-      const Vec3& p = result.samples.positions[first];
-      where = fmt::format("; the first at vertex {}, ({:.6g}, {:.6g}, {:.6g})", first, p.x, p.y, p.z);
-    }
-    std::printf("repair: %s left after %d rounds%s\n", left.describe().c_str(), remeshed.repair_rounds, where.c_str());
-    if (remeshed.path.repair_saturated)
-      // A 10 x 1 x 0.01 plate fails so at 50 vertices and is valid at 20 and at 100 (an audit).
-      std::printf("repair: every cell was at a defect or next to one, where a higher density changes nothing: the "
-                  "surface is thinner than the cells everywhere; more vertices (smaller cells) usually mend it, and "
-                  "on a part only a few cells wide, fewer sometimes do\n");
-    else if (holes.count == 0)
-      // CGAL's couplingdown (genus 9) fails at 200 vertices with seeds 1-3 and is valid at 500.
-      std::printf("repair: there the surface is thinner, or a handle narrower, than the cells can follow; more "
-                  "vertices (smaller cells) may mend it\n");
-  }
-  if (!check.passed && holes.count > 0) {
-    const std::string which = holes.fillable == holes.count ? (holes.count == 1 ? "it" : "them")
-                                                            : fmt::format("{} of them", holes.fillable);
-    const std::string advice =
-        holes.fillable == 0
-            ? fmt::format("--fill-holes cannot close {} (docs/guide/input.md), give more vertices",
-                          holes.count == 1 ? "it" : "them")
-            : fmt::format("--fill-holes {:.2g} closes {} and {} other hole{}{}, or give more vertices", holes.fraction,
-                          which, holes.others, holes.others == 1 ? "" : "s",
-                          holes.fillable < holes.count ? " (it leaves the rest open)" : "");
-    std::printf("repair: %d hole%s met by fewer than three cells, the longest %.6g around (%.3g of the bounding-box "
-                "diagonal): %s\n",
-                holes.count, holes.count == 1 ? " is" : "s are", holes.longest, holes.longest / diagonal,
-                advice.c_str());
-  }
-  // The failures a picture shows (render --color defects): non-manifold edges and repeated
-  // triangles, holes, degenerate and crossing triangles, unused vertices; not a wrong genus alone.
-  const bool drawable = !check.manifold.passed || !check.closed.passed || !check.non_degenerate.passed ||
-                        !check.no_self_intersection.passed || !check.vertex_count.passed;
-  std::error_code not_a_file;
-  if (drawable && !dual.triangles.empty() && std::filesystem::is_regular_file(opt.output, not_a_file)) {
-    // A picture shows where at a glance: the triangles each failed check is about, coloured. It
-    // goes beside the output (a file, not a device such as /dev/null), named after it, unless that
-    // name (with the writer's part suffix) is longer than a file name can be.
-    namespace fs = std::filesystem;
-    fs::path picture = fs::path(opt.output).replace_extension().string() + "_defects.png";
-    if (picture.filename().string().size() + std::string(".lrvd-part").size() > 255)
-      picture = fs::path(opt.output).parent_path() / "lrvd_defects.png";
-    // A path read as an option when it begins with '-'.
-    auto argument = [](const std::string& path) { return shell_word(path.rfind('-', 0) == 0 ? "./" + path : path); };
-    std::printf("see where: lrvd render %s --color defects -o %s\n", argument(opt.output).c_str(),
-                argument(picture.string()).c_str());
-  }
+  if (!check.passed && !remeshed.defects.empty()) print_repair_advice(remeshed, run.holes);
+  if (!check.passed && run.holes.count > 0) print_hole_advice(run.holes, run.diagonal);
+  print_defects_picture_command(check, dual, opt.output);
   return check.passed ? kOk : kCheckFailed;
 }
 

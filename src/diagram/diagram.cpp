@@ -89,10 +89,12 @@ CellIntegrals integrate_cells(const Diagram& diagram, const SurfaceMesh& mesh, c
   return integrate_own_cells(diagram, mesh, samples, triangle_density);
 }
 
-CellIntegrals integrate_own_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
-                                  const std::vector<double>* triangle_density) {
+namespace {
+
+// Cheap checks that the three belong together (a mismatch would read outside the vectors).
+void check_integration_inputs(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
+                              const std::vector<double>* triangle_density) {
   const int n = diagram.sample_count;
-  // Cheap checks that the three belong together (a mismatch would read outside the vectors).
   if (diagram.triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1)
     throw InputError(fmt::format("integrate_cells: the diagram was built on a mesh of {} triangles, not on this one of {}",
                                  diagram.triangle_offsets.empty() ? 0 : diagram.triangle_offsets.size() - 1,
@@ -104,59 +106,86 @@ CellIntegrals integrate_own_cells(const Diagram& diagram, const SurfaceMesh& mes
   if (triangle_density && triangle_density->size() != static_cast<std::size_t>(mesh.triangle_count()))
     throw InputError(fmt::format("integrate_cells: {} densities for {} triangles", triangle_density->size(),
                                  mesh.triangle_count()));
+}
+
+struct PolygonIntegrals {
+  double area = 0, energy = 0;
+  Vec3 moment;  // ∫ρ(x - x_i)
+};
+
+// The corners of the polygons of a run of polygons, in polygon order. A type (b) or (c) vertex is
+// shared by the polygons of its labels in its triangle, which come in cell order: it is computed by
+// the polygon of its smallest label and found in `known_` by the others (position() depends on the
+// symbolic vertex alone, so the value is the same). Also sharing the type (b) vertices of the
+// triangle across cost more in look-ups than it saved.
+class PolygonCorners {
+ public:
+  PolygonCorners(const Diagram& diagram, const SymbolicContext& ctx) : diagram_(diagram), ctx_(ctx) { known_.reserve(16); }
+
+  // The corners of `poly` minus x, into points[0 .. vertex_count).
+  void relative_to(const CellPolygon& poly, const Vec3& x, std::vector<Vec3>& points) {
+    if (poly.triangle != known_triangle_) known_.clear(), known_triangle_ = poly.triangle;
+    const SymbolicVertex* verts = diagram_.polygon_vertices(poly);
+    for (int a = 0; a < poly.vertex_count; ++a) {
+      const SymbolicVertex& q = verts[a];
+      if (q.type == SymbolicVertex::Type::A) {
+        points[a] = ctx_.vertices[q.v[0]] - x;  // a mesh vertex's position is the vertex's own
+      } else if (q.label[0] == poly.cell) {
+        known_.push_back({q, position(q, ctx_)});
+        points[a] = known_.back().position - x;
+      } else {
+        const Known* k = known_.data();
+        const Known* end = k + known_.size();
+        while (k != end && !same_vertex(k->q, q)) ++k;
+        points[a] = (k != end ? k->position : position(q, ctx_)) - x;
+      }
+    }
+  }
+
+ private:
+  struct Known {
+    SymbolicVertex q;
+    Vec3 position;
+  };
+  const Diagram& diagram_;
+  const SymbolicContext& ctx_;
+  std::vector<Known> known_;  // of the current triangle
+  int known_triangle_ = -1;
+};
+
+// A polygon's integrals, by a fan from its first corner; coordinates relative to x_i keep the
+// energy integrand small.
+void add_fan_integrals(const std::vector<Vec3>& points, int count, double rho, PolygonIntegrals& out) {
+  for (int a = 1; a + 1 < count; ++a) {
+    const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
+    const double area = rho * 0.5 * norm(cross(v - u, w - u));
+    out.area += area;
+    out.moment += area * (u + v + w) / 3.0;
+    out.energy += area / 6.0 * (dot(u, u) + dot(v, v) + dot(w, w) + dot(u, v) + dot(v, w) + dot(u, w));
+  }
+}
+
+}  // namespace
+
+CellIntegrals integrate_own_cells(const Diagram& diagram, const SurfaceMesh& mesh, const Samples& samples,
+                                  const std::vector<double>* triangle_density) {
+  check_integration_inputs(diagram, mesh, samples, triangle_density);
+  const int n = diagram.sample_count;
   // Positions only, no side tests: the range check of context() would be wasted on every evaluation.
   const SymbolicContext ctx{mesh.positions().data(), diagram.sites.data()};
   // Each polygon's integrals in parallel, then summed per cell in polygon order: the same result
   // with any number of threads.
-  struct PolygonIntegrals {
-    double area = 0, energy = 0;
-    Vec3 moment;  // ∫ρ(x - x_i)
-  };
   const int np = static_cast<int>(diagram.polygons.size());
   std::vector<PolygonIntegrals> part(np);
   tbb::parallel_for(tbb::blocked_range<int>(0, np, 512), [&](const tbb::blocked_range<int>& range) {
     std::vector<Vec3> points;
-    // A type (b) or (c) vertex is shared by the polygons of its labels in its triangle, which come
-    // in cell order: it is computed by the polygon of its smallest label and found in `known` by
-    // the others (position() depends on the symbolic vertex alone, so the value is the same). Also
-    // sharing the type (b) vertices of the triangle across cost more in look-ups than it saved.
-    struct Known {
-      SymbolicVertex q;
-      Vec3 position;
-    };
-    std::vector<Known> known;  // of the current triangle
-    known.reserve(16);
-    int known_triangle = -1;
+    PolygonCorners corners(diagram, ctx);
     for (int p = range.begin(); p != range.end(); ++p) {
       const CellPolygon& poly = diagram.polygons[p];
-      const Vec3& x = samples.positions[poly.cell];
       const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
-      if (poly.triangle != known_triangle) known.clear(), known_triangle = poly.triangle;
       if (static_cast<int>(points.size()) < poly.vertex_count) points.resize(poly.vertex_count);
-      const SymbolicVertex* verts = diagram.polygon_vertices(poly);
-      for (int a = 0; a < poly.vertex_count; ++a) {
-        const SymbolicVertex& q = verts[a];
-        if (q.type == SymbolicVertex::Type::A) {
-          points[a] = ctx.vertices[q.v[0]] - x;  // a mesh vertex's position is the vertex's own
-        } else if (q.label[0] == poly.cell) {
-          known.push_back({q, position(q, ctx)});
-          points[a] = known.back().position - x;
-        } else {
-          const Known* k = known.data();
-          const Known* end = k + known.size();
-          while (k != end && !same_vertex(k->q, q)) ++k;
-          points[a] = (k != end ? k->position : position(q, ctx)) - x;
-        }
-      }
-      // Fan from the first vertex; coordinates relative to x_i keep the energy integrand small.
-      PolygonIntegrals& out = part[p];
-      for (int a = 1; a + 1 < poly.vertex_count; ++a) {
-        const Vec3 &u = points[0], &v = points[a], &w = points[a + 1];
-        const double area = rho * 0.5 * norm(cross(v - u, w - u));
-        out.area += area;
-        out.moment += area * (u + v + w) / 3.0;
-        out.energy += area / 6.0 * (dot(u, u) + dot(v, v) + dot(w, w) + dot(u, v) + dot(v, w) + dot(u, w));
-      }
+      corners.relative_to(poly, samples.positions[poly.cell], points);
+      add_fan_integrals(points, poly.vertex_count, rho, part[p]);
     }
   });
   CellIntegrals out;

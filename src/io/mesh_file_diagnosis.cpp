@@ -116,97 +116,125 @@ std::string diagnose_binary_off(const std::string& path) {
          "reader takes for the next face's size: save it as ASCII OFF or PLY";
 }
 
-std::string diagnose_off(const std::string& path) {
-  TokenLines lines(path);
-  std::vector<std::string> tokens;
-  lines.next(tokens);
-  const std::string magic = tokens.empty() ? std::string() : tokens[0];
-  if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
-    return "is not an OFF file: it does not start with 'OFF'";
-  if (tokens.size() > 1 && tokens[1] == "BINARY") return magic == "OFF" ? diagnose_binary_off(path) : "";
+// The line scan of an ASCII OFF file for the first thing CGAL's reader would stumble on or read
+// wrong: the header, then each vertex and face, then lines after the declared faces.
+class OffDiagnosis {
+ public:
+  explicit OffDiagnosis(const std::string& path) : path_(path), lines_(path) {}
+
+  std::string run() {
+    lines_.next(tokens_);
+    const std::string magic = tokens_.empty() ? std::string() : tokens_[0];
+    if (magic.size() < 3 || magic.compare(magic.size() - 3, 3, "OFF") != 0)
+      return "is not an OFF file: it does not start with 'OFF'";
+    if (tokens_.size() > 1 && tokens_[1] == "BINARY") return magic == "OFF" ? diagnose_binary_off(path_) : "";
+    if (std::string problem = read_counts(); !problem.empty()) return problem;
+    for (long long v = 0; v < nv_; ++v)
+      if (std::string problem = vertex_problem(v); !problem.empty()) return problem;
+    for (long long f = 0; f < nf_; ++f)
+      if (std::string problem = face_problem(f); !problem.empty()) return problem;
+    // CGAL stops after the declared faces; lines after them would be dropped without a word.
+    if (lines_.next(tokens_))
+      return fmt::format("has more than its {} declared faces: line {} ('{}') follows them (does the header's face "
+                         "count match the face lines?)",
+                         nf_, lines_.line_number(), tokens_[0]);
+    return "";
+  }
+
+ private:
   // CGAL reads the header's counts as tokens, across lines, and then each vertex and face from a
   // line of its own, the first from what is left of the line the counts end on.
-  std::vector<std::string> rest(tokens.begin() + 1, tokens.end());
-  long long counts[3];
-  for (int k = 0; k < 3; ++k) {
-    while (rest.empty() && lines.next(tokens)) rest = tokens;
-    if (rest.empty() || !parse_long(rest.front(), counts[k]) || counts[k] < 0)
-      return fmt::format(
-          "has an invalid OFF header (line {}): expected the vertex, face and edge counts, e.g. "
-          "'8 6 0'",
-          lines.line_number());
-    rest.erase(rest.begin());
+  std::string read_counts() {
+    rest_.assign(tokens_.begin() + 1, tokens_.end());
+    long long counts[3];
+    for (int k = 0; k < 3; ++k) {
+      while (rest_.empty() && lines_.next(tokens_)) rest_ = tokens_;
+      if (rest_.empty() || !parse_long(rest_.front(), counts[k]) || counts[k] < 0)
+        return fmt::format(
+            "has an invalid OFF header (line {}): expected the vertex, face and edge counts, e.g. "
+            "'8 6 0'",
+            lines_.line_number());
+      rest_.erase(rest_.begin());
+    }
+    nv_ = counts[0], nf_ = counts[1];
+    return "";
   }
-  auto next_line = [&lines, &rest](std::vector<std::string>& line) {
-    if (rest.empty()) return lines.next(line);
-    line = std::move(rest);
-    rest.clear();
+
+  bool next_line() {
+    if (rest_.empty()) return lines_.next(tokens_);
+    tokens_ = std::move(rest_);
+    rest_.clear();
     return true;
-  };
+  }
+
   // A line holding more numbers than a vertex or face takes: where a file ran out early, CGAL read
   // the elements' numbers from one line as a single element (the whole file on one line, say).
-  int crowded_line = 0;
-  std::size_t crowded_numbers = 0;
-  const long long nv = counts[0], nf = counts[1];
-  auto truncated = [&](const std::string& usual) {
-    if (crowded_line == 0) return usual;
+  void note_if_crowded(std::size_t most) {
+    if (tokens_.size() > most && crowded_line_ == 0) crowded_line_ = lines_.line_number(), crowded_numbers_ = tokens_.size();
+  }
+  std::string truncated(const std::string& usual) const {
+    if (crowded_line_ == 0) return usual;
     return fmt::format("has several vertices or faces on one line (line {} holds {} numbers), but CGAL's OFF reader "
                        "takes each from a line of its own, so the file ends too early for the header's {} vertices "
                        "and {} faces: put each vertex and face on a line of its own",
-                       crowded_line, crowded_numbers, nv, nf);
-  };
-  for (long long v = 0; v < nv; ++v) {
-    if (!next_line(tokens))
+                       crowded_line_, crowded_numbers_, nv_, nf_);
+  }
+
+  std::string vertex_problem(long long v) {
+    if (!next_line())
       return truncated(fmt::format(
           "is truncated: the header declares {} vertices and {} faces, but the file ends after {} "
           "vertices",
-          nv, nf, v));
-    if (std::string problem = check_coordinates(tokens, 0, fmt::format("vertex {}", v), lines.line_number());
+          nv_, nf_, v));
+    if (std::string problem = check_coordinates(tokens_, 0, fmt::format("vertex {}", v), lines_.line_number());
         !problem.empty())
       return problem;
-    if (tokens.size() > 10 && crowded_line == 0)  // x y z, a normal and an RGBA colour at most
-      crowded_line = lines.line_number(), crowded_numbers = tokens.size();
+    note_if_crowded(10);  // x y z, a normal and an RGBA colour at most
+    return "";
   }
-  for (long long f = 0; f < nf; ++f) {
-    if (!next_line(tokens))
-      return truncated(fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf, f));
+
+  std::string face_problem(long long f) {
+    if (!next_line())
+      return truncated(fmt::format("is truncated: the header declares {} faces, but the file ends after {}", nf_, f));
+    const int line = lines_.line_number();
     long long n = 0;
-    if (!parse_long(tokens[0], n) || n < 0)
-      return fmt::format("face {} (line {}): '{}' is not a vertex count", f, lines.line_number(), tokens[0]);
+    if (!parse_long(tokens_[0], n) || n < 0)
+      return fmt::format("face {} (line {}): '{}' is not a vertex count", f, line, tokens_[0]);
     if (n < 3)
       return fmt::format("face {} (line {}) has {} vertices; a face needs at least 3 (does the header's vertex count, {}, "
                          "match the vertex lines?)",
-                         f, lines.line_number(), n, nv);
-    if (static_cast<long long>(tokens.size()) < n + 1)
-      return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, lines.line_number(),
-                         tokens.size() - 1, n);
+                         f, line, n, nv_);
+    if (static_cast<long long>(tokens_.size()) < n + 1)
+      return fmt::format("face {} (line {}) lists {} of its {} vertex indices", f, line, tokens_.size() - 1, n);
     for (long long k = 1; k <= n; ++k) {
       long long index = 0;
-      if (!parse_long(tokens[k], index))
-        return is_integer_text(tokens[k])
-                   ? fmt::format("face {} has vertex index {} out of range [0, {})", f, tokens[k], nv)
-                   : fmt::format("face {} (line {}): '{}' is not a vertex index", f, lines.line_number(), tokens[k]);
-      if (index < 0 || index >= nv)
-        return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv);
+      if (!parse_long(tokens_[k], index))
+        return is_integer_text(tokens_[k])
+                   ? fmt::format("face {} has vertex index {} out of range [0, {})", f, tokens_[k], nv_)
+                   : fmt::format("face {} (line {}): '{}' is not a vertex index", f, line, tokens_[k]);
+      if (index < 0 || index >= nv_) return fmt::format("face {} has vertex index {} out of range [0, {})", f, index, nv_);
     }
-    if (static_cast<long long>(tokens.size()) > n + 5 && crowded_line == 0)
-      crowded_line = lines.line_number(), crowded_numbers = tokens.size();
+    note_if_crowded(static_cast<std::size_t>(n + 5));
     // A face may end with a colour (an index or three or four numbers), nothing else.
-    for (std::size_t k = n + 1; k < tokens.size(); ++k) {
+    for (std::size_t k = n + 1; k < tokens_.size(); ++k) {
       double value = 0;
-      if (!parse_double(tokens[k], value))
+      if (!parse_double(tokens_[k], value))
         return fmt::format("face {} (line {}): '{}' after its {} vertex indices is not a number (only a colour may "
                            "follow them)",
-                           f, lines.line_number(), tokens[k], n);
+                           f, line, tokens_[k], n);
     }
+    return "";
   }
-  // CGAL stops after the declared faces; lines after them would be dropped without a word.
-  if (lines.next(tokens))
-    return fmt::format("has more than its {} declared faces: line {} ('{}') follows them (does the header's face "
-                       "count match the face lines?)",
-                       nf, lines.line_number(), tokens[0]);
-  return "";
-}
+
+  const std::string path_;
+  TokenLines lines_;
+  std::vector<std::string> tokens_, rest_;
+  long long nv_ = 0, nf_ = 0;
+  int crowded_line_ = 0;
+  std::size_t crowded_numbers_ = 0;
+};
+
+std::string diagnose_off(const std::string& path) { return OffDiagnosis(path).run(); }
 
 // The statements CGAL 5.5's OBJ reader accepts and ignores; any other one makes it fail.
 const char* const obj_statements_cgal_skips[] = {

@@ -182,8 +182,10 @@ std::vector<double> curvature_density(const SurfaceMesh& mesh, int sample_count)
   return rho;
 }
 
-CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
-                       const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
+namespace {
+
+void check_cvt_inputs(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
+                      const Diagram* diagram_of_initial) {
   if (initial.size() == 0) throw InputError("CVT needs at least one sample");
   check_samples(mesh, initial);
   if (options.iterations < 0 || options.lloyd_warmup < 0)
@@ -197,13 +199,12 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
   if (diagram_of_initial && (diagram_of_initial->sample_count != initial.size() ||
                              diagram_of_initial->triangle_offsets.size() != static_cast<std::size_t>(mesh.triangle_count()) + 1))
     throw InputError("optimize_cvt: the diagram given is not of these samples on this mesh");
-  const auto start = std::chrono::steady_clock::now();
-  const int n = initial.size();
-  std::optional<ClosestPointIndex> own_index;
-  if (!shared_index) own_index.emplace(mesh);
-  const ClosestPointIndex& index = shared_index ? *shared_index : *own_index;
-  std::vector<double> density_storage;
-  const std::vector<double>* density = nullptr;
+}
+
+// The density the options ask for: theirs, checked; the curvature density, kept in `storage`; or
+// none (uniform).
+const std::vector<double>* cvt_density(const SurfaceMesh& mesh, const CvtOptions& options, int n,
+                                       std::vector<double>& storage) {
   if (!options.triangle_density.empty()) {
     if (static_cast<int>(options.triangle_density.size()) != mesh.triangle_count())
       throw InputError("the CVT density needs one value per mesh triangle");
@@ -212,122 +213,185 @@ CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const Cv
     if (bad != options.triangle_density.end())
       throw InputError(fmt::format("the CVT density of triangle {} is {}: it must be a positive number",
                                    bad - options.triangle_density.begin(), *bad));
-    density = &options.triangle_density;
-  } else if (options.density == CvtDensity::Curvature) {
-    density_storage = curvature_density(mesh, n);
-    density = &density_storage;
+    return &options.triangle_density;
+  }
+  if (options.density == CvtDensity::Curvature) {
+    storage = curvature_density(mesh, n);
+    return &storage;
+  }
+  return nullptr;
+}
+
+// The state optimize_cvt's steps share: the samples, the energy of the current state and the
+// result being filled. The steps: Lloyd steps (the whole run, or a warm-up), then L-BFGS.
+class CvtSolver {
+ public:
+  CvtSolver(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options, const ClosestPointIndex& index,
+            const std::vector<double>* density)
+      : mesh_(mesh), initial_(initial), options_(options), index_(index), density_(density), n_(initial.size()),
+        samples_(initial) {
+    samples_.weights.clear();
   }
 
-  CvtResult result;
-  Samples samples = initial;
-  samples.weights.clear();
-  CvtEnergy current = diagram_of_initial ? cvt_energy(mesh, samples, *diagram_of_initial, density)
-                                         : cvt_energy(mesh, samples, options.diagram, density);
-  if (!diagram_of_initial) ++result.diagram_evaluations;
-  result.energy_history.push_back(current.energy);
-  int iteration = 0;
-  auto report = [&](double energy) {
-    result.energy_history.push_back(energy);
-    if (options.on_iteration) options.on_iteration(iteration, energy);
-  };
+  CvtResult run(const Diagram* diagram_of_initial) {
+    current_ = diagram_of_initial ? cvt_energy(mesh_, samples_, *diagram_of_initial, density_)
+                                  : cvt_energy(mesh_, samples_, options_.diagram, density_);
+    if (!diagram_of_initial) ++result_.diagram_evaluations;
+    result_.energy_history.push_back(current_.energy);
+    lloyd_steps();
+    if (options_.optimizer == CvtOptimizer::Lbfgs && iteration_ < options_.iterations) lbfgs();
+    result_.samples = samples_;
+    result_.energy = current_.energy;
+    result_.diagram = std::move(current_.diagram);
+    result_.iterations = iteration_;
+    return std::move(result_);
+  }
 
-  // Lloyd: every sample moves to its cell's centroid, then back onto the surface.
-  const int lloyd_steps = options.optimizer == CvtOptimizer::Lloyd ? options.iterations
-                                                                   : std::min(options.lloyd_warmup, options.iterations);
+ private:
+  void report(double energy) {
+    result_.energy_history.push_back(energy);
+    if (options_.on_iteration) options_.on_iteration(iteration_, energy);
+  }
+  // The samples at `points` (on the surface, or only located), the frozen ones put back.
+  void place(const std::vector<Vec3>& points, bool onto_surface, const CellTriangles& cells) {
+    project(index_, points, samples_, onto_surface, &mesh_, &cells);
+    restore_frozen(initial_, options_.movable, samples_);
+  }
+  void lloyd_steps();
+  void lbfgs();
+  void choose_lbfgs_units();
+  double objective(const Eigen::VectorXd& x, Eigen::VectorXd& grad);
+
+  const SurfaceMesh& mesh_;
+  const Samples& initial_;
+  const CvtOptions& options_;
+  const ClosestPointIndex& index_;
+  const std::vector<double>* density_;
+  const int n_;
+  Samples samples_;
+  CvtEnergy current_;
+  CvtResult result_;
+  int iteration_ = 0;
+  // L-BFGS: the best evaluated state, the sheets the sites keep to, the scales of energy and positions.
+  Samples best_;
+  double best_energy_ = 0;
+  int lbfgs_evaluations_ = 0;
+  std::vector<Vec3> start_points_;
+  CellTriangles cells_;
+  double scale_ = 1, unit_ = 1, cell_size_ = 0;
+};
+
+// Lloyd: every sample moves to its cell's centroid, then back onto the surface.
+void CvtSolver::lloyd_steps() {
+  const int lloyd_steps = options_.optimizer == CvtOptimizer::Lloyd ? options_.iterations
+                                                                    : std::min(options_.lloyd_warmup, options_.iterations);
   for (int step = 0; step < lloyd_steps; ++step) {
-    const double before = current.energy;
-    const CellTriangles cells = options.keep_to_sheets ? cell_triangles(current.diagram) : CellTriangles();
-    project(index, current.cells.centroid, samples, true, &mesh, &cells);
-    restore_frozen(initial, options.movable, samples);
-    current = cvt_energy(mesh, samples, options.diagram, density);
-    ++result.diagram_evaluations;
-    ++iteration;
-    report(current.energy);
-    if (std::abs(before - current.energy) <= options.relative_energy_change * before) break;
+    const double before = current_.energy;
+    const CellTriangles cells = options_.keep_to_sheets ? cell_triangles(current_.diagram) : CellTriangles();
+    place(current_.cells.centroid, true, cells);
+    current_ = cvt_energy(mesh_, samples_, options_.diagram, density_);
+    ++result_.diagram_evaluations;
+    ++iteration_;
+    report(current_.energy);
+    if (std::abs(before - current_.energy) <= options_.relative_energy_change * before) break;
   }
+}
 
-  if (options.optimizer == CvtOptimizer::Lbfgs && iteration < options.iterations) {
-    // L-BFGS on the positions with the sites free in space: the diagram is defined for any site
-    // (its triangle is the closest one), so the energy is smooth where cells do not appear or
-    // vanish, and 2 m_i (x_i - c_i) is its exact gradient. Projecting inside each evaluation made
-    // the line search fail early (elk 516: Qmin 0.35 against 0.59). The best evaluated state is
-    // kept and put on the surface at the end.
-    Samples best = samples;
-    double best_energy = current.energy;
-    int lbfgs_evaluations = 0;
-    // The solver's first call is at the starting point, whose energy and gradient are `current`.
-    const std::vector<Vec3> start_points = samples.positions;
-    // The sites keep to the sheets of their cells at the start of the run.
-    const CellTriangles cells = options.keep_to_sheets ? cell_triangles(current.diagram) : CellTriangles();
-    // The solver sees the energy times a power of two that puts it above 2^30: its energy-change
-    // test, |f_k - f_k+1| <= delta · max(|f_k|, |f_k+1|, 1), is then relative, as the option
-    // promises, also on a small model (Igea, 0.16 across, at 4000 samples: F ≈ 4e-8, and the
-    // absolute 1e-9 stopped L-BFGS after 4 iterations). A power of two scales every value the
-    // solver computes exactly, so a model whose energy stays above 1 takes the same steps.
-    const int exponent = current.energy > 0 && std::isfinite(current.energy) ? std::ilogb(current.energy) : 30;
-    const double scale = std::ldexp(1.0, std::clamp(30 - exponent, 0, 600));
-    // The solver's variables are the positions in a unit tied to the mean cell size h: its first
-    // step moves the sites by one unit, so in the model's own unit the run would depend on the
-    // unit (elk 516 scaled by 2^5: 95 evaluations, Qmin 0.561; by 2^-40: failed line searches,
-    // Qmin 0.464). A power of two between h/16 and h/8 scales exactly: the run is the same at any
-    // scale of the model (elk 516 scaled by 2^-40 ... 2^40: the same 124 diagrams and Qmin 0.645;
-    // test "A remesh is the same in any unit").
-    const double cell_size = std::sqrt(mesh.area() / n);
-    const double unit = cell_size > 0 && std::isfinite(cell_size) ? std::ldexp(1.0, std::ilogb(cell_size) - 3) : 1.0;
-    auto objective = [&](const Eigen::VectorXd& x, Eigen::VectorXd& grad) -> double {
-      ++lbfgs_evaluations;
-      const std::vector<Vec3> points = to_points(x * unit);
-      const bool at_start = lbfgs_evaluations == 1 && points == start_points;
-      project(index, points, samples, false, &mesh, &cells);
-      restore_frozen(initial, options.movable, samples);
-      const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh, samples, options.diagram, density);
-      const CvtEnergy& e = at_start ? current : evaluated;
-      if (!at_start) ++result.diagram_evaluations;
-      grad.resize(3 * n);
-      for (int i = 0; i < n; ++i) {
-        const bool moves = options.movable.empty() || options.movable[i];
-        for (int c = 0; c < 3; ++c) grad[3 * i + c] = moves ? scale * unit * e.gradient[i][c] : 0.0;
-      }
-      if (e.energy < best_energy) {
-        best_energy = e.energy;
-        best = samples;
-      }
-      return scale * e.energy;
-    };
-    LBFGSpp::LBFGSParam<double> param;
-    param.epsilon = options.relative_gradient * scale * unit * current.energy / cell_size;
-    param.epsilon_rel = 0;
-    param.past = 1;
-    param.delta = options.relative_energy_change;
-    param.max_iterations = options.iterations - iteration;
-    param.max_linesearch = 20;
-    LBFGSpp::LBFGSSolver<double, CountedBacktracking> solver(param);
-    Eigen::VectorXd x(3 * n);
-    for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) x[3 * i + c] = samples.positions[i][c] / unit;
-    double fx = 0;
-    int lbfgs_iterations = 0;
-    completed_line_searches = 0;
-    try {
-      lbfgs_iterations = solver.minimize(objective, x, fx);
-    } catch (const std::exception&) {
-      // The line search can fail where the energy is not smooth (cells appearing or vanishing);
-      // the best state seen so far stands. The iteration whose line search failed counts.
-      result.line_search_stopped = true;
-      lbfgs_iterations = completed_line_searches + 1;
-    }
-    iteration += lbfgs_iterations;
-    project(index, best.positions, samples, true, &mesh, &cells);
-    restore_frozen(initial, options.movable, samples);
-    current = cvt_energy(mesh, samples, options.diagram, density);
-    ++result.diagram_evaluations;
-    report(current.energy);
+// The solver's scales of the energy and of the positions.
+void CvtSolver::choose_lbfgs_units() {
+  // The solver sees the energy times a power of two that puts it above 2^30: its energy-change
+  // test, |f_k - f_k+1| <= delta · max(|f_k|, |f_k+1|, 1), is then relative, as the option
+  // promises, also on a small model (Igea, 0.16 across, at 4000 samples: F ≈ 4e-8, and the
+  // absolute 1e-9 stopped L-BFGS after 4 iterations). A power of two scales every value the
+  // solver computes exactly, so a model whose energy stays above 1 takes the same steps.
+  const int exponent = current_.energy > 0 && std::isfinite(current_.energy) ? std::ilogb(current_.energy) : 30;
+  scale_ = std::ldexp(1.0, std::clamp(30 - exponent, 0, 600));
+  // The solver's variables are the positions in a unit tied to the mean cell size h: its first
+  // step moves the sites by one unit, so in the model's own unit the run would depend on the
+  // unit (elk 516 scaled by 2^5: 95 evaluations, Qmin 0.561; by 2^-40: failed line searches,
+  // Qmin 0.464). A power of two between h/16 and h/8 scales exactly: the run is the same at any
+  // scale of the model (elk 516 scaled by 2^-40 ... 2^40: the same 124 diagrams and Qmin 0.645;
+  // test "A remesh is the same in any unit").
+  cell_size_ = std::sqrt(mesh_.area() / n_);
+  unit_ = cell_size_ > 0 && std::isfinite(cell_size_) ? std::ldexp(1.0, std::ilogb(cell_size_) - 3) : 1.0;
+}
+
+// L-BFGS on the positions with the sites free in space: the diagram is defined for any site
+// (its triangle is the closest one), so the energy is smooth where cells do not appear or
+// vanish, and 2 m_i (x_i - c_i) is its exact gradient. Projecting inside each evaluation made
+// the line search fail early (elk 516: Qmin 0.35 against 0.59). The best evaluated state is
+// kept and put on the surface at the end.
+void CvtSolver::lbfgs() {
+  best_ = samples_;
+  best_energy_ = current_.energy;
+  // The solver's first call is at the starting point, whose energy and gradient are `current_`.
+  start_points_ = samples_.positions;
+  // The sites keep to the sheets of their cells at the start of the run.
+  cells_ = options_.keep_to_sheets ? cell_triangles(current_.diagram) : CellTriangles();
+  choose_lbfgs_units();
+  LBFGSpp::LBFGSParam<double> param;
+  param.epsilon = options_.relative_gradient * scale_ * unit_ * current_.energy / cell_size_;
+  param.epsilon_rel = 0;
+  param.past = 1;
+  param.delta = options_.relative_energy_change;
+  param.max_iterations = options_.iterations - iteration_;
+  param.max_linesearch = 20;
+  LBFGSpp::LBFGSSolver<double, CountedBacktracking> solver(param);
+  Eigen::VectorXd x(3 * n_);
+  for (int i = 0; i < n_; ++i)
+    for (int c = 0; c < 3; ++c) x[3 * i + c] = samples_.positions[i][c] / unit_;
+  double fx = 0;
+  int lbfgs_iterations = 0;
+  completed_line_searches = 0;
+  auto f = [this](const Eigen::VectorXd& at, Eigen::VectorXd& grad) { return objective(at, grad); };
+  try {
+    lbfgs_iterations = solver.minimize(f, x, fx);
+  } catch (const std::exception&) {
+    // The line search can fail where the energy is not smooth (cells appearing or vanishing);
+    // the best state seen so far stands. The iteration whose line search failed counts.
+    result_.line_search_stopped = true;
+    lbfgs_iterations = completed_line_searches + 1;
   }
+  iteration_ += lbfgs_iterations;
+  place(best_.positions, true, cells_);
+  current_ = cvt_energy(mesh_, samples_, options_.diagram, density_);
+  ++result_.diagram_evaluations;
+  report(current_.energy);
+}
 
-  result.samples = samples;
-  result.energy = current.energy;
-  result.diagram = std::move(current.diagram);
-  result.iterations = iteration;
+// The scaled energy and gradient at the solver's x (positions in unit_), the best state kept.
+double CvtSolver::objective(const Eigen::VectorXd& x, Eigen::VectorXd& grad) {
+  ++lbfgs_evaluations_;
+  const std::vector<Vec3> points = to_points(x * unit_);
+  const bool at_start = lbfgs_evaluations_ == 1 && points == start_points_;
+  place(points, false, cells_);
+  const CvtEnergy evaluated = at_start ? CvtEnergy() : cvt_energy(mesh_, samples_, options_.diagram, density_);
+  const CvtEnergy& e = at_start ? current_ : evaluated;
+  if (!at_start) ++result_.diagram_evaluations;
+  grad.resize(3 * n_);
+  for (int i = 0; i < n_; ++i) {
+    const bool moves = options_.movable.empty() || options_.movable[i];
+    for (int c = 0; c < 3; ++c) grad[3 * i + c] = moves ? scale_ * unit_ * e.gradient[i][c] : 0.0;
+  }
+  if (e.energy < best_energy_) {
+    best_energy_ = e.energy;
+    best_ = samples_;
+  }
+  return scale_ * e.energy;
+}
+
+}  // namespace
+
+CvtResult optimize_cvt(const SurfaceMesh& mesh, const Samples& initial, const CvtOptions& options,
+                       const Diagram* diagram_of_initial, const ClosestPointIndex* shared_index) {
+  check_cvt_inputs(mesh, initial, options, diagram_of_initial);
+  const auto start = std::chrono::steady_clock::now();
+  std::optional<ClosestPointIndex> own_index;
+  if (!shared_index) own_index.emplace(mesh);
+  const ClosestPointIndex& index = shared_index ? *shared_index : *own_index;
+  std::vector<double> density_storage;
+  const std::vector<double>* density = cvt_density(mesh, options, initial.size(), density_storage);
+  CvtResult result = CvtSolver(mesh, initial, options, index, density).run(diagram_of_initial);
   result.time_s = seconds_since(start);
   return result;
 }

@@ -207,6 +207,140 @@ int settle(DualMesh& dual, const std::vector<Vec3>& fallback, const QualityFloor
   return reverted;
 }
 
+// The state relax_worst_triangles' rounds share: the dual, its adjacency, the vertices that stay
+// (on its boundary) and the triangle of `mesh` under each vertex.
+class WorstTriangleRelaxation {
+ public:
+  WorstTriangleRelaxation(const SurfaceMesh& mesh, const ClosestPointIndex& index, const Samples& samples,
+                          DualMesh& dual)
+      : mesh_(mesh), index_(index), dual_(dual), n_(static_cast<int>(dual.positions.size())),
+        nt_(static_cast<int>(dual.triangles.size())), component_(mesh.triangle_components()),
+        on_triangle_(samples.triangles), incident_(n_), ring_(n_), fixed_(n_, 0), by_quality_(nt_) {
+    index_dual();
+  }
+
+  // Each vertex of the `worst` triangles of lowest Q, the worst first, moved towards its ring.
+  void round(int worst_triangles) {
+    for (int t = 0; t < nt_; ++t) by_quality_[t] = {quality(t), t};
+    const size_t worst = std::min<size_t>(worst_triangles, by_quality_.size());
+    std::partial_sort(by_quality_.begin(), by_quality_.begin() + worst, by_quality_.end());
+    vertices_.clear();
+    for (size_t k = 0; k < worst; ++k)
+      for (int v : dual_.triangles[by_quality_[k].second])
+        if (std::find(vertices_.begin(), vertices_.end(), v) == vertices_.end()) vertices_.push_back(v);
+    for (int v : vertices_)
+      if (!fixed_[v] && !ring_[v].empty() && on_triangle_[v] >= 0) move_towards_ring(v);
+  }
+
+ private:
+  void index_dual();
+  void move_towards_ring(int v);
+  double quality(int t) const {
+    const Triangle& f = dual_.triangles[t];
+    return triangle_quality(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
+  }
+  Vec3 normal(int t) const {
+    const Triangle& f = dual_.triangles[t];
+    return cross(dual_.positions[f[1]] - dual_.positions[f[0]], dual_.positions[f[2]] - dual_.positions[f[0]]);
+  }
+
+  const SurfaceMesh& mesh_;
+  const ClosestPointIndex& index_;
+  DualMesh& dual_;
+  const int n_, nt_;
+  const std::vector<int>& component_;
+  std::vector<int> on_triangle_;  // the triangle of `mesh` under each vertex
+  std::vector<std::vector<int>> incident_, ring_;
+  std::vector<char> fixed_;
+  std::vector<std::pair<double, int>> by_quality_;
+  std::vector<int> vertices_;
+  std::vector<Vec3> normals_;
+};
+
+// Each vertex's triangles and ring; vertices on an edge of one triangle (the dual's boundary) stay
+// where they are.
+void WorstTriangleRelaxation::index_dual() {
+  std::vector<std::pair<int, int>> edges;
+  for (int t = 0; t < nt_; ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int a = dual_.triangles[t][e], b = dual_.triangles[t][(e + 1) % 3];
+      incident_[a].push_back(t);
+      ring_[a].push_back(b);
+      ring_[b].push_back(a);
+      edges.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0, j; i < edges.size(); i = j) {
+    for (j = i + 1; j < edges.size() && edges[j] == edges[i];) ++j;
+    if (j - i == 1) fixed_[edges[i].first] = fixed_[edges[i].second] = 1;
+  }
+  for (std::vector<int>& r : ring_) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+}
+
+// The vertex towards the mean of its ring, then onto its own component of the surface, by the
+// first of the whole step, a half, a quarter or an eighth that raises the lowest Q of its
+// triangles, turns none over and lands on a triangle facing the way its previous one did.
+void WorstTriangleRelaxation::move_towards_ring(int v) {
+  double lowest = 1;
+  normals_.clear();
+  for (int t : incident_[v]) lowest = std::min(lowest, quality(t)), normals_.push_back(normal(t));
+  Vec3 mean{0, 0, 0};
+  for (int u : ring_[v]) mean = mean + dual_.positions[u];
+  mean = mean / static_cast<double>(ring_[v].size());
+  const Vec3 from = dual_.positions[v];
+  const int own = component_[on_triangle_[v]];
+  for (double step : {1.0, 0.5, 0.25, 0.125}) {
+    const Vec3 p = from + step * (mean - from);
+    ClosestPoint c = index_.query(p, on_triangle_[v]);
+    if (c.triangle >= 0 && component_[c.triangle] != own) c = index_.query_within(p, component_.data(), own, on_triangle_[v]);
+    if (c.triangle < 0 || dot(mesh_.triangle_normal(c.triangle), mesh_.triangle_normal(on_triangle_[v])) <= 0) continue;
+    dual_.positions[v] = c.point;
+    double now = 1;
+    bool turned = false;
+    for (size_t k = 0; k < incident_[v].size(); ++k) {
+      now = std::min(now, quality(incident_[v][k]));
+      turned = turned || !(dot(normal(incident_[v][k]), normals_[k]) > 0);
+    }
+    if (!turned && now > lowest) {
+      on_triangle_[v] = c.triangle;
+      break;
+    }
+    dual_.positions[v] = from;
+  }
+}
+
+// Triangles that cross and did not in `original` (whose crossings are `known`, if given): their
+// corners go back until none is left. Returns the vertices put back; `crossings` receives the
+// crossing pairs left.
+int revert_new_crossings(DualMesh& dual, const std::vector<Vec3>& original,
+                         const std::vector<std::pair<int, int>>* known, std::vector<std::pair<int, int>>& crossings) {
+  std::vector<std::pair<int, int>> found;
+  if (!known) found = find_self_intersections(original, dual.triangles, proper_triangles(original, dual.triangles));
+  const std::vector<std::pair<int, int>>& listed = known ? *known : found;
+  const std::set<std::pair<int, int>> before(listed.begin(), listed.end());
+  int reverted = 0;
+  for (;;) {
+    const auto now = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
+    std::vector<int> back;
+    for (const auto& pair : now)
+      if (!before.count(pair))
+        for (int t : {pair.first, pair.second})
+          for (int v : dual.triangles[t])
+            if (dual.positions[v] != original[v]) back.push_back(v);
+    if (back.empty()) {
+      crossings = now;
+      return reverted;
+    }
+    std::sort(back.begin(), back.end());
+    back.erase(std::unique(back.begin(), back.end()), back.end());
+    for (int v : back) dual.positions[v] = original[v];
+    reverted += static_cast<int>(back.size());
+  }
+}
+
 }  // namespace
 
 RelaxResult relax_worst_triangles(const SurfaceMesh& mesh, const ClosestPointIndex& index, const Samples& samples,
@@ -218,104 +352,11 @@ RelaxResult relax_worst_triangles(const SurfaceMesh& mesh, const ClosestPointInd
   if (samples.size() != static_cast<int>(dual.positions.size()))
     throw std::logic_error("relax_worst_triangles: one sample per dual vertex is needed");
   RelaxResult result;
-  const int n = static_cast<int>(dual.positions.size());
-  const int nt = static_cast<int>(dual.triangles.size());
   const std::vector<Vec3> original = dual.positions;
-  std::vector<std::vector<int>> incident(n), ring(n);
-  std::vector<std::pair<int, int>> edges;
-  for (int t = 0; t < nt; ++t)
-    for (int e = 0; e < 3; ++e) {
-      const int a = dual.triangles[t][e], b = dual.triangles[t][(e + 1) % 3];
-      incident[a].push_back(t);
-      ring[a].push_back(b);
-      ring[b].push_back(a);
-      edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  // Vertices on an edge of one triangle (the dual's boundary) stay where they are.
-  std::vector<char> fixed(n, 0);
-  std::sort(edges.begin(), edges.end());
-  for (size_t i = 0, j; i < edges.size(); i = j) {
-    for (j = i + 1; j < edges.size() && edges[j] == edges[i];) ++j;
-    if (j - i == 1) fixed[edges[i].first] = fixed[edges[i].second] = 1;
-  }
-  for (std::vector<int>& r : ring) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-  auto quality = [&](int t) {
-    const Triangle& f = dual.triangles[t];
-    return triangle_quality(dual.positions[f[0]], dual.positions[f[1]], dual.positions[f[2]]);
-  };
-  auto normal = [&](int t) {
-    const Triangle& f = dual.triangles[t];
-    return cross(dual.positions[f[1]] - dual.positions[f[0]], dual.positions[f[2]] - dual.positions[f[0]]);
-  };
-  const std::vector<int>& component = mesh.triangle_components();
-  std::vector<int> on_triangle = samples.triangles;  // the triangle of `mesh` under each vertex
-  std::vector<std::pair<double, int>> by_quality(nt);
-  std::vector<int> vertices;
-  std::vector<Vec3> normals;
-  for (int round = 0; round < options.rounds; ++round) {
-    for (int t = 0; t < nt; ++t) by_quality[t] = {quality(t), t};
-    const size_t worst = std::min<size_t>(options.worst_triangles, by_quality.size());
-    std::partial_sort(by_quality.begin(), by_quality.begin() + worst, by_quality.end());
-    vertices.clear();
-    for (size_t k = 0; k < worst; ++k)
-      for (int v : dual.triangles[by_quality[k].second])
-        if (std::find(vertices.begin(), vertices.end(), v) == vertices.end()) vertices.push_back(v);
-    for (int v : vertices) {
-      if (fixed[v] || ring[v].empty() || on_triangle[v] < 0) continue;
-      double lowest = 1;
-      normals.clear();
-      for (int t : incident[v]) lowest = std::min(lowest, quality(t)), normals.push_back(normal(t));
-      Vec3 mean{0, 0, 0};
-      for (int u : ring[v]) mean = mean + dual.positions[u];
-      mean = mean / static_cast<double>(ring[v].size());
-      const Vec3 from = dual.positions[v];
-      const int own = component[on_triangle[v]];
-      for (double step : {1.0, 0.5, 0.25, 0.125}) {
-        const Vec3 p = from + step * (mean - from);
-        ClosestPoint c = index.query(p, on_triangle[v]);
-        if (c.triangle >= 0 && component[c.triangle] != own) c = index.query_within(p, component.data(), own, on_triangle[v]);
-        if (c.triangle < 0 || dot(mesh.triangle_normal(c.triangle), mesh.triangle_normal(on_triangle[v])) <= 0) continue;
-        dual.positions[v] = c.point;
-        double now = 1;
-        bool turned = false;
-        for (size_t k = 0; k < incident[v].size(); ++k) {
-          now = std::min(now, quality(incident[v][k]));
-          turned = turned || !(dot(normal(incident[v][k]), normals[k]) > 0);
-        }
-        if (!turned && now > lowest) {
-          on_triangle[v] = c.triangle;
-          break;
-        }
-        dual.positions[v] = from;
-      }
-    }
-  }
-  // Triangles that cross and did not: their corners go back until none is left.
-  std::vector<std::pair<int, int>> found;
-  if (!crossings) found = find_self_intersections(original, dual.triangles, proper_triangles(original, dual.triangles));
-  const std::vector<std::pair<int, int>>& known = crossings ? *crossings : found;
-  const std::set<std::pair<int, int>> before(known.begin(), known.end());
-  for (;;) {
-    const auto now = find_self_intersections(dual.positions, dual.triangles, proper_triangles(dual.positions, dual.triangles));
-    std::vector<int> back;
-    for (const auto& pair : now)
-      if (!before.count(pair))
-        for (int t : {pair.first, pair.second})
-          for (int v : dual.triangles[t])
-            if (dual.positions[v] != original[v]) back.push_back(v);
-    if (back.empty()) {
-      result.crossings = now;
-      break;
-    }
-    std::sort(back.begin(), back.end());
-    back.erase(std::unique(back.begin(), back.end()), back.end());
-    for (int v : back) dual.positions[v] = original[v];
-    result.reverted += static_cast<int>(back.size());
-  }
-  for (int v = 0; v < n; ++v) result.moved += dual.positions[v] != original[v];
+  WorstTriangleRelaxation relaxation(mesh, index, samples, dual);
+  for (int round = 0; round < options.rounds; ++round) relaxation.round(options.worst_triangles);
+  result.reverted = revert_new_crossings(dual, original, crossings, result.crossings);
+  for (size_t v = 0; v < original.size(); ++v) result.moved += dual.positions[v] != original[v];
   return result;
 }
 

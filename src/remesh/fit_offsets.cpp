@@ -59,8 +59,7 @@ void OffsetBalancer::sweep(double floor) {
     Vec3 normal;
     double shortest;
     if (!vertex_frame(v, normal, shortest)) continue;
-    double scale = 0;
-    for (int k = first_[v]; k < first_[v + 1]; ++k) scale = std::max(scale, std::abs(sample(entries_[k].sample).d));
+    const double scale = largest_distance(v);
     if (!(scale > 0) || scale < floor) continue;
     Vec3 descent{0, 0, 0};
     for (int k = first_[v]; k < first_[v + 1]; ++k) {
@@ -164,119 +163,145 @@ double OffsetBalancer::best_offset_with(double limit) const {
 
 double OffsetBalancer::best_offset(double limit) const { return options_.power == 16 ? best_offset_with<16>(limit) : best_offset_with<0>(limit); }
 
-void OffsetBalancer::group_sweep(double floor, const std::function<bool(int)>& strict,
-                                 const std::function<bool(int)>& relaxed, double ring_share) {
+double OffsetBalancer::largest_distance(int v) const {
+  double scale = 0;
+  for (int k = first_[v]; k < first_[v + 1]; ++k) scale = std::max(scale, std::abs(sample(entries_[k].sample).d));
+  return scale;
+}
+
+std::vector<std::pair<double, int>> OffsetBalancer::vertices_by_distance(double floor) const {
   const int n = static_cast<int>(dual_.positions.size());
-  combined_.assign(remesh_.size() + input_.size(), 0);
-  std::vector<int> touched, group;
-  std::vector<Vec3> from;
-  // The vertices at the largest distances first: they spend the quality budget first.
   std::vector<std::pair<double, int>> order;
   for (int v = 0; v < n; ++v) {
     if (incident_[v].empty() || first_[v] == first_[v + 1]) continue;
-    double scale = 0;
-    for (int k = first_[v]; k < first_[v + 1]; ++k) scale = std::max(scale, std::abs(sample(entries_[k].sample).d));
+    const double scale = largest_distance(v);
     if (scale > 0 && scale >= floor) order.push_back({-scale, v});
   }
   std::sort(order.begin(), order.end());
-  std::vector<int> around;
-  for (const auto& [negative_scale, v] : order) {
-    group.assign(1, v);
-    if (ring_share > 0)
-      for (int t : incident_[v])
-        for (int u : dual_.triangles[t])
-          if (std::find(group.begin(), group.end(), u) == group.end()) group.push_back(u);
+  return order;
+}
+
+void OffsetBalancer::collect_group(int v, double ring_share) {
+  group_.assign(1, v);
+  if (ring_share > 0)
+    for (int t : incident_[v])
+      for (int u : dual_.triangles[t])
+        if (std::find(group_.begin(), group_.end(), u) == group_.end()) group_.push_back(u);
+  group_from_.resize(group_.size());
+  for (size_t g = 0; g < group_.size(); ++g) group_from_[g] = dual_.positions[group_[g]];
+}
+
+double OffsetBalancer::gather_group(double ring_share, Vec3& descent) {
+  touched_.clear();
+  for (size_t g = 0; g < group_.size(); ++g)
+    for (int k = first_[group_[g]]; k < first_[group_[g] + 1]; ++k) {
+      const int i = entries_[k].sample;
+      if (combined_[i] == 0) touched_.push_back(i);
+      combined_[i] += (g == 0 ? 1.0 : ring_share) * entries_[k].weight;
+    }
+  double group_scale = 0;
+  for (int i : touched_) group_scale = std::max(group_scale, std::abs(sample(i).d));
+  local_d_.clear(), local_w_.clear(), local_g_.clear();
+  descent = Vec3{0, 0, 0};
+  for (int i : touched_) {
+    const Sample& s = sample(i);
+    local_d_.push_back(s.d / group_scale);
+    local_w_.push_back(combined_[i]);
+    local_g_.push_back(s.direction);
+    descent -= (power(s.d / group_scale, options_.power - 1) * combined_[i]) * s.direction;
+  }
+  return group_scale;
+}
+
+void OffsetBalancer::place_group(const Vec3& move, double ring_share) {
+  for (size_t g = 0; g < group_.size(); ++g)
+    dual_.positions[group_[g]] = group_from_[g] + (g == 0 ? 1.0 : ring_share) * move;
+}
+
+bool OffsetBalancer::group_holds(const std::function<bool(int)>& accept) const {
+  for (int u : group_)
+    if (!accept(u)) return false;
+  return true;
+}
+
+OffsetBalancer::GroupSteps OffsetBalancer::best_group_steps(const Vec3& normal, const Vec3& descent, double limit,
+                                                            double group_scale, const std::function<bool(int)>& strict,
+                                                            const std::function<bool(int)>& relaxed, double ring_share) {
+  GroupSteps steps;
+  steps.start = steps.strict_value = steps.relaxed_value = objective(0);
+  const Vec3 unit = norm(descent) > 0 ? descent / norm(descent) : Vec3{0, 0, 0};
+  const Vec3 along = unit - dot(unit, normal) * normal;
+  const Vec3 candidates[3] = {normal, unit, norm(along) > 1e-3 ? along / norm(along) : Vec3{0, 0, 0}};
+  for (const Vec3& direction : candidates) {
+    if (!(norm(direction) > 0)) continue;
+    set_coefficients(direction, group_scale);
+    const double t = best_offset(limit);
+    for (int which = 0; which < (relaxed ? 2 : 1); ++which)
+      for (double step : {1.0, 0.875, 0.75, 0.625, 0.5, 0.375, 0.25, 0.125}) {
+        place_group((step * t) * direction, ring_share);
+        const bool ok = group_holds(which == 0 ? strict : relaxed);
+        place_group({0, 0, 0}, ring_share);
+        if (!ok) continue;
+        const double value = objective(step * t);
+        double& best = which == 0 ? steps.strict_value : steps.relaxed_value;
+        if (value < best) best = value, (which == 0 ? steps.strict_move : steps.relaxed_move) = (step * t) * direction;
+        break;
+      }
+  }
+  return steps;
+}
+
+double OffsetBalancer::quality_spent(const Vec3& move, double ring_share) {
+  around_.clear();
+  for (int u : group_)
+    for (int t : incident_[u])
+      if (std::find(around_.begin(), around_.end(), t) == around_.end()) around_.push_back(t);
+  auto q_sum = [&] {
+    double sum = 0;
+    for (int t : around_) {
+      const Triangle& f = dual_.triangles[t];
+      sum += triangle_quality(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
+    }
+    return sum;
+  };
+  const double before = q_sum();
+  place_group(move, ring_share);
+  const double spent = before - q_sum();
+  place_group({0, 0, 0}, ring_share);
+  return spent;
+}
+
+void OffsetBalancer::group_sweep(double floor, const std::function<bool(int)>& strict,
+                                 const std::function<bool(int)>& relaxed, double ring_share) {
+  combined_.assign(remesh_.size() + input_.size(), 0);
+  // The vertices at the largest distances first: they spend the quality budget first.
+  for (const auto& [negative_scale, v] : vertices_by_distance(floor)) {
+    collect_group(v, ring_share);
     Vec3 normal;
     double shortest;
     if (!vertex_frame(v, normal, shortest)) continue;
-    // The group's samples, each with the weight of its moving corners (the ring's scaled by its share).
-    touched.clear();
-    for (size_t g = 0; g < group.size(); ++g)
-      for (int k = first_[group[g]]; k < first_[group[g] + 1]; ++k) {
-        const int i = entries_[k].sample;
-        if (combined_[i] == 0) touched.push_back(i);
-        combined_[i] += (g == 0 ? 1.0 : ring_share) * entries_[k].weight;
-      }
-    double group_scale = 0;
-    for (int i : touched) group_scale = std::max(group_scale, std::abs(sample(i).d));
-    local_d_.clear(), local_w_.clear(), local_g_.clear();
-    Vec3 descent{0, 0, 0};
-    for (int i : touched) {
-      const Sample& s = sample(i);
-      local_d_.push_back(s.d / group_scale);
-      local_w_.push_back(combined_[i]);
-      local_g_.push_back(s.direction);
-      descent -= (power(s.d / group_scale, options_.power - 1) * combined_[i]) * s.direction;
-    }
-    from.resize(group.size());
-    for (size_t g = 0; g < group.size(); ++g) from[g] = dual_.positions[group[g]];
-    auto place = [&](const Vec3& move) {
-      for (size_t g = 0; g < group.size(); ++g) dual_.positions[group[g]] = from[g] + (g == 0 ? 1.0 : ring_share) * move;
-    };
-    auto holds = [&](const std::function<bool(int)>& accept) {
-      for (int u : group)
-        if (!accept(u)) return false;
-      return true;
-    };
-    const double limit = options_.trust * shortest;
-    const double start = objective(0);
-    Vec3 strict_move{0, 0, 0}, relaxed_move{0, 0, 0};
-    double strict_value = start, relaxed_value = start;
-    const Vec3 unit = norm(descent) > 0 ? descent / norm(descent) : Vec3{0, 0, 0};
-    const Vec3 along = unit - dot(unit, normal) * normal;
-    const Vec3 candidates[3] = {normal, unit, norm(along) > 1e-3 ? along / norm(along) : Vec3{0, 0, 0}};
-    for (const Vec3& direction : candidates) {
-      if (!(norm(direction) > 0)) continue;
-      set_coefficients(direction, group_scale);
-      const double t = best_offset(limit);
-      for (int which = 0; which < (relaxed ? 2 : 1); ++which)
-        for (double step : {1.0, 0.875, 0.75, 0.625, 0.5, 0.375, 0.25, 0.125}) {
-          place((step * t) * direction);
-          const bool ok = holds(which == 0 ? strict : relaxed);
-          place({0, 0, 0});
-          if (!ok) continue;
-          const double value = objective(step * t);
-          double& best = which == 0 ? strict_value : relaxed_value;
-          if (value < best) best = value, (which == 0 ? strict_move : relaxed_move) = (step * t) * direction;
-          break;
-        }
-    }
+    Vec3 descent;
+    const double group_scale = gather_group(ring_share, descent);
+    const GroupSteps steps =
+        best_group_steps(normal, descent, options_.trust * shortest, group_scale, strict, relaxed, ring_share);
     // The Q the relaxed step takes from the triangles around the group, against the budget.
-    double spent = 0;
-    if (relaxed_value < strict_value) {
-      around.clear();
-      for (int u : group)
-        for (int t : incident_[u])
-          if (std::find(around.begin(), around.end(), t) == around.end()) around.push_back(t);
-      auto q_sum = [&] {
-        double sum = 0;
-        for (int t : around) {
-          const Triangle& f = dual_.triangles[t];
-          sum += triangle_quality(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
-        }
-        return sum;
-      };
-      const double before = q_sum();
-      place(relaxed_move);
-      spent = before - q_sum();
-      place({0, 0, 0});
-    }
+    const double spent = steps.relaxed_value < steps.strict_value ? quality_spent(steps.relaxed_move, ring_share) : 0;
     Vec3 move{0, 0, 0};
-    if (relaxed_value < strict_value && spent <= quality_budget_) {
-      move = relaxed_move;
+    if (steps.relaxed_value < steps.strict_value && spent <= quality_budget_) {
+      move = steps.relaxed_move;
       quality_budget_ -= std::max(0.0, spent);
-    } else if (strict_value < start) {
-      move = strict_move;
+    } else if (steps.strict_value < steps.start) {
+      move = steps.strict_move;
     }
     if (norm(move) > 0) {
-      place(move);
-      for (int u : group) moved_[u] = 1;
-      for (int i : touched) {
+      place_group(move, ring_share);
+      for (int u : group_) moved_[u] = 1;
+      for (int i : touched_) {
         Sample& s = sample(i);
         s.d += combined_[i] * dot(move, s.direction);
       }
     }
-    for (int i : touched) combined_[i] = 0;
+    for (int i : touched_) combined_[i] = 0;
   }
 }
 

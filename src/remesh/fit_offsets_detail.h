@@ -105,6 +105,33 @@ class OffsetBalancer {
   template <int P>  // as in objective_with
   inline double best_offset_with(double limit) const;
 
+  // The largest |d| of the samples of vertex v.
+  inline double largest_distance(int v) const;
+
+  // group_sweep's steps. The group (group_, its vertex first; group_from_, where they start) moves
+  // together, the ring by ring_share of the vertex's step.
+  struct GroupSteps {
+    double start = 0;                  // the objective before any step
+    double strict_value = 0, relaxed_value = 0;
+    Vec3 strict_move{0, 0, 0}, relaxed_move{0, 0, 0};  // the best step under each floor (0: none better)
+  };
+  // The vertices whose samples' largest |d| reaches `floor`, largest first, as (-|d|, vertex).
+  std::vector<std::pair<double, int>> vertices_by_distance(double floor) const;
+  // The vertex v, and with a ring_share its one-ring, as the group.
+  void collect_group(int v, double ring_share);
+  // The group's samples gathered (combined_ and touched_: each with the weight of its moving
+  // corners, the ring's scaled by its share), and the steepest descent of their Σ|d|^p; returns
+  // their largest |d|, the scale of the gathered values.
+  double gather_group(double ring_share, Vec3& descent);
+  void place_group(const Vec3& move, double ring_share);
+  bool group_holds(const std::function<bool(int)>& accept) const;
+  // The best accepted steps along the normal, the descent and its tangential part.
+  GroupSteps best_group_steps(const Vec3& normal, const Vec3& descent, double limit, double group_scale,
+                              const std::function<bool(int)>& strict, const std::function<bool(int)>& relaxed,
+                              double ring_share);
+  // The Q the group's `move` takes from the triangles around the group, summed.
+  double quality_spent(const Vec3& move, double ring_share);
+
   const SurfaceMesh& mesh_;
   DualMesh& dual_;
   const std::vector<std::vector<int>>& incident_;
@@ -127,6 +154,8 @@ class OffsetBalancer {
   std::vector<Vec3> local_g_;
   double quality_budget_ = 0;  // the Q the focus rounds' relaxed steps may still take, summed over triangles
   std::vector<double> combined_;  // group_sweep: per sample, the weight of the group's moving corners
+  std::vector<int> group_, touched_, around_;  // group_sweep: the group, its samples, its triangles
+  std::vector<Vec3> group_from_;
 };
 
 }  // namespace lrvd::fit_detail
