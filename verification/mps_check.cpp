@@ -312,26 +312,14 @@ bool outside_ball(const SymbolicVertex& q, const Vec3& p, const Site& site, cons
   return CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) == CGAL::POSITIVE;
 }
 
-// Maximality: every point p of the surface is covered — it lies in the ball of the sample whose
-// LRPD cell holds it (the paper's test: cell minus disk), or in the disk of a sample whose local
-// region reaches p's triangle t (the conflict rule: no dart may go there). Triangle by triangle:
-// - when every LRPD polygon of t lies in its cell's ball, t is covered;
-// - otherwise t is decided on the power diagram of A(t) = the cells with a polygon in t plus the
-//   samples whose disk reaches t, clipped exactly: a point lies in one of these balls iff it lies
-//   in the ball of the one whose power cell holds it, so they cover t iff every such polygon lies
-//   in its own ball. Since the cell holding p in the LRPD is the least of t's candidates in power
-//   distance, the least of A(t) at p is the less of it and of the disks reaching t: A(t)'s balls
-//   hold p iff p is covered in the sense above.
-// The second case is where a point of a cell outside its ball lies in the disk of a sample that
-// is no LRPD candidate of t (its cell was kept connected, or its power cell has a piece there the
-// LRPD does not have).
-void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
-                      const std::vector<std::vector<int>>& sample_triangles, const MpsVerifyOptions& options,
-                      MpsVerification& out) {
-  const int nt = mesh.triangle_count();
+// The LRPD's polygons one by one: their areas summed per triangle (area_sum, for
+// check_diagram_covers), whether each lies in its cell's ball (all corners), and the polygons of
+// remote balls counted. Returns the triangles with a polygon outside its cell's ball, ascending.
+std::vector<int> scan_polygons(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
+                               const MpsVerifyOptions& options, std::vector<double>& area_sum, MpsVerification& out) {
   const SymbolicContext ctx = d.context(mesh);
-  std::vector<double> area_sum(nt, 0);
-  std::vector<int> undecided;  // triangles with a polygon outside its cell's ball, ascending
+  area_sum.assign(mesh.triangle_count(), 0);
+  std::vector<int> undecided;
   std::vector<Vec3> p;
   for (const CellPolygon& cp : d.polygons) {
     const int i = cp.cell;
@@ -353,10 +341,14 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
       ++out.polygons_of_remote_balls;
     }
   }
-  out.maximal.checked = nt;
+  return undecided;
+}
 
-  // A(t) of the undecided triangles: their LRPD cells, then the samples whose disks reach them.
-  std::vector<int> slot(nt, -1);
+// A(t) of each undecided triangle t: its LRPD cells, then the samples whose disks reach it
+// (unsorted, maybe repeated).
+std::vector<std::vector<int>> samples_around(const SurfaceMesh& mesh, const Samples& s, const Diagram& d,
+                                             const SampleDisks& disks, const std::vector<int>& undecided) {
+  std::vector<int> slot(mesh.triangle_count(), -1);
   std::vector<std::vector<int>> around(undecided.size());
   for (size_t u = 0; u < undecided.size(); ++u) {
     const int t = undecided[u];
@@ -366,7 +358,15 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
   for (int i = 0; i < s.size(); ++i)
     for (const int* t = disks.begin(i); t != disks.end(i); ++t)
       if (slot[*t] >= 0) around[slot[*t]].push_back(i);
+  return around;
+}
 
+// Each undecided triangle t on the power diagram of A(t), clipped exactly: every polygon in its
+// own ball, or (the paper's rule) certified by the reach cover; else t fails maximality.
+void decide_undecided(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
+                      const std::vector<std::vector<int>>& sample_triangles, const MpsVerifyOptions& options,
+                      const std::vector<int>& undecided, MpsVerification& out) {
+  std::vector<std::vector<int>> around = samples_around(mesh, s, d, disks, undecided);
   const std::vector<Site> sites = make_sites(s, true);
   std::optional<verify_detail::ReachCover> reach;
   if (!options.facing_cut) reach.emplace(mesh, s, sample_triangles);
@@ -405,13 +405,19 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
     }
     if (covered) ++out.triangles_covered_by_other_disks;
   }
-  // The sums in doubles are a filter. A triangle they leave in doubt is decided with exact areas:
-  // on a sliver (CGAL's mpi.off refined: areas of 1.8e-7 at coordinates of 10) the rounding of the
-  // vertex positions alone is above 1e-9 of the area.
+}
+
+// diagram_covers: the polygons' areas (area_sum, in doubles) fill each triangle. The sums are a
+// filter. A triangle they leave in doubt is decided with exact areas: on a sliver (CGAL's mpi.off
+// refined: areas of 1.8e-7 at coordinates of 10) the rounding of the vertex positions alone is
+// above 1e-9 of the area.
+void check_diagram_covers(const SurfaceMesh& mesh, const Diagram& d, const std::vector<double>& area_sum,
+                          MpsVerification& out) {
+  const SymbolicContext ctx = d.context(mesh);
   std::unique_ptr<verify_detail::ExactVertices> exact;
   std::vector<const verify_detail::ExactVertex*> points;
   std::vector<int> ids;  // a polygon's vertices, all indexed before any is pointed to (indexing may reallocate)
-  for (int t = 0; t < nt; ++t) {
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
     ++out.diagram_covers.checked;
     const double a = mesh.triangle_area(t);
     if (std::abs(area_sum[t] - a) <= 1e-9 * a) continue;
@@ -444,6 +450,29 @@ void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
     if (!covered)
       out.diagram_covers.fail(fmt::format("triangle {}: polygons cover {:.9g} of area {:.9g}", t, area_sum[t], a));
   }
+}
+
+// Maximality: every point p of the surface is covered — it lies in the ball of the sample whose
+// LRPD cell holds it (the paper's test: cell minus disk), or in the disk of a sample whose local
+// region reaches p's triangle t (the conflict rule: no dart may go there). Triangle by triangle:
+// - when every LRPD polygon of t lies in its cell's ball, t is covered;
+// - otherwise t is decided on the power diagram of A(t) = the cells with a polygon in t plus the
+//   samples whose disk reaches t, clipped exactly: a point lies in one of these balls iff it lies
+//   in the ball of the one whose power cell holds it, so they cover t iff every such polygon lies
+//   in its own ball. Since the cell holding p in the LRPD is the least of t's candidates in power
+//   distance, the least of A(t) at p is the less of it and of the disks reaching t: A(t)'s balls
+//   hold p iff p is covered in the sense above.
+// The second case is where a point of a cell outside its ball lies in the disk of a sample that
+// is no LRPD candidate of t (its cell was kept connected, or its power cell has a piece there the
+// LRPD does not have).
+void check_maximality(const SurfaceMesh& mesh, const Samples& s, const Diagram& d, const SampleDisks& disks,
+                      const std::vector<std::vector<int>>& sample_triangles, const MpsVerifyOptions& options,
+                      MpsVerification& out) {
+  std::vector<double> area_sum;
+  const std::vector<int> undecided = scan_polygons(mesh, s, d, disks, options, area_sum, out);
+  out.maximal.checked = mesh.triangle_count();
+  decide_undecided(mesh, s, d, disks, sample_triangles, options, undecided, out);
+  check_diagram_covers(mesh, d, area_sum, out);
 }
 
 }  // namespace

@@ -201,88 +201,31 @@ void GapSet::update_after_insert(int sample, const std::vector<int>& region) {
 
 void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
   if (polygon.size() < 3) return;
-  const Vec3& n = disks_.normal(t);
-  auto keep = [&](const std::vector<Vec3>& q, double area) {
-    Piece piece;
-    piece.triangle = t;
-    piece.owner = owner;
-    piece.first = static_cast<int>(points_.size());
-    piece.count = static_cast<int>(q.size());
-    piece.area = area;
-    piece.alive = true;
-    piece.next_in_triangle = head_[t];
-    points_.insert(points_.end(), q.begin(), q.end());
-    const int index = static_cast<int>(pieces_.size());
-    pieces_.push_back(piece);
-    head_[t] = index;
-    ++alive_;
-    ++created_;
-    total_ += area;
-    if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
-  };
-  // One piece: bounded by q, gap = q minus the owner's disk; halved while its polygon is loose.
-  auto add_piece = [&](const std::vector<Vec3>& q, auto&& self, int depth) -> void {
-    const double area = polygon_area(q);
-    // Whether the piece is kept as it is (neither rounding noise nor loose) is decided by the
-    // exact area outside the owner's disk (sector formula), unless a lower bound of it, less a
-    // margin far above the formula's rounding error (~1e-14·r²), already decides: then the piece is
-    // kept as the formula would keep it, without it (GapSet::gap_area() computes it when asked).
-    if (owner >= 0) {
-      const double lower = uncovered_area_lower_bound(q, n, disks_.center(owner), disks_.weight(owner), area) -
-                           1e-7 * disks_.weight(owner);
-      if (lower > drop_area_ && lower > kNoiseRatio * area && (lower >= kLooseRatio * area || depth >= kMaxBisections)) {
-        keep(q, area);
-        return;
-      }
-    }
-    const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
-    if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
-      if (gap > 0) ++dropped_;
-      if (q.empty()) return;
-      if (owner < 0) {
-        Vec3 c{};
-        for (const Vec3& y : q) c += y;
-        dust_.push_back({c / static_cast<double>(q.size()), t});
-        return;
-      }
-      const Vec3& x = disks_.center(owner);
-      const double w = disks_.weight(owner);
-      const Vec3* farthest = nullptr;
-      double outside = kDustMargin * w;
-      for (const Vec3& y : q)
-        if (squared_distance(y, x) - w > outside) outside = squared_distance(y, x) - w, farthest = &y;
-      if (farthest) dust_.push_back({*farthest, t});
-      return;
-    }
-    if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {
-      // Halve across the polygon's longest diagonal; halves inside the disk vanish.
-      const Halving side = longest_diagonal_halving(q);
-      std::vector<Vec3> half;
-      clip(q, side, half);
-      if (!half.empty()) self(half, self, depth + 1);
-      clip(q, [&](const Vec3& y) { return -side(y); }, half);
-      if (!half.empty()) self(half, self, depth + 1);
-      return;
-    }
-    keep(q, area);
-  };
-
   if (owner < 0) {
-    add_piece(polygon, add_piece, 0);
+    add_piece(polygon, t, owner, 0);
     return;
   }
-  const Vec3& x = disks_.center(owner);
-  const double w = disks_.weight(owner);
+  switch (walk_boundary(polygon, disks_.center(owner), disks_.weight(owner))) {
+    case Boundary::Inside:
+      return;
+    case Boundary::NotCrossed:  // the gap is the polygon minus (all or none of) the disk
+      add_piece(polygon, t, owner, 0);
+      return;
+    case Boundary::Crossed:
+      add_outside_stretches(t, owner);
+      return;
+  }
+}
+
+GapSet::Boundary GapSet::walk_boundary(const std::vector<Vec3>& polygon, const Vec3& x, double w) {
   const size_t m = polygon.size();
-  // Walk the boundary: corners outside the disk and the points where edges enter or leave it.
-  // Each stretch outside, from an exit to the next entry, bounds one corner region of the gap.
   std::vector<Event>& events = events_;
   events.clear();
   bool any_out = false, any_cross = false;
   std::vector<char>& out = outside_;
   out.assign(m, 0);
   for (size_t k = 0; k < m; ++k) any_out |= (out[k] = !(squared_distance(polygon[k], x) < w));
-  if (!any_out) return;
+  if (!any_out) return Boundary::Inside;
   for (size_t k = 0; k < m; ++k) {
     const Vec3& a = polygon[k];
     const Vec3& b = polygon[(k + 1) % m];
@@ -306,10 +249,11 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     }
     any_cross = true;
   }
-  if (!any_cross) {  // the disk misses the boundary: the gap is the polygon minus (all or none of) it
-    add_piece(polygon, add_piece, 0);
-    return;
-  }
+  return any_cross ? Boundary::Crossed : Boundary::NotCrossed;
+}
+
+void GapSet::add_outside_stretches(int t, int owner) {
+  const std::vector<Event>& events = events_;
   size_t start = 0;
   while (events[start].kind != 3) ++start;
   std::vector<Vec3>& run = run_;
@@ -325,9 +269,79 @@ void GapSet::add_outside(const std::vector<Vec3>& polygon, int t, int owner) {
     } else if (e.kind == 2 && open) {
       run.push_back(e.p);
       open = false;
-      if (run.size() >= 3) add_piece(run, add_piece, 0);
+      if (run.size() >= 3) add_piece(run, t, owner, 0);
     }
   }
+}
+
+void GapSet::add_piece(const std::vector<Vec3>& q, int t, int owner, int depth) {
+  const Vec3& n = disks_.normal(t);
+  const double area = polygon_area(q);
+  // Whether the piece is kept as it is (neither rounding noise nor loose) is decided by the
+  // exact area outside the owner's disk (sector formula), unless a lower bound of it, less a
+  // margin far above the formula's rounding error (~1e-14·r²), already decides: then the piece is
+  // kept as the formula would keep it, without it (GapSet::gap_area() computes it when asked).
+  if (owner >= 0) {
+    const double lower = uncovered_area_lower_bound(q, n, disks_.center(owner), disks_.weight(owner), area) -
+                         1e-7 * disks_.weight(owner);
+    if (lower > drop_area_ && lower > kNoiseRatio * area && (lower >= kLooseRatio * area || depth >= kMaxBisections)) {
+      keep(q, t, owner, area);
+      return;
+    }
+  }
+  const double gap = owner < 0 ? area : uncovered_area(q, n, disks_.center(owner), disks_.weight(owner), area);
+  if (!(gap > drop_area_) || gap <= kNoiseRatio * area) {
+    if (gap > 0) ++dropped_;
+    leave_dust(q, t, owner);
+    return;
+  }
+  if (owner >= 0 && gap < kLooseRatio * area && depth < kMaxBisections) {
+    // Halve across the polygon's longest diagonal; halves inside the disk vanish.
+    const Halving side = longest_diagonal_halving(q);
+    std::vector<Vec3> half;
+    clip(q, side, half);
+    if (!half.empty()) add_piece(half, t, owner, depth + 1);
+    clip(q, [&](const Vec3& y) { return -side(y); }, half);
+    if (!half.empty()) add_piece(half, t, owner, depth + 1);
+    return;
+  }
+  keep(q, t, owner, area);
+}
+
+void GapSet::leave_dust(const std::vector<Vec3>& q, int t, int owner) {
+  if (q.empty()) return;
+  if (owner < 0) {
+    Vec3 c{};
+    for (const Vec3& y : q) c += y;
+    dust_.push_back({c / static_cast<double>(q.size()), t});
+    return;
+  }
+  const Vec3& x = disks_.center(owner);
+  const double w = disks_.weight(owner);
+  const Vec3* farthest = nullptr;
+  double outside = kDustMargin * w;
+  for (const Vec3& y : q)
+    if (squared_distance(y, x) - w > outside) outside = squared_distance(y, x) - w, farthest = &y;
+  if (farthest) dust_.push_back({*farthest, t});
+}
+
+void GapSet::keep(const std::vector<Vec3>& q, int t, int owner, double area) {
+  Piece piece;
+  piece.triangle = t;
+  piece.owner = owner;
+  piece.first = static_cast<int>(points_.size());
+  piece.count = static_cast<int>(q.size());
+  piece.area = area;
+  piece.alive = true;
+  piece.next_in_triangle = head_[t];
+  points_.insert(points_.end(), q.begin(), q.end());
+  const int index = static_cast<int>(pieces_.size());
+  pieces_.push_back(piece);
+  head_[t] = index;
+  ++alive_;
+  ++created_;
+  total_ += area;
+  if (index < static_cast<int>(fenwick_.size())) fenwick_add(index, area);
 }
 
 void GapSet::split(int index, int sample) {

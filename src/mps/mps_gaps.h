@@ -290,6 +290,21 @@ class GapSet {
                const std::vector<int>* sample_of, const std::vector<char>* focus);
   //! Adds the pieces of (polygon \ disk(owner)) in triangle t; owner -1 adds the polygon whole.
   void add_outside(const std::vector<Vec3>& polygon, int t, int owner);
+  //! How the circle of a disk meets a convex polygon's boundary (walk_boundary()).
+  enum class Boundary { Inside, NotCrossed, Crossed };
+  //! events_ = the polygon's boundary walked against the disk (x, w): its corners, inside or
+  //! outside, and the points where edges enter or leave the disk.
+  Boundary walk_boundary(const std::vector<Vec3>& polygon, const Vec3& x, double w);
+  //! The pieces of a polygon whose boundary the owner's circle crosses (events_): each stretch
+  //! outside, from an exit to the next entry, bounds one corner region of the gap.
+  void add_outside_stretches(int t, int owner);
+  //! One piece bounded by q, its gap q minus the owner's disk: kept, dropped as rounding noise
+  //! (leaving its dust), or halved across its longest diagonal while loose (up to kMaxBisections).
+  void add_piece(const std::vector<Vec3>& q, int t, int owner, int depth);
+  //! The dust of a dropped piece q (GapSet::Dust), if any.
+  void leave_dust(const std::vector<Vec3>& q, int t, int owner);
+  //! Adds q as a live piece of triangle t, drawn by its polygon's area.
+  void keep(const std::vector<Vec3>& q, int t, int owner, double area);
   //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
   //! `disk_limit`); returns how many live.
   int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
