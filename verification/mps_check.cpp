@@ -157,8 +157,12 @@ std::vector<std::vector<int>> sample_triangles(const Samples& s, LocalRegions& r
   return triangles;
 }
 
-// Halvings of a polygon the reach certificate may take (ReachCover::covers).
-constexpr int kReachCoverDepth = 14;
+// Halvings of a polygon the reach certificate may take, and polygons it may look at in all
+// (ReachCover::covers). Coverings that overlap by 10^-7 r (a thin box's rim, where a disk's circle
+// meets the line beyond which a ball no longer reaches round the rim) need about 40 halvings,
+// near one point: a few dozen polygons.
+constexpr int kReachCoverDepth = 48;
+constexpr int kReachCoverBudget = 2000;
 
 // The disk of every sample: the local region of its ball B(x_i, r_i), sorted (CSR by sample).
 struct SampleDisks {
@@ -392,7 +396,7 @@ void decide_undecided(const SurfaceMesh& mesh, const Samples& s, const Diagram& 
       if (reach) {
         exact_polygon.clear();
         for (const SymbolicVertex& q : polygon) exact_polygon.push_back(exact_position(q, around_ctx));
-        if (reach->covers(t, exact_polygon, k, kReachCoverDepth)) {
+        if (reach->covers(t, exact_polygon, k, kReachCoverDepth, kReachCoverBudget)) {
           ++out.polygons_covered_from_spot_side;
           continue;
         }

@@ -109,8 +109,12 @@ bool ReachCover::covered_by(const std::vector<ExactPoint>& polygon, const std::v
   return true;
 }
 
-bool ReachCover::covers(int t, const std::vector<ExactPoint>& polygon, int k, int depth) {
-  if (polygon.size() < 3 || !(cell_ > 0)) return false;
+bool ReachCover::covers(int t, const std::vector<ExactPoint>& polygon, int k, int depth, int budget) {
+  return covers_part(t, polygon, k, depth, budget);
+}
+
+bool ReachCover::covers_part(int t, const std::vector<ExactPoint>& polygon, int k, int depth, int& budget) {
+  if (polygon.size() < 3 || !(cell_ > 0) || --budget < 0) return false;
   std::vector<Vec3> approx;
   Vec3 lo = to_double(polygon[0]), hi = lo;
   for (const ExactPoint& p : polygon) {
@@ -156,7 +160,7 @@ bool ReachCover::covers(int t, const std::vector<ExactPoint>& polygon, int k, in
     first = {a, m, c};
     second = {m, b, c};
   }
-  return covers(t, first, k, depth - 1) && covers(t, second, k, depth - 1);
+  return covers_part(t, first, k, depth - 1, budget) && covers_part(t, second, k, depth - 1, budget);
 }
 
 }  // namespace lrvd::verify_detail

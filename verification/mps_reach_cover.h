@@ -24,10 +24,13 @@ class ReachCover {
   //! triangles from t to one of s's whose every triangle is met by the ball B(c, r_s) about every
   //! corner c of P (so about every point of P: the distance to a triangle is convex). Decided
   //! exactly on the power diagram of k and those samples restricted to P, and where that does not
-  //! suffice, on the halves of P (up to `depth` times).
-  bool covers(int t, const std::vector<ExactPoint>& polygon, int k, int depth);
+  //! suffice, on the halves of P, and theirs, up to `depth` halvings deep and `budget` polygons
+  //! in all. Only the halves that are not decided are halved again, so the polygons gather where
+  //! two coverings barely overlap (by 10^-7 r on a thin box's rim); false is "not shown covered".
+  bool covers(int t, const std::vector<ExactPoint>& polygon, int k, int depth, int budget);
 
  private:
+  bool covers_part(int t, const std::vector<ExactPoint>& polygon, int k, int depth, int& budget);
   bool chain(int t, const std::vector<ExactPoint>& polygon, const std::vector<Vec3>& approx, int s);
   bool covered_by(const std::vector<ExactPoint>& polygon, const std::vector<int>& sites) const;
 

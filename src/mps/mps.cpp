@@ -373,7 +373,7 @@ class PoissonDiskSampling {
         ++rejections;
         // Refused by a sample from the dart's side: where that sample's ball reaches it from
         // the whole piece, the sample covers the piece like a disk reaching it.
-        if (sampler_->refused_by() >= 0 && gaps.carve(piece, sampler_->refused_by())) continue;
+        if (sampler_->refused_by() >= 0 && gaps.carve(piece, sampler_->refused_by(), p)) continue;
         if (local_) gaps.dart_refused(piece);
         continue;
       }
@@ -419,20 +419,46 @@ class PoissonDiskSampling {
   bool decide_without_progress() {
     if (!connected_cells_) return false;  // the next LRPD (of the open triangles' part) decides
     GapSet& gaps = *gaps_;
+    const bool reach = !sampler_->disks().facing_cut();
     // Adaptive, spots no dart fits: outside their cells' balls, where the power-cell condition
     // against a sample across (another sheet, a big disk past a fold) leaves no radius. Once, the
     // required pieces of this same LRPD are tried again with that condition kept only against
-    // the samples facing alike.
-    if (options_.adaptive && gaps.required_pieces() > 0 && !gaps.required_only()) {
-      progress(fmt::format("{} gap pieces no dart fits: power-cell condition against samples facing alike only",
-                           gaps.required_pieces()));
-      sampler_->allow_power_cell_exceptions();
+    // the samples facing alike. By the paper's rule, uniform too: the round on the required pieces
+    // alone lets certify_required() see them all.
+    if ((options_.adaptive || reach) && gaps.required_pieces() > 0 && !gaps.required_only()) {
+      if (options_.adaptive) {
+        progress(fmt::format("{} gap pieces no dart fits: power-cell condition against samples facing alike only",
+                             gaps.required_pieces()));
+        sampler_->allow_power_cell_exceptions();
+      }
       gaps.set_required_only();
       stale_ = false;
       return false;
     }
-    result_.gaps_closed = gaps.required_pieces() == 0;
+    // By the paper's rule the pieces left may lie where a dart is refused from its own side only,
+    // closer than r to a sample whose ball reaches round a rim or fold: certified against the
+    // samples that refused their darts.
+    result_.gaps_closed =
+        gaps.required_pieces() == 0 || (reach && gaps.certify_required([&](int t, const Vec3* q, int count, std::vector<int>& out) {
+          samples_around(t, q, count, out);
+        }) == 0);
     return true;
+  }
+
+  //! The samples whose balls may meet polygon q (of triangle t) along a chain of triangles: those
+  //! centred on the triangles that the ball about its centroid, its radius plus the largest
+  //! sample radius wide, meets edge-connected to t.
+  void samples_around(int t, const Vec3* q, int count, std::vector<int>& out) {
+    Vec3 c{};
+    for (int k = 0; k < count; ++k) c += q[k];
+    c = c / static_cast<double>(count);
+    double radius2 = 0;
+    for (int k = 0; k < count; ++k) radius2 = std::max(radius2, squared_distance(c, q[k]));
+    const double reach = std::sqrt(radius2) + result_.max_radius;
+    DiskIndex& disks = sampler_->disks();
+    for (int s : disks.met(c, t, reach * reach * (1 + 1e-9))) disks.for_each_center(s, [&](int j) { out.push_back(j); });
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
   }
 
   const SurfaceMesh& input_;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
+#include <utility>
 
 #include "mesh/closest_point.h"
 #include "mps/mps_gaps.h"
@@ -195,6 +197,39 @@ bool DiskIndex::sample_reaches(int i, double w, int target) {
   for (int s : seeds_)
     if (reaches(center(i), s, w, target)) return true;
   return false;
+}
+
+double DiskIndex::reach_threshold(const Vec3& p, const std::vector<int>& from, const std::vector<int>& to, double cap) {
+  // Dijkstra on the bottleneck: a triangle's key is the least, over chains from `from`, of the
+  // largest squared distance on the chain; the first target taken from the heap has the answer.
+  if (++stamp_value_ == 0) {
+    for (TriangleInfo& info : triangles_info_) info.stamp = 0;
+    stamp_value_ = 1;
+  }
+  threshold_key_.resize(triangles_info_.size());
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  auto offer = [&](int t, double key) {
+    TriangleInfo& info = triangles_info_[t];
+    if (info.stamp == stamp_value_ && threshold_key_[t] <= key) return;
+    info.stamp = stamp_value_;
+    threshold_key_[t] = key;
+    heap.emplace(key, t);
+  };
+  for (int t : from) offer(t, 0);  // p lies on them: every region holds them
+  while (!heap.empty()) {
+    const auto [key, t] = heap.top();
+    heap.pop();
+    if (key > threshold_key_[t]) continue;
+    if (std::find(to.begin(), to.end(), t) != to.end()) return key;
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh_.neighbor(t, e);
+      if (n < 0) continue;
+      const double next = std::max(key, triangle_squared_distance(mesh_, n, p));
+      if (next < cap) offer(n, next);
+    }
+  }
+  return cap;
 }
 
 int DiskIndex::insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region) {

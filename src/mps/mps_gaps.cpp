@@ -12,7 +12,6 @@ namespace lrvd::mps_detail {
 
 namespace {
 
-constexpr int kMaxCarveHalvings = 10;    // carve(): halvings of a piece no refusing sample's chain covers whole
 constexpr int kMaxBisections = 6;        // depth of the halving that tightens a loose piece polygon
 constexpr double kLooseRatio = 0.25;     // halve when the gap is below this fraction of the polygon
 constexpr double kNoiseRatio = 1e-13;    // a gap below this fraction of its polygon is rounding noise
@@ -57,6 +56,8 @@ void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const
   required_pieces_ = 0;
   deferred_.clear();
   deferred_points_.clear();
+  given_up_pieces_.clear();
+  given_up_points_.clear();
   extract_disks_ = disks_.size();
   const SymbolicContext ctx = lrpd.context(diagram_mesh);
   // Room for the pieces' corners at once: on a large mesh, growing into fresh memory step by step
@@ -107,7 +108,9 @@ void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const
     if (covered) {
       add_split(polygon, t, -1);
     } else if (own || !local_ || required_only_) {
+      required_ = true;
       required_pieces_ += add_split(polygon, t, i);
+      required_ = false;
     } else {
       // Local updates, a polygon of a remote ball that does not cover it: as for a remote claim
       // the darts go to the whole polygon minus the disks reaching t, so that this side gets its
@@ -334,6 +337,7 @@ void GapSet::keep(const std::vector<Vec3>& q, int t, int owner, double area) {
   piece.area = area;
   piece.alive = true;
   piece.next_in_triangle = head_[t];
+  piece.required = required_;
   points_.insert(points_.end(), q.begin(), q.end());
   const int index = static_cast<int>(pieces_.size());
   pieces_.push_back(piece);
@@ -354,8 +358,10 @@ void GapSet::split(int index, int sample) {
   // A copy: the new pieces' corners go to the end of points_.
   std::vector<Vec3>& q = split_polygon_;
   q.assign(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
+  const bool required = std::exchange(required_, pc.required);
   if (pc.owner < 0) {
     add_outside(q, pc.triangle, sample);
+    required_ = required;
     return;
   }
   // Power cells of {owner, sample} inside q: a point outside the disk of the cell it lies in is
@@ -368,6 +374,7 @@ void GapSet::split(int index, int sample) {
   add_outside(cell, pc.triangle, pc.owner);
   clip(q, [&](const Vec3& y) { return -h(y); }, cell);
   add_outside(cell, pc.triangle, sample);
+  required_ = required;
 }
 
 void GapSet::kill(int index) {
@@ -419,38 +426,16 @@ void GapSet::rebuild() {
 
 void GapSet::dart_refused(int piece) {
   if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return;
-  if (++pieces_[piece].refused >= kMaxRefusals) {
+  Piece& pc = pieces_[piece];
+  if (++pc.refused >= kMaxRefusals) {
     kill(piece);
     ++given_up_;
-    open_.push_back(pieces_[piece].triangle);
+    open_.push_back(pc.triangle);
+    if (pc.required) {
+      given_up_pieces_.push_back({pc.triangle, pc.owner, pc.halvings, static_cast<int>(given_up_points_.size()), pc.count});
+      given_up_points_.insert(given_up_points_.end(), points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
+    }
   }
-}
-
-bool GapSet::carve(int piece, int sample) {
-  if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return false;
-  const Piece& pc = pieces_[piece];
-  std::vector<int> targets;
-  mesh_.triangles_at(disks_.triangle(sample), disks_.barycentric(sample), targets);
-  if (reach_chain(mesh_, pc.triangle, points_.data() + pc.first, pc.count, disks_.weight(sample), targets)) {
-    ++carved_;
-    split(piece, sample);
-    return true;
-  }
-  if (pc.halvings >= kMaxCarveHalvings || pc.count < 3) return false;
-  // Halved across the longest diagonal: the chain may hold on the half near the sample, and the
-  // part where it does not (a real gap, maybe thin) gets a piece of its own.
-  const std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
-  const int t = pc.triangle, owner = pc.owner, halvings = pc.halvings + 1;
-  kill(piece);
-  const Halving halving = longest_diagonal_halving(q);
-  std::vector<Vec3> half;
-  for (double side : {1.0, -1.0}) {
-    clip(q, [&](const Vec3& y) { return side * halving(y); }, half);
-    const size_t before = pieces_.size();
-    if (half.size() >= 3) add_outside(half, t, owner);
-    for (size_t i = before; i < pieces_.size(); ++i) pieces_[i].halvings = halvings;
-  }
-  return true;
 }
 
 std::vector<int> GapSet::open_triangles() const {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -82,6 +83,12 @@ class DiskIndex {
   //! Whether `target` is in the local region of sample i's ball at weight w, grown from every
   //! triangle the sample lies on (SurfaceMesh::triangles_at).
   bool sample_reaches(int i, double w, int target);
+  //! The weight at which the local region of the ball about p, grown from the triangles `from`
+  //! (those p lies on), starts to reach one of `to`: the least, over chains of edge-adjacent
+  //! triangles from `from` to `to`, of the largest squared distance from p to a triangle of the
+  //! chain (the region at weight w holds the triangles closer than √w, so it reaches `to` iff w is
+  //! above this). `cap` when no chain stays below cap. In doubles: a candidate for an exact test.
+  double reach_threshold(const Vec3& p, const std::vector<int>& from, const std::vector<int>& to, double cap);
 
   //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
   int insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region);
@@ -149,6 +156,7 @@ class DiskIndex {
   std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_, seeds_;
+  std::vector<double> threshold_key_;  // per triangle, reach_threshold(): the best key found (this stamp)
   std::vector<TriangleInfo> triangles_info_;  // per triangle
   std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
@@ -225,17 +233,20 @@ class GapSet {
   //! piece. Returns false when it falls in the owner's disk (so accepted points are uniform over
   //! the gaps).
   bool draw(Random& random, Vec3& point, int& triangle, int& piece);
-  //! The dart drawn in `piece` was refused by the sampler (adaptive radius constraints). A piece
-  //! that refuses many darts is given up until the next LRPD shows it again (counted per extract()).
+  //! The dart drawn in `piece` was refused by the sampler (adaptive radius constraints, or from the
+  //! dart's side where carve() did nothing). A piece that refuses many darts is given up until the
+  //! next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
   //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
   //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
   //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
-  //! a disk reaching its triangle would, and the piece is split by it; else the piece is halved
-  //! (up to 10 times), so that the chains hold on the parts near the dart. Returns whether either
-  //! was done.
-  bool carve(int piece, int sample);
+  //! a disk reaching its triangle would, and the piece is split by it. Else the piece is halved
+  //! across its longest diagonal, then the half holding the dart, and so on until the chain holds
+  //! on the dart's part (it holds at the dart), which is then split by the sample; the other halves
+  //! stay as pieces. A piece's polygon is halved at most kMaxCarveHalvings times in all. Returns
+  //! whether anything was done.
+  bool carve(int piece, int sample, const Vec3& dart);
   int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
   //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
@@ -251,6 +262,16 @@ class GapSet {
   //! only when a round placed no sample), against the disks of extract()'s time, leaving the
   //! pieces as they are.
   int required_pieces();
+  //! candidates(t, q, count, out): every sample whose ball may meet the polygon q[0..count) of
+  //! triangle t along a chain of triangles (certify_required()).
+  using Candidates = std::function<void(int, const Vec3*, int, std::vector<int>&)>;
+  //! The paper's rule, at the end: how many of the required pieces left (alive, or given up since
+  //! extract()) are not shown to lie where a dart is refused from its own side, in the ball of a
+  //! sample whose chain (reach_chain, exact) holds on the whole piece. Each piece is split by the
+  //! ball of such a sample among its candidates, and halved where none holds, up to
+  //! kMaxCertifyHalvings halvings and kCertifyBudget pieces looked at in all. Meant for after an
+  //! extract() with set_required_only() (no deferred pieces); the pieces are used up.
+  int certify_required(const Candidates& candidates);
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -279,8 +300,13 @@ class GapSet {
     double area = 0;           // area of Q: the draw weight
     int next_in_triangle = -1;
     int refused = 0;
-    int halvings = 0;  // carve(): times its polygon was halved for want of a chain
+    int halvings = 0;  // carve(): times its polygon was halved around refused darts
     bool alive = false;
+    bool required = false;  // outside its LRPD cell's ball at extract(), and so the pieces cut from it
+  };
+  //! A copy of a required piece given up (dart_refused()), for certify_required().
+  struct GivenUp {
+    int triangle, owner, halvings, first, count;  // corners in given_up_points_
   };
 
   void clear();
@@ -308,9 +334,15 @@ class GapSet {
   //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
   //! `disk_limit`); returns how many live.
   int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
+  //! add_outside, the new pieces marked as `halvings` times halved (carve()).
+  void add_outside_with_halvings(const std::vector<Vec3>& q, int t, int owner, int halvings);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
+  //! Halves piece `index` across its polygon's longest diagonal (both halves as pieces).
+  void halve(int index);
+  //! reach_chain for the corners of piece `index` and the ball of `sample` to its triangles.
+  bool chain_holds(int index, int sample);
   void fenwick_add(int index, double delta);
   void rebuild();
 
@@ -324,6 +356,9 @@ class GapSet {
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;
   std::vector<Dust> dust_;
+  bool required_ = false;  // given to the pieces keep() makes
+  std::vector<GivenUp> given_up_pieces_;
+  std::vector<Vec3> given_up_points_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
   int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
@@ -342,7 +377,7 @@ class GapSet {
     Vec3 p;
     int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
   };
-  std::vector<int> scratch_pieces_, fresh_;
+  std::vector<int> scratch_pieces_, fresh_, carve_targets_;
   std::vector<double> fan_;
   std::vector<Event> events_;
   std::vector<char> outside_;

@@ -178,6 +178,26 @@ class Sampler {
     return false;
   }
 
+  //! Adaptive, the paper's rule: the largest weight below `hi` that p may take against sample j
+  //! (centred on triangle s, d2 = |p - x_j|² below hi), when the two are local at max(hi, w_j).
+  //! Either they keep apart (below d2), or p's radius stays at or below the one from which they
+  //! are local, whichever allows more: locality only grows with the radius (a region holds the
+  //! triangles closer than it), so below that radius the pair is not local whatever its distance.
+  //! The threshold is computed in doubles (DiskIndex::reach_threshold) and confirmed exactly;
+  //! where it is not, d2. Cutting to d2 alone would leave no radius for spots deep in the ball of
+  //! a sample across a thin sheet whose region reaches them only round the rim at p's radius.
+  double weight_against(const Vec3& p, int j, int s, double d2, double hi) {
+    const double apart = d2 * (1 - 1e-14);
+    const double wj = disks_.weight(j), cap = std::max(hi, wj);
+    targets_.clear();
+    mesh_.triangles_at(disks_.triangle(j), disks_.barycentric(j), targets_);
+    double b = std::min(disks_.reach_threshold(p, seeds_, targets_, cap),
+                        disks_.reach_threshold(disks_.center(j), targets_, seeds_, cap));
+    for (int attempt = 0; attempt < 3 && b > apart; ++attempt, b *= 1 - 1e-12)
+      if (!local_to_dart(p, j, s, std::max(b, wj))) return b;
+    return apart;
+  }
+
   //! Adaptive, the paper's rule, the samples admit() does not see (it scans p's region at
   //! 1.5·r(p)): x_j within max(r_p, r_j) of p whose region reaches p's triangle from its side (an
   //! asymmetric notch) or whose radius is far above p's (across a sheet). Local at r_j and closer
@@ -199,7 +219,7 @@ class Sampler {
           return true;
         }
         if (!(hi > wj) || !local_to_dart(p, j, s, hi)) continue;
-        hi = squared_distance(p, x) * (1 - 1e-14);
+        hi = weight_against(p, j, s, squared_distance(p, x), hi);
         cut = true;
       }
     }
@@ -238,7 +258,7 @@ class Sampler {
           hi = std::min(hi, (d2 + wj) * (1 - 1e-14));  // x_j stays in its own power cell
           lo = std::max(lo, (wj - d2) * (1 + 1e-14));  // and so does p
         }
-        if (inside_disk(x, p, hi) && local_to_dart(p, j, s, std::max(hi, wj))) hi = d2 * (1 - 1e-14);
+        if (inside_disk(x, p, hi) && local_to_dart(p, j, s, std::max(hi, wj))) hi = weight_against(p, j, s, d2, hi);
       });
       if (refused_by_ >= 0) return Admission::Rejected;
     }
@@ -278,7 +298,7 @@ class Sampler {
   std::vector<double> vertex_radius_;
   std::vector<int> seeds_;  // the triangles the dart of try_insert() lies on, t first
   DiskIndex disks_;
-  std::vector<int> region_, met_, near_, j_triangles_;
+  std::vector<int> region_, met_, near_, j_triangles_, targets_;
   CentreGrid grid_;  // adaptive, the paper's rule: every centre, in cells of the largest radius
   double max_weight_;  // the largest weight of the radius field
   int clamped_ = 0, power_cell_exceptions_ = 0, refused_by_ = -1;
