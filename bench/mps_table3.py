@@ -90,8 +90,8 @@ def main():
     parser.add_argument("--models", default="", help="comma-separated subset of the models")
     parser.add_argument("--shared", default="/work/shared/data/meshes", help="folder of the paper's models")
     parser.add_argument("--cgal", default="build/cgal-data", help="folder of CGAL's extracted meshes")
-    parser.add_argument("--conflict", default="facing", choices=["facing", "reach"],
-                        help="lrvd mps --conflict: facing (the default) or reach (the paper's rule)")
+    parser.add_argument("--conflict", default="reach", choices=["reach", "close-across-turns"],
+                        help="lrvd mps --conflict: reach (the paper's rule, the default) or close-across-turns")
     parser.add_argument("--out", default="", help="markdown file (default: standard output)")
     parser.add_argument("--json", default="", help="also write every run as JSON")
     args = parser.parse_args()

@@ -249,7 +249,7 @@ std::vector<std::pair<int, int>> close_pairs(const Samples& s) {
 // The minimum distance. Samples i and j are local to each other when the local region of one's
 // ball of radius ρ = max(r_i, r_j) reaches a triangle of the other (the paper's rule: a dart
 // conflicts with the disks its region reaches, and with the disks that reach it); local samples
-// closer than ρ violate the property. With the facing cut (MpsConflict::Facing) the regions stop
+// closer than ρ violate the property. With the facing cut (MpsConflict::CloseAcrossTurns) the regions stop
 // where the surface turns by 90° or more and each must reach the other's triangle; the close
 // pairs the paper's rule calls local and the cut lets through are counted. A sample exactly on an
 // edge or corner lies on every triangle there (LocalRegions::seeds): any of them counts as its
@@ -487,7 +487,7 @@ nlohmann::json MpsVerification::to_json() const {
           {"min_distance_ratio", min_distance_ratio},
           {"close_pairs_not_local", close_pairs_not_local},
           {"one_sided_close_pairs", one_sided_close_pairs},
-          {"conflict", facing_cut ? "facing" : "reach"},
+          {"conflict", facing_cut ? "close-across-turns" : "reach"},
           {"close_pairs_local_past_facing_cut", facing_cut ? nlohmann::json(close_pairs_local_past_facing_cut) : nlohmann::json(nullptr)},
           {"exact_vertex_tests", exact_vertex_tests},
           {"polygons_outside_own_ball", polygons_outside_own_ball},

@@ -20,17 +20,17 @@ struct MpsVerifyOptions {
   //! Decide every polygon vertex of the maximality check with rational arithmetic; otherwise only
   //! those whose power distance's sign the interval enclosure of their position leaves open.
   bool exact_maximality = false;
-  //! Judge by the facing cut (MpsConflict::Facing, the sampler's default: regions stop where the
-  //! surface turns by 90° or more, and both samples must reach each other); false: by the paper's
-  //! rule (MpsConflict::Reach).
-  bool facing_cut = true;
+  //! Judge by the facing cut (MpsConflict::CloseAcrossTurns: regions stop where the surface turns
+  //! by 90° or more, and both samples must reach each other); false (the default): by the paper's
+  //! rule (MpsConflict::Reach, the sampler's default).
+  bool facing_cut = false;
 };
 
 struct MpsVerification {
   bool passed = true;  //!< min_distance, maximal and diagram_covers all hold
   double time_s = 0;  //!< the whole call: with the overload that computes the LRPD, that LRPD too
   //! Local samples are at least ρ = max(r_i, r_j) apart (exact). Samples i and j are local to each
-  //! other when, with MpsVerifyOptions::facing_cut (the default), each one's triangle lies in the
+  //! other when, with MpsVerifyOptions::facing_cut, each one's triangle lies in the
   //! local region of the other's ball of radius ρ: the triangles the ball meets that face like the
   //! centre's triangle (normals at less than 90°), edge-connected to it through such triangles.
   //! Without it (the paper's rule): the local region of one's ball holds a triangle of the other,

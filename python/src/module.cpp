@@ -305,7 +305,7 @@ PYBIND11_MODULE(lrvd, m) {
         py::arg("max_radius_ratio") = py::none(), py::arg("seed") = 1, py::arg("gap_update") = "local",
         py::arg("split_to") = "field", py::arg("split_factor") = py::none(), py::arg("features") = false,
         py::arg("feature_angle") = py::none(), py::arg("exact") = false, py::arg("lrrt") = false,
-        py::arg("threads") = py::none(), py::arg("conflict") = "facing",
+        py::arg("threads") = py::none(), py::arg("conflict") = "reach",
         "Maximal Poisson-disk sampling: (points, report), with lrrt=True (points, report, V2, F2)");
   m.def("quality", &quality, py::arg("V_ref"), py::arg("F_ref"), py::arg("V"), py::arg("F"),
         py::arg("threads") = py::none(), "Quality and validity of (V, F) against the reference: the report dict");

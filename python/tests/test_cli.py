@@ -86,8 +86,10 @@ def test_mps_maximal_on_a_stress_mesh(cli, tmp_path):
     points, report = lrvd.mps(V, F, 0.05)
     assert report["maximal"] and report["min_distance_ok"] and report["mps_verification"]["passed"]
     assert points.shape == (report["samples"], 3)
-    assert report["conflict"]["rule"] == "facing" and report["mps_verification"]["conflict"] == "facing"
-    with pytest.raises(ValueError, match="--conflict is reach or facing"):
+    assert report["conflict"]["rule"] == "reach" and report["mps_verification"]["conflict"] == "reach"
+    _, cut = lrvd.mps(V, F, 0.05, conflict="close-across-turns")
+    assert cut["conflict"]["rule"] == "close-across-turns" and cut["conflict"]["close_pairs_let_through"] >= 0
+    with pytest.raises(ValueError, match="--conflict is reach or close-across-turns"):
         lrvd.mps(V, F, 0.05, conflict="paper")
     lrvd.write_mesh(str(tmp_path / "s.off"), V, F)
     cli("mps", tmp_path / "s.off", "--radius", 0.05, "-o", tmp_path / "s.xyz", "--report", tmp_path / "m.json")

@@ -77,7 +77,7 @@ int run_mps_command(const MpsCommandOptions& opt) {
               ratio.c_str());
   // Closer pairs the disk condition does not cover (docs/algorithms/mps.md, "Conflict rule"): said, not hidden.
   if (check.facing_cut)
-    std::printf("  conflict rule: facing cut (--conflict facing): %s of samples closer than their radius that the "
+    std::printf("  conflict rule: --conflict close-across-turns: %s of samples closer than their radius that the "
                 "paper's rule calls local %s let through\n",
                 counted(check.close_pairs_local_past_facing_cut, "pair", "pairs").c_str(),
                 check.close_pairs_local_past_facing_cut == 1 ? "is" : "are");
@@ -119,11 +119,11 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::IsMember({"local", "lrpd"}))
       ->capture_default_str();
   cmd->add_option("--conflict", opt->settings.conflict,
-                  "facing: regions stop where the surface turns by 90 degrees or more, letting samples sit closer "
-                  "than r across sharp edges and rims (default); reach: samples whose balls' regions (grown over "
-                  "every edge-adjacent triangle the ball meets) reach each other keep r apart (the paper's rule; "
-                  "on sheets thinner than r and thin boxes it may end not maximal)")
-      ->check(CLI::IsMember({"reach", "facing"}))
+                  "reach (default, the paper's rule): samples whose balls' regions (grown over every "
+                  "edge-adjacent triangle the ball meets) reach each other keep r apart; close-across-turns: "
+                  "regions stop where the surface turns by 90 degrees or more, so samples may sit closer than r "
+                  "across sharp edges and round thin rims (how many pairs is said; 'facing' is the old spelling)")
+      ->check(CLI::IsMember({"reach", "close-across-turns", "facing"}))
       ->capture_default_str();
   cmd->add_option("--split-to", opt->settings.split_to,
                   "Split edges longer than --split-factor times the radius at their ends (field, default) or "

@@ -187,7 +187,7 @@ class PoissonDiskSampling {
     if (options_.adaptive) vertex_radius = adaptive_radius_field(input_, r_min_, options_);
     refine(vertex_radius);
     result_.max_radius = options_.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min_;
-    sampler_.emplace(result_.mesh, r_min_, std::move(vertex_radius), options_.conflict == MpsConflict::Facing);
+    sampler_.emplace(result_.mesh, r_min_, std::move(vertex_radius), options_.conflict == MpsConflict::CloseAcrossTurns);
     by_area_.emplace(sampler_->disks().triangle_areas());
     result_.time_s.init = seconds_since(start_);
   }
@@ -282,6 +282,7 @@ class PoissonDiskSampling {
     result_.dropped_gap_pieces = gaps_->dropped();
     result_.carved_gap_pieces = gaps_->carved();
     result_.clamped_radii = sampler_->clamped();
+    result_.radii_below_reach = sampler_->below_reach();
     result_.power_cell_exceptions = sampler_->power_cell_exceptions();
     result_.samples = sampler_->disks().samples();
     result_.radii.resize(result_.samples.size());
@@ -438,10 +439,14 @@ class PoissonDiskSampling {
     // By the paper's rule the pieces left may lie where a dart is refused from its own side only,
     // closer than r to a sample whose ball reaches round a rim or fold: certified against the
     // samples that refused their darts.
-    result_.gaps_closed =
-        gaps.required_pieces() == 0 || (reach && gaps.certify_required([&](int t, const Vec3* q, int count, std::vector<int>& out) {
-          samples_around(t, q, count, out);
-        }) == 0);
+    if (gaps.required_pieces() == 0) {
+      result_.gaps_closed = true;
+    } else if (reach) {
+      const int left = gaps.certify_required(
+          [&](int t, const Vec3* q, int count, std::vector<int>& out) { samples_around(t, q, count, out); });
+      result_.gaps_closed = left == 0;
+      result_.certified_gap_pieces = gaps.certified();
+    }
     return true;
   }
 

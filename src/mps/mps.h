@@ -29,9 +29,9 @@ enum class MpsRefinement {
 
 //! Which samples must keep their distance (docs/algorithms/mps.md, "Conflict rule").
 enum class MpsConflict {
-  Facing,  //!< regions stop where the surface turns by 90° or more: lets samples sit closer than r across sharp edges
-  Reach    //!< the paper's (§4.2): the ball's region grows over every edge-adjacent triangle it meets; on sheets
-           //!< thinner than r and thin boxes the sampling may end not maximal (docs/algorithms/mps.md)
+  Reach,            //!< the paper's (§4.2): the ball's region grows over every edge-adjacent triangle it meets
+  CloseAcrossTurns  //!< regions stop where the surface turns by 90° or more (the facing cut): samples may sit
+                    //!< closer than r across sharp edges and round the rims of sheets thinner than r
 };
 
 //! The largest MpsOptions::radius taken (relative: one disk of it covers any sheet many times over).
@@ -47,7 +47,7 @@ struct MpsOptions {
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
   MpsRefinement refinement = MpsRefinement::RadiusField;
-  MpsConflict conflict = MpsConflict::Facing;
+  MpsConflict conflict = MpsConflict::Reach;
   //! RadiusField: edges are split until no longer than this times the radius at their ends. At 2,
   //! a uniform sample has about 2.5 triangles instead of 9-10 at 1, and the sampler takes about
   //! half the time (0.42-0.77 of it on the Table 3 models); nothing needs a triangle smaller than a disk.
@@ -94,8 +94,14 @@ struct MpsResult {
   //! Gap pieces split by a sample whose centre their darts' regions reach (the paper's rule read
   //! from the dart's side), as by a disk reaching them.
   int carved_gap_pieces = 0;
+  //! Required gap pieces left at the end that lie where a dart is refused from its own side (the
+  //! paper's rule: within r_s of a sample s whose ball reaches s's triangle round a rim or fold).
+  int certified_gap_pieces = 0;
   int dust_samples = 0;           //!< of gap_samples: placed at a dropped piece's corner that was uncovered after all
   int clamped_radii = 0;          //!< adaptive: samples whose radius was cut to the distance of an earlier sample
+  //! Adaptive, the paper's rule: of clamped_radii, samples whose radius was cut to below the one at
+  //! which a closer sample (across a thin sheet) becomes local to them, not to its distance.
+  int radii_below_reach = 0;
   int power_cell_exceptions = 0;  //!< adaptive: samples that keep the power-cell condition only against the
                                   //!< samples facing like them, or if that fails too, only against those local
                                   //!< to them (none met it against all; docs/algorithms/mps.md)

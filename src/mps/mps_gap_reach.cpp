@@ -113,6 +113,7 @@ int GapSet::certify_required(const Candidates& candidates) {
     work.push_back({static_cast<int>(k), {}});
     candidates(pc.triangle, points_.data() + pc.first, pc.count, work.back().around);
   }
+  const int given = static_cast<int>(work.size());
   int budget = kCertifyBudget, left = 0;
   while (!work.empty()) {
     Work item = std::move(work.back());
@@ -146,6 +147,7 @@ int GapSet::certify_required(const Candidates& candidates) {
     for (size_t i = first; i < pieces_.size(); ++i)
       if (pieces_[i].alive) work.push_back({static_cast<int>(i), item.around});
   }
+  certified_ = left == 0 ? given : 0;
   return left;
 }
 

@@ -40,16 +40,16 @@ inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
 //! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
 //! ball B(x, r) around a point of triangle t: the triangles that the ball meets, edge-connected to
 //! t through such triangles — the paper's region growing ("until the disk does not intersect with
-//! a neighboring triangle"). With the facing cut (MpsConflict::Facing) only triangles facing the
+//! a neighboring triangle"). With the facing cut (MpsConflict::CloseAcrossTurns) only triangles facing the
 //! same way as t (normals at less than 90°) count. The disk of sample i is B(x_i, r_i) on the
 //! triangles of its local region.
 //! Each triangle lists the disks that cover it fully and those that reach it only partly, and the
 //! sample centres it holds.
 class DiskIndex {
  public:
-  //! facing_cut: regions grow only through triangles facing like the centre's (MpsConflict::Facing).
+  //! facing_cut: regions grow only through triangles facing like the centre's (MpsConflict::CloseAcrossTurns).
   explicit DiskIndex(const SurfaceMesh& mesh, bool facing_cut = false);
-  //! Regions stop where the surface turns by 90° or more (MpsConflict::Facing).
+  //! Regions stop where the surface turns by 90° or more (MpsConflict::CloseAcrossTurns).
   bool facing_cut() const { return facing_cut_; }
 
   int size() const { return static_cast<int>(disk_records_.size()); }
@@ -272,6 +272,8 @@ class GapSet {
   //! kMaxCertifyHalvings halvings and kCertifyBudget pieces looked at in all. Meant for after an
   //! extract() with set_required_only() (no deferred pieces); the pieces are used up.
   int certify_required(const Candidates& candidates);
+  //! The required pieces certify_required() was given, when it showed them all covered; else 0.
+  int certified() const { return certified_; }
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -360,7 +362,7 @@ class GapSet {
   std::vector<GivenUp> given_up_pieces_;
   std::vector<Vec3> given_up_points_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
-  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0, certified_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
   // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.

@@ -68,6 +68,7 @@ class Sampler {
   DiskIndex& disks() { return disks_; }
   const std::vector<int>& last_region() const { return region_; }
   int clamped() const { return clamped_; }
+  int below_reach() const { return below_reach_; }
   int power_cell_exceptions() const { return power_cell_exceptions_; }
   //! The sample that refused the last dart though the dart lay in no disk reaching its triangle
   //! (its centre lies in the dart's region, closer than its radius: the paper's rule read from the
@@ -113,6 +114,7 @@ class Sampler {
     // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets
     // (edge-connected to t, so to every triangle p lies on).
     met_ = disks_.met(p, t, kScan * kScan * w);
+    cut_below_reach_ = false;
     double hi = 0;
     const Admission admitted = admit(p, w, Against::All, hi);
     if (admitted == Admission::Rejected) return false;
@@ -124,6 +126,7 @@ class Sampler {
     }
     if (refused_by_others(p, hi)) return false;
     if (hi < w) ++clamped_;
+    below_reach_ += cut_below_reach_;
     region_of(p, hi);
     grid_.insert(p, disks_.insert(p, t, bary, hi, region_));
     return true;
@@ -194,7 +197,10 @@ class Sampler {
     double b = std::min(disks_.reach_threshold(p, seeds_, targets_, cap),
                         disks_.reach_threshold(disks_.center(j), targets_, seeds_, cap));
     for (int attempt = 0; attempt < 3 && b > apart; ++attempt, b *= 1 - 1e-12)
-      if (!local_to_dart(p, j, s, std::max(b, wj))) return b;
+      if (!local_to_dart(p, j, s, std::max(b, wj))) {
+        cut_below_reach_ = true;
+        return b;
+      }
     return apart;
   }
 
@@ -301,8 +307,8 @@ class Sampler {
   std::vector<int> region_, met_, near_, j_triangles_, targets_;
   CentreGrid grid_;  // adaptive, the paper's rule: every centre, in cells of the largest radius
   double max_weight_;  // the largest weight of the radius field
-  int clamped_ = 0, power_cell_exceptions_ = 0, refused_by_ = -1;
-  bool allow_exceptions_ = false;
+  int clamped_ = 0, power_cell_exceptions_ = 0, refused_by_ = -1, below_reach_ = 0;
+  bool allow_exceptions_ = false, cut_below_reach_ = false;
 };
 
 }  // namespace lrvd::mps_detail

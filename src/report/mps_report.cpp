@@ -38,8 +38,8 @@ void check_mps_settings(const MpsSettings& settings) {
   range(settings.feature_angle, "--feature-angle", 1, 179);
   if (settings.gap_update != "local" && settings.gap_update != "lrpd")
     throw InputError(fmt::format("--gap-update is local or lrpd, not '{}'", settings.gap_update));
-  if (settings.conflict != "reach" && settings.conflict != "facing")
-    throw InputError(fmt::format("--conflict is reach or facing, not '{}'", settings.conflict));
+  if (settings.conflict != "reach" && settings.conflict != "close-across-turns" && settings.conflict != "facing")
+    throw InputError(fmt::format("--conflict is reach or close-across-turns, not '{}'", settings.conflict));
   if (settings.split_to != "field" && settings.split_to != "rmin")
     throw InputError(fmt::format("--split-to is field or rmin, not '{}'", settings.split_to));
 }
@@ -54,7 +54,7 @@ MpsOptions mps_options(const MpsSettings& settings, const ProgressFn& on_progres
   options.max_radius_ratio = settings.max_radius_ratio;
   options.seed = settings.seed;
   options.gap_update = settings.gap_update == "lrpd" ? MpsGapUpdate::Lrpd : MpsGapUpdate::Local;
-  options.conflict = settings.conflict == "facing" ? MpsConflict::Facing : MpsConflict::Reach;
+  options.conflict = settings.conflict == "reach" ? MpsConflict::Reach : MpsConflict::CloseAcrossTurns;
   options.refinement = settings.split_to == "rmin" ? MpsRefinement::MinRadius : MpsRefinement::RadiusField;
   if (settings.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
@@ -97,8 +97,9 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
   report["seed"] = settings.seed;
   report["gap_update"] = settings.gap_update;
   // The facing cut gives up the paper's rule: how many close pairs that let through is said.
-  report["conflict"] = {{"rule", settings.conflict},
-                        {"close_pairs_let_through", options.conflict == MpsConflict::Facing
+  const bool across_turns = options.conflict == MpsConflict::CloseAcrossTurns;
+  report["conflict"] = {{"rule", across_turns ? "close-across-turns" : "reach"},
+                        {"close_pairs_let_through", across_turns
                                                         ? nlohmann::json(check.close_pairs_local_past_facing_cut)
                                                         : nlohmann::json(nullptr)}};
   report["samples"] = samples.size();
@@ -113,7 +114,9 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
   report["dropped_gap_pieces"] = result.dropped_gap_pieces;
   report["dust_samples"] = result.dust_samples;
   report["carved_gap_pieces"] = result.carved_gap_pieces;
+  report["certified_gap_pieces"] = result.certified_gap_pieces;
   report["clamped_radii"] = result.clamped_radii;
+  report["radii_below_reach"] = result.radii_below_reach;
   report["power_cell_exceptions"] = result.power_cell_exceptions;
   report["gaps_closed"] = result.gaps_closed;
   report["maximal"] = maximal;
@@ -156,7 +159,7 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
   MpsVerifyOptions verify_options;
   verify_options.exact_maximality = settings.exact;
-  verify_options.facing_cut = options.conflict == MpsConflict::Facing;
+  verify_options.facing_cut = options.conflict == MpsConflict::CloseAcrossTurns;
   Diagram lrpd;
   run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
   const MpsVerification& check = run.check;

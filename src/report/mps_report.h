@@ -24,7 +24,7 @@ struct MpsSettings {
   std::uint64_t seed = 1;
   std::string gap_update = "local";  //!< local | lrpd
   std::string split_to = "field";    //!< field | rmin
-  std::string conflict = "facing";   //!< facing (MpsConflict::Facing) | reach (the paper's rule)
+  std::string conflict = "reach";    //!< reach (the paper's rule) | close-across-turns (MpsConflict::CloseAcrossTurns; "facing" too)
   double split_factor = MpsOptions{}.split_factor;
   bool split_factor_given = false;
   bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
