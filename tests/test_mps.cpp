@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <tuple>
@@ -894,6 +895,47 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor b
     for (Vec3& p : scaled) p = s * p;
     CHECK_THROWS_AS(maximal_poisson_disk_sampling(SurfaceMesh(scaled, sphere.triangles()), options), InputError);
   }
+}
+
+TEST_CASE("lrvd mps says in one line and in its report when its samples give no valid LRRT, and exits 3",
+          "[mps][cli]") {
+  // A closed box 1 x 1 x 0.01 at R = 0.05 without features: both sides of its sheet are sampled,
+  // and the LRRT of some samplings has duplicate triangles there (docs/algorithms/mps.md, "Known
+  // limits"). Every run exits 0 exactly when its LRRT passes the checks.
+  const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_lrrt_";
+  const std::string mesh = dir + "box.off";
+  const SurfaceMesh box = thin_box(0.01);
+  write_mesh(mesh, box.positions(), box.triangles());
+  int refused = 0;
+  for (int seed = 1; seed <= 5; ++seed) {
+    INFO("seed " << seed);
+    const std::string report = dir + "report.json", console = dir + "console.txt";
+    std::remove(report.c_str());
+    const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + mesh + " --radius 0.05 --seed " +
+                                 std::to_string(seed) + " -o " + dir + "s.xyz --remesh " + dir + "lrrt.off --report " +
+                                 report + " > " + console + " 2>&1")
+                                    .c_str());
+    REQUIRE(WIFEXITED(raw));
+    std::ifstream in(report);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    REQUIRE(j["maximal"].get<bool>());
+    const bool valid = j["verification"]["passed"].get<bool>();
+    CHECK(j["remesh"]["valid"].get<bool>() == valid);
+    CHECK(WEXITSTATUS(raw) == (valid ? 0 : 3));
+    std::ifstream said(console);
+    const std::string text((std::istreambuf_iterator<char>(said)), std::istreambuf_iterator<char>());
+    const std::string line = "no valid LRRT from these samples at --radius 0.05 (seed " + std::to_string(seed) + "): its dual fails ";
+    if (valid) {
+      CHECK(j["remesh"]["refusal"].is_null());
+      CHECK(text.find("no valid LRRT") == std::string::npos);
+      continue;
+    }
+    ++refused;
+    const std::string refusal = j["remesh"]["refusal"].get<std::string>();
+    CHECK(refusal.rfind(line, 0) == 0);
+    CHECK(text.find(refusal + "\n") != std::string::npos);  // the same line on the console
+  }
+  CHECK(refused > 0);  // the case this is about: if no seed shows it, pick others
 }
 
 TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {

@@ -57,6 +57,7 @@ int run_mps_command(const MpsCommandOptions& opt) {
                 counted(dual.triangles.size(), "triangle", "triangles").c_str(), opt.remesh.c_str(),
                 remesh_ok ? "passed" : "FAILED");
     if (!remesh_ok) std::fputs(run.remesh_check.summary().c_str(), stdout);
+    if (!remesh_ok) std::printf("%s\n", run.lrrt_refusal.c_str());
     print_quality(run.measurable ? &run.quality : nullptr, true);
   }
   report["predicates"] = predicates_json();

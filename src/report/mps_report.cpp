@@ -46,6 +46,25 @@ void check_mps_settings(const MpsSettings& settings) {
 
 namespace {
 
+// "" for an LRRT that passed its checks; else one line: these samples give no valid LRRT at this
+// radius, with the properties it fails. MPS cannot move its samples to mend the dual as the CVT
+// remesh does (docs/algorithms/mps.md, "Known limits"); another seed, another radius or --features
+// is a new sampling.
+std::string lrrt_refusal(const RemeshVerification& check, const MpsSettings& settings) {
+  if (check.passed) return "";
+  std::string failed;
+  const std::pair<const char*, const PropertyResult*> properties[] = {
+      {"vertex_count", &check.vertex_count}, {"manifold", &check.manifold},
+      {"closed", &check.closed},             {"oriented", &check.oriented},
+      {"topology", &check.topology},         {"non_degenerate", &check.non_degenerate},
+      {"no_self_intersection", &check.no_self_intersection}};
+  for (const auto& [name, property] : properties)
+    if (property->promised && !property->passed) failed += (failed.empty() ? "" : ", ") + std::string(name);
+  return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}): its dual fails {}; written for "
+                     "inspection, exit status 3 (another seed, radius or --features samples anew)",
+                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, failed);
+}
+
 // The sampler's options, as the settings name them. \throw InputError on options that do not go together.
 MpsOptions mps_options(const MpsSettings& settings, const ProgressFn& on_progress) {
   MpsOptions options;
@@ -182,7 +201,12 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
     if (run.measurable) run.quality = quality_metrics(input, dual.positions, dual.triangles);
     report["quality"] = run.measurable ? remesh_quality_json(run.quality, run.remesh_check) : nlohmann::json(nullptr);
     report["verification"] = run.remesh_check.to_json();
-    report["remesh"] = {{"path", remesh_path}, {"vertices", dual.positions.size()}, {"triangles", dual.triangles.size()}};
+    run.lrrt_refusal = lrrt_refusal(run.remesh_check, settings);
+    report["remesh"] = {{"path", remesh_path},
+                        {"vertices", dual.positions.size()},
+                        {"triangles", dual.triangles.size()},
+                        {"valid", run.remesh_check.passed},
+                        {"refusal", run.lrrt_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.lrrt_refusal)}};
   }
   return run;
 }

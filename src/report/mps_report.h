@@ -50,6 +50,9 @@ struct MpsRun {
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
   RemeshVerification remesh_check;
+  //! The LRRT failed its checks: one line saying that these samples give no valid LRRT at this
+  //! radius and which properties fail; empty when it passed.
+  std::string lrrt_refusal;
   bool measurable = false;  //!< the LRRT has triangles
   QualityMetrics quality;
   nlohmann::json report;  //!< complete but for `predicates`, taken when the caller is done
