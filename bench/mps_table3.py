@@ -10,6 +10,14 @@ least sampler total (`time_s.total`: init, dart throwing and gap filling; the ch
 are not in it). Every run must be maximal with the minimum distance; a run that is not, or that
 fails, is listed and makes the exit status 1.
 
+With --compare, several variants (a binary and a conflict rule each) run every case in turn, one
+fresh process after the other, and the table sets them side by side: the sampler's CPU seconds per
+50k samples (`time_s.cpu_total`; of a build without it, its wall time) and the whole process's CPU
+seconds (user + sys, the checks included), min / median / max over the runs, e.g. one build
+against another:
+
+    bench/mps_table3.py --runs 3 --compare "main reach=BASE/lrvd:reach,reach=build/lrvd:reach,close-across-turns=build/lrvd:close-across-turns"
+
     bench/mps_table3.py --lrvd build/lrvd --runs 3 --out /tmp/table3.md
     bench/mps_table3.py --lrvd build/lrvd --runs 5 --seeds 1,2,3 --modes adaptive --models dragon_100k
 
@@ -66,7 +74,8 @@ def find_meshes(args):
 
 
 def run(binary, path, mode, seed, conflict, workdir):
-    """One fresh `lrvd mps` process; its report, or an error message."""
+    """One fresh `lrvd mps` process; its report (with the process's CPU seconds as "cpu_s"), or an
+    error message."""
     report = os.path.join(workdir, "report.json")
     if os.path.exists(report):
         os.remove(report)
@@ -74,11 +83,61 @@ def run(binary, path, mode, seed, conflict, workdir):
                "-o", os.path.join(workdir, "samples.xyz"), "--report", report, "--conflict", conflict]
     if mode == "adaptive":
         command.append("--adaptive")
-    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if done.returncode != 0 or not os.path.exists(report):
-        return None, f"exit {done.returncode}: {done.stderr.strip().splitlines()[-1] if done.stderr.strip() else ''}"
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    stderr = process.stderr.read()
+    _, status, usage = os.wait4(process.pid, 0)
+    process.returncode = os.waitstatus_to_exitcode(status)
+    if process.returncode != 0 or not os.path.exists(report):
+        return None, f"exit {process.returncode}: {stderr.strip().splitlines()[-1] if stderr.strip() else ''}"
     with open(report) as f:
-        return json.load(f), None
+        result = json.load(f)
+    result["cpu_s"] = usage.ru_utime + usage.ru_stime
+    return result, None
+
+
+def parse_variants(text):
+    """[(label, binary, rule)] from "LABEL=BINARY:RULE,..."."""
+    variants = []
+    for item in text.split(","):
+        label, _, rest = item.partition("=")
+        binary, _, rule = rest.rpartition(":")
+        if not (label and binary and rule):
+            sys.exit(f"mps_table3: --compare takes LABEL=BINARY:RULE items, not '{item}'")
+        if not (os.path.isfile(binary) and os.access(binary, os.X_OK)):
+            sys.exit(f"mps_table3: {binary} is not an executable")
+        variants.append((label, binary, rule))
+    return variants
+
+
+def comparison(cases, variants, runs, failures, args):
+    """The markdown table of --compare: each case, each variant side by side."""
+    def spread(values):
+        return f"{min(values):.2f} / **{statistics.median(values):.2f}** / {max(values):.2f}"
+    head = "| model | radius | " + " | ".join(f"{label}: samples | CPU s per 50k | process CPU s" for label, _, _ in variants)
+    lines = [
+        f"`bench/mps_table3.py --runs {args.runs} --compare \"{args.compare}\"`: fresh `lrvd mps --threads 1` "
+        "processes, the variants in turn for every run; the sampler's CPU seconds (`time_s.cpu_total`) per 50k "
+        "samples and the whole process's CPU seconds (user + sys, the checks included), min / **median** / max "
+        "over the runs.",
+        "",
+        head + " |",
+        "|---|---|" + "---:|---:|---:|" * len(variants),
+    ]
+    for name, _, mode, seed in cases:
+        cells = []
+        for label, _, _ in variants:
+            reports = runs[(label, name, mode, seed)]
+            if not reports:
+                cells += ["failed", "", ""]
+                continue
+            ok = all(r["maximal"] and r["min_distance_ok"] for r in reports)
+            cells += [f"{reports[0]['samples']}{'' if ok else ' (NOT maximal)'}",
+                      spread([r["time_s"].get("cpu_total", r["time_s"]["total"]) / r["samples"] * 50000 for r in reports]),
+                      spread([r["cpu_s"] for r in reports])]
+        lines.append(f"| {name} | {mode} {RADIUS[mode]} | " + " | ".join(cells) + " |")
+    if failures:
+        lines += ["", "Failures:", ""] + [f"- {f}" for f in failures]
+    return "\n".join(lines) + "\n"
 
 
 def main():
@@ -92,6 +151,8 @@ def main():
     parser.add_argument("--cgal", default="build/cgal-data", help="folder of CGAL's extracted meshes")
     parser.add_argument("--conflict", default="reach", choices=["reach", "close-across-turns"],
                         help="lrvd mps --conflict: reach (the paper's rule, the default) or close-across-turns")
+    parser.add_argument("--compare", default="",
+                        help="LABEL=BINARY:RULE,...: run each variant in turn and set them side by side")
     parser.add_argument("--out", default="", help="markdown file (default: standard output)")
     parser.add_argument("--json", default="", help="also write every run as JSON")
     args = parser.parse_args()
@@ -105,6 +166,29 @@ def main():
     seeds = [int(s) for s in args.seeds.split(",")]
     meshes = find_meshes(args)
     cases = [(name, path, mode, seed) for mode in modes for seed in seeds for name, path in meshes]
+
+    if args.compare:
+        variants = parse_variants(args.compare)
+        runs = {(label,) + case[:1] + case[2:]: [] for label, _, _ in variants for case in cases}
+        failures = []
+        with tempfile.TemporaryDirectory() as workdir:
+            for k in range(args.runs):
+                for name, path, mode, seed in cases:
+                    for label, binary, rule in variants:  # alternated: drift hits them all
+                        report, error = run(binary, path, mode, seed, rule, workdir)
+                        if error or not (report["maximal"] and report["min_distance_ok"]):
+                            failures.append(f"{label}, {name} {mode} seed {seed}: {error or 'not maximal or too close'}")
+                        if report:
+                            runs[(label, name, mode, seed)].append(report)
+                            print(f"run {k + 1}/{args.runs}: {label}, {name} {mode} seed {seed}: {report['samples']} "
+                                  f"samples, {report['time_s']['total']:.3f} s, CPU {report['cpu_s']:.2f} s", file=sys.stderr)
+        text = comparison(cases, variants, runs, failures, args)
+        if args.out:
+            with open(args.out, "w") as f:
+                f.write(text)
+        else:
+            sys.stdout.write(text)
+        return 1 if failures else 0
 
     runs = {case[:1] + case[2:]: [] for case in cases}  # (name, mode, seed) -> reports
     failures = []

@@ -160,6 +160,7 @@ class PoissonDiskSampling {
 
   MpsResult run() {
     start_ = Clock::now();
+    cpu_start_ = process_cpu_seconds();
     initialise();
     throw_darts();
     fill_gaps();
@@ -289,6 +290,7 @@ class PoissonDiskSampling {
     for (int i = 0; i < result_.samples.size(); ++i) result_.radii[i] = std::sqrt(result_.samples.weights[i]);
     result_.time_s.gap_filling = seconds_since(gap_start);
     result_.time_s.total = seconds_since(start_);
+    result_.time_s.cpu_total = process_cpu_seconds() - cpu_start_;
   }
 
   //! One round: an LRPD (unless the last round's still holds), its gap pieces, darts into them and
@@ -470,6 +472,7 @@ class PoissonDiskSampling {
   const MpsOptions& options_;
   const bool local_;  // MpsGapUpdate::Local
   Clock::time_point start_;
+  double cpu_start_ = 0;
   MpsResult result_;
   double r_min_ = 0, expected_ = 0;  // absolute r_min, and the samples it is expected to take
   std::optional<Sampler> sampler_;   // on result_.mesh

@@ -74,6 +74,7 @@ struct MpsTimings {
   double dart_throwing = 0;  //!< the initial dart throwing
   double gap_filling = 0;    //!< LRPD gap detection and darts into the gaps
   double total = 0;
+  double cpu_total = 0;      //!< CPU seconds of the whole sampling, all threads (the process's clock)
 };
 
 struct MpsResult {

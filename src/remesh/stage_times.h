@@ -2,16 +2,9 @@
 // remesh driver (remesh/remesh.h), each second charged to the innermost stage running.
 #pragma once
 
-#include <ctime>
+#include "common/timing.h"
 
 namespace lrvd {
-
-//! CPU seconds of the process (all threads), for stage timings.
-inline double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 //! CPU seconds (process, all threads) of remesh_cvt by stage; a second is charged to one stage only.
 struct RemeshStageTimes {

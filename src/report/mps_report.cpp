@@ -145,6 +145,7 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
                       {"dart_throwing", result.time_s.dart_throwing},
                       {"gap_filling", result.time_s.gap_filling},
                       {"total", result.time_s.total},
+                      {"cpu_total", result.time_s.cpu_total},
                       {"verification_lrpd", lrpd.stats.time_s},
                       {"verification", check.time_s}};
   report["output"] = output_path;
