@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -24,10 +25,21 @@ Sign sign_of(const Q& x) { return static_cast<Sign>(static_cast<int>(CGAL::sign(
 
 const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
 
-ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx) {
+RationalPoint& RationalStore::entry(const SymbolicVertex& q) const {
+  if (auto it = map_.find(q); it != map_.end()) return it->second;
+  return map_.emplace(std::piecewise_construct, std::forward_as_tuple(q), std::forward_as_tuple()).first->second;
+}
+
+const RationalPoint* RationalStore::find(const SymbolicVertex& q) const {
+  const auto it = map_.find(q);
+  return it == map_.end() ? nullptr : &it->second;
+}
+
+ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store) {
   ExactVertex e;
   e.q_ = q;
   e.ctx_ = &ctx;
+  e.store_ = store;
   if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
     e.box = enclosure->box;
     e.parameter_box = enclosure->parameter;
@@ -38,7 +50,7 @@ ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx)
   try {
     e.p();
   } catch (const std::domain_error&) {
-    return ExactVertex{};  // invalid: reported by the checks that meet it
+    return e;  // not valid: reported by the checks that meet it
   }
   for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(e.p(), c));
   if (q.type == SymbolicVertex::Type::B) e.parameter_box = enclose(e.edge_parameter());
@@ -64,8 +76,13 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
   return e;
 }
 
+const RationalPoint* ExactVertex::shared() const {
+  if (!shared_) shared_ = &store_->entry(q_);
+  return shared_;
+}
+
 const ExactPoint& ExactVertex::p() const {
-  return exact_.get([&] {
+  auto make = [&] {
     if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
     if (source_ == Source::Symbolic) return exact_position(q_, *ctx_);
     const Q b[3] = {Q(barycentric_->x), Q(barycentric_->y), Q(barycentric_->z)};
@@ -78,14 +95,28 @@ const ExactPoint& ExactVertex::p() const {
       x.z += b[c] * corner.z / sum;
     }
     return x;
-  });
+  };
+  return store_ ? shared()->point.get(make) : exact_.get(make);
 }
 
 const Q& ExactVertex::edge_parameter() const {
-  return parameter_.get([&] {
+  auto make = [&] {
     if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
     return exact_edge_parameter(q_, *ctx_);
-  });
+  };
+  return store_ ? shared()->parameter.get(make) : parameter_.get(make);
+}
+
+bool ExactVertex::has_rationals() const {
+  if (!store_) return static_cast<bool>(exact_) || static_cast<bool>(parameter_);
+  const RationalPoint* e = shared_ ? shared_ : store_->find(q_);
+  return e && e->made();
+}
+
+bool ExactVertex::has_point() const {
+  if (!store_) return static_cast<bool>(exact_);
+  const RationalPoint* e = shared_ ? shared_ : store_->find(q_);
+  return e && static_cast<bool>(e->point);
 }
 
 int ExactVertices::index(const SymbolicVertex& q) {
@@ -224,7 +255,7 @@ bool within_edge(const ExactVertex& b) {
   return !CGAL::is_negative(b.edge_parameter()) && b.edge_parameter() <= Q(1);
 }
 
-EdgePosition EdgePosition::of(int id, const SymbolicVertex& q, const ExactVertex& x, int from) {
+EdgePosition EdgePosition::of(std::uint64_t id, const SymbolicVertex& q, const ExactVertex& x, int from) {
   EdgePosition e;
   e.id = id;
   if (q.type == SymbolicVertex::Type::A) {
@@ -241,7 +272,7 @@ Q EdgePosition::exact() const {
   return reversed ? Q(1) - vertex->edge_parameter() : vertex->edge_parameter();
 }
 
-Sign compare(const EdgePosition& x, const EdgePosition& y) {
+std::optional<Sign> compare_filtered(const EdgePosition& x, const EdgePosition& y) {
   if (x.id == y.id && x.reversed == y.reversed) return Sign::Zero;
   Sign s = Sign::Zero;
   if (!x.reversed && !y.reversed) {
@@ -259,7 +290,12 @@ Sign compare(const EdgePosition& x, const EdgePosition& y) {
     CGAL::Protect_FPU_rounding<true> upward;
     s = filtered_sign(box(x) - box(y));
   }
-  if (s != Sign::Zero) return s;
+  if (s == Sign::Zero) return std::nullopt;
+  return s;
+}
+
+Sign compare(const EdgePosition& x, const EdgePosition& y) {
+  if (const std::optional<Sign> s = compare_filtered(x, y)) return *s;
   return sign_of(x.exact() - y.exact());
 }
 

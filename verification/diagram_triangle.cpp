@@ -1,0 +1,294 @@
+// verify_diagram's pass over the triangles: each triangle's distinct vertices made once, in the
+// triangle's own copy (a type C vertex belongs to one triangle, a type B vertex to the two of its
+// edge: no index over the whole diagram), then its checks in order, and the polygon sides along
+// its edges listed for the edge pass. The checks themselves: diagram_polygons.cpp (4, 5),
+// diagram_equidistance.cpp (3), diagram_samples.cpp (1).
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "verification/diagram_checker.h"
+
+namespace lrvd::verify_detail {
+
+namespace {
+
+// Whether q is by definition a point of triangle `tri`: one of its corners, a point of one of its
+// edges, or a point of its plane defined by this triangle.
+bool defined_on_triangle(const SymbolicVertex& q, const Triangle& tri) {
+  auto corner = [&](int v) { return v == tri[0] || v == tri[1] || v == tri[2]; };
+  switch (q.type) {
+    case SymbolicVertex::Type::A: return corner(q.v[0]);
+    case SymbolicVertex::Type::B: return corner(q.v[0]) && corner(q.v[1]) && q.v[0] != q.v[1];
+    case SymbolicVertex::Type::C: {
+      if (q.v == tri) return true;  // the corners as the builder stores them, in the triangle's order
+      std::array<int, 3> a = q.v, b = tri;
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      return a == b;
+    }
+  }
+  return false;
+}
+
+// Equal to SymbolicVertex::mesh_vertex(q.v[0]), field by field.
+bool is_mesh_vertex(const SymbolicVertex& q) {
+  return q.type == SymbolicVertex::Type::A && q.v[1] == -1 && q.v[2] == -1 && q.label[0] == -1 && q.label[1] == -1 &&
+         q.label[2] == -1;
+}
+
+// Up to this many distinct vertices besides the corners, a vertex is looked for among them one by
+// one; beyond, in an open-addressing table.
+constexpr std::size_t kLinearUpTo = 24;
+
+}  // namespace
+
+bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
+  // One unsigned comparison per index: a negative one wraps to a large value.
+  auto vertex = [&](int v) { return static_cast<unsigned>(v) < static_cast<unsigned>(vertex_count); };
+  auto sample = [&](int s) { return static_cast<unsigned>(s) < static_cast<unsigned>(sample_count); };
+  if (q.type == SymbolicVertex::Type::A) return vertex(q.v[0]);
+  if (q.type == SymbolicVertex::Type::B)
+    return vertex(q.v[0]) && vertex(q.v[1]) && sample(q.label[0]) && sample(q.label[1]) && q.label[0] != q.label[1];
+  return vertex(q.v[0]) && vertex(q.v[1]) && vertex(q.v[2]) && sample(q.label[0]) && sample(q.label[1]) &&
+         sample(q.label[2]) && q.label[0] != q.label[1] && q.label[0] != q.label[2] && q.label[1] != q.label[2];
+}
+
+void TriangleChecker::check_triangles(int begin, int end) {
+  out_.first_side.reserve(end - begin + 1);
+  out_.b_count.reserve(end - begin);
+  for (int t = begin; t < end; ++t) check_triangle(t);
+  out_.first_side.push_back(static_cast<int>(out_.sides.size()));
+}
+
+void TriangleChecker::check_triangle(int t) {
+  begin_ = d_.triangle_offsets[t];
+  end_ = d_.triangle_offsets[t + 1];
+  const Triangle& tri = in_.mesh.triangle(t);
+  out_.first_side.push_back(static_cast<int>(out_.sides.size()));
+  load_vertices(tri);
+  for (int c = 0; c < 3; ++c) corner_[c] = &local_[c];
+  const Frame f = triangle_frame(in_.mesh, t, corner_);
+  check_polygons(t, tri, f);
+  check_samples(t, tri, f);
+  list_sides(tri);
+  count_vertices();
+  for (int p = begin_; p < end_; ++p)
+    in_.polygon_state[p] = static_cast<std::uint8_t>((usable(p) ? kUsable : 0) |
+                                                     (usable(p) && area(p) == Sign::Positive ? kPiece : 0));
+}
+
+// The triangle's distinct vertices (its corners as 0, 1, 2), the local id of each polygon vertex,
+// and which polygons the geometric checks can use.
+void TriangleChecker::load_vertices(const Triangle& tri) {
+  local_.clear();
+  info_.clear();
+  lookup_.clear();
+  of_.clear();
+  first_.clear();
+  for (int c = 0; c < 3; ++c) add_local(SymbolicVertex::mesh_vertex(tri[c]), tri);
+  for (int p = begin_; p < end_; ++p) {
+    const CellPolygon& poly = d_.polygons[p];
+    first_.push_back(static_cast<int>(of_.size()));
+    for (int k = 0; k < poly.vertex_count; ++k) of_.push_back(local_index(d_.vertices[poly.first_vertex + k], tri));
+  }
+  usable_.assign(end_ - begin_, 0);
+  area_sign_.assign(end_ - begin_, Sign::Zero);
+  for (int p = begin_; p < end_; ++p) {
+    const CellPolygon& poly = d_.polygons[p];
+    bool ok = poly.cell >= 0 && poly.cell < d_.sample_count;
+    for (int k = 0; ok && k < poly.vertex_count; ++k) {
+      const int id = local_of(p, k);
+      ok = id >= 0 && local_[id].valid;
+    }
+    usable_[p - begin_] = ok;
+  }
+}
+
+// The local id of q, made the first time the triangle meets it; -1 when q is malformed. Equal
+// symbolic vertices, and only those, get one id: one point each.
+int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
+  if (!well_formed(q, in_.mesh.vertex_count(), d_.sample_count)) return -1;
+  if (is_mesh_vertex(q))
+    for (int c = 0; c < 3; ++c)
+      if (q.v[0] == tri[c]) return c;
+  if (lookup_.empty()) {
+    for (std::size_t id = 3; id < local_.size(); ++id)
+      if (local_[id].symbolic() == q) return static_cast<int>(id);
+    if (local_.size() < 3 + kLinearUpTo) return add_local(q, tri);
+    lookup_.assign(128, -1);  // a power of two, more than twice kLinearUpTo
+    for (std::size_t id = 3; id < local_.size(); ++id) {
+      std::size_t k = SymbolicVertexHash()(local_[id].symbolic()) & (lookup_.size() - 1);
+      while (lookup_[k] >= 0) k = (k + 1) & (lookup_.size() - 1);
+      lookup_[k] = static_cast<int>(id);
+    }
+  }
+  const std::size_t mask = lookup_.size() - 1;
+  std::size_t k = SymbolicVertexHash()(q) & mask;
+  for (; lookup_[k] >= 0; k = (k + 1) & mask)
+    if (local_[lookup_[k]].symbolic() == q) return lookup_[k];
+  const int id = add_local(q, tri);
+  lookup_[k] = id;
+  if (2 * local_.size() > lookup_.size()) {  // at most half full
+    std::vector<int> ids;
+    for (int x : lookup_)
+      if (x >= 0) ids.push_back(x);
+    lookup_.assign(2 * lookup_.size(), -1);
+    for (int x : ids) {
+      std::size_t j = SymbolicVertexHash()(local_[x].symbolic()) & (lookup_.size() - 1);
+      while (lookup_[j] >= 0) j = (j + 1) & (lookup_.size() - 1);
+      lookup_[j] = x;
+    }
+  }
+  return id;
+}
+
+// Makes the point of q (an interval enclosure; rationals only when that cannot be formed) and
+// what the checks ask of it once: its edges, whether it is defined on the triangle, its identity
+// along an edge, and what kind of vertex the distinct count takes it for.
+int TriangleChecker::add_local(const SymbolicVertex& q, const Triangle& tri) {
+  const int id = static_cast<int>(local_.size());
+  local_.push_back(ExactVertex::of(q, in_.context, &in_.rationals));
+  LocalVertex info;
+  info.edges = edges_of(q, tri);
+  info.defined = defined_on_triangle(q, tri);
+  if (is_mesh_vertex(q)) {
+    info.kind = kMeshVertex;
+    info.key = corner_key(q.v[0]);
+  } else if (q.type == SymbolicVertex::Type::B && info.edges) {
+    info.kind = kTypeB;
+    info.key = edge_key(q);
+  } else if (q.type == SymbolicVertex::Type::C && info.defined) {
+    info.kind = kTypeC;
+  } else {
+    out_.irregular = true;
+    if (info.edges) info.key = in_.irregular_key(q);
+  }
+  info_.push_back(info);
+  return id;
+}
+
+// The triangle's corners and its polygons' vertices as FrameVertex, side by side:
+// frame_[first_[p - begin_] + k] is vertex k of polygon p (null x for a malformed one).
+void TriangleChecker::load_frame(const Frame& f) {
+  for (int c = 0; c < 3; ++c) corner_frame_[c] = {local_[c].box[f.u], local_[c].box[f.v], &local_[c], info_[c].edges};
+  frame_.resize(of_.size());
+  for (std::size_t j = 0; j < of_.size(); ++j) {
+    const int id = of_[j];
+    frame_[j] = id < 0 ? FrameVertex{} : FrameVertex{local_[id].box[f.u], local_[id].box[f.v], &local_[id], info_[id].edges};
+  }
+}
+
+// (4) for each polygon, then (5) and (4) pairwise, then (3).
+void TriangleChecker::check_polygons(int t, const Triangle& tri, const Frame& f) {
+  DiagramVerification& out = out_.part;
+  ++out.coverage.checked;
+  if (!f.valid) {
+    out.coverage.fail(fmt::format("triangle {}: degenerate, it has no 2D frame", t));
+    return;
+  }
+  if (begin_ == end_) {
+    out.coverage.fail(fmt::format("triangle {}: no polygon", t));
+    return;
+  }
+  const bool exact = in_.options.exact_geometry;
+  if (exact) load_frame(f);
+  bool areas_known = true, polygons_sound = true;
+  for (int p = begin_; p < end_; ++p) {
+    ++out.disjoint.checked;
+    if (!usable(p)) {
+      report_unusable(t, p);
+      areas_known = false;
+      continue;
+    }
+    if (!exact) {  // (1) and (2) still need to know which polygons are flat
+      points_.clear();
+      for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(p, k));
+      area(p) = area_sign(points_, f);
+      continue;
+    }
+    const std::string problem = polygon_problem(p, tri, f);
+    if (!problem.empty()) {
+      out.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
+      area(p) = area_sign(points_, f);
+      polygons_sound = false;
+    }
+  }
+  if (!exact) return;
+  // Sound polygons whose edges add up to the triangle's boundary tile it: (5) and (4) pairwise
+  // hold without arithmetic (bounded_by_triangle). Otherwise both are decided in full.
+  const bool tiled = areas_known && polygons_sound && bounded_by_triangle(tri);
+  if (!areas_known)
+    out.coverage.fail(fmt::format("triangle {}: a polygon's area is unknown (malformed vertex)", t));
+  else if (!tiled)
+    check_area_sum(t, f);
+  if (!tiled) check_overlaps(t, f);
+  check_equidistance(t);
+}
+
+// A polygon the geometric checks cannot use: a cell that is no sample, or a vertex that is
+// malformed (indices out of range) or names no point (e.g. its edge is parallel to its bisector).
+void TriangleChecker::report_unusable(int t, int p) {
+  const CellPolygon& poly = d_.polygons[p];
+  DiagramVerification& out = out_.part;
+  if (poly.cell < 0 || poly.cell >= d_.sample_count) {
+    out.disjoint.fail(fmt::format("triangle {}: polygon {} names cell {}, which is no sample", t, p, poly.cell));
+    return;
+  }
+  for (int k = 0; k < poly.vertex_count; ++k) {
+    const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
+    const int id = local_of(p, k);
+    if (id >= 0 && local_[id].valid) continue;
+    const std::string what = id < 0 ? "is malformed" : "names no point";
+    out.disjoint.fail(fmt::format("triangle {}: polygon of cell {} has vertex {}, which {}", t, poly.cell, describe(q), what));
+    if (id >= 0)  // a vertex that does not exist is equidistant from nothing
+      out.equidistant.fail(fmt::format("triangle {}: vertex {} of cell {} {}", t, describe(q), poly.cell, what));
+    return;
+  }
+}
+
+// The sides of the usable polygons along the triangle's edges, in polygon order, each with its
+// ends' identities and whether the filter tells it has positive length; marks the type B
+// vertices that end one.
+void TriangleChecker::list_sides(const Triangle& tri) {
+  for (int p = begin_; p < end_; ++p) {
+    if (!usable(p)) continue;
+    const CellPolygon& poly = d_.polygons[p];
+    const SymbolicVertex* verts = d_.polygon_vertices(poly);
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
+      const int a = local_of(p, k), b = local_of(p, k1);
+      const int along = info_[a].edges & info_[b].edges;
+      if (!along) continue;
+      for (int e = 0; e < 3; ++e) {
+        if (!(along >> e & 1)) continue;
+        const std::uint64_t ka = info_[a].key, kb = info_[b].key;
+        SideLength length = SideLength::Zero;
+        if (ka != kb) {
+          const int from = std::min(tri[e], tri[e == 2 ? 0 : e + 1]);
+          const std::optional<Sign> s = compare_filtered(EdgePosition::of(ka, verts[k], local_[a], from),
+                                                         EdgePosition::of(kb, verts[k1], local_[b], from));
+          length = s ? SideLength::Positive : SideLength::Undecided;
+        }
+        out_.sides.push_back({std::min(ka, kb), std::max(ka, kb), poly.cell, p, k, static_cast<std::uint8_t>(e), length});
+        if (info_[a].kind == kTypeB) info_[a].ends_side = true;
+        if (info_[b].kind == kTypeB) info_[b].ends_side = true;
+      }
+    }
+  }
+}
+
+// The triangle's share of the distinct vertices: its type C vertices, and its type B vertices on
+// each edge (the edge pass takes each edge's once from its two triangles).
+void TriangleChecker::count_vertices() {
+  std::array<int, 3> b{0, 0, 0};
+  for (const LocalVertex& info : info_) {
+    if (info.kind == kTypeC) ++out_.c_count;
+    if (info.kind != kTypeB) continue;
+    const int e = info.edges == 1 ? 0 : (info.edges == 2 ? 1 : 2);
+    if (b[e] >= 0) b[e] = info.ends_side ? b[e] + 1 : -1;
+  }
+  out_.b_count.push_back(b);
+}
+
+}  // namespace lrvd::verify_detail
