@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "verification/diagram_geometry.h"
+#include "verification/triangle_enclosures.h"
 
 namespace lrvd::verify_detail {
 
@@ -95,6 +96,7 @@ class TriangleChecker {
   void load_vertices(const Triangle& tri);
   int local_index(const SymbolicVertex& q, const Triangle& tri);
   int add_local(const SymbolicVertex& q, const Triangle& tri);
+  void make_points(const Triangle& tri);
   void load_frame(const Frame& f);
   void check_polygons(int t, const Triangle& tri, const Frame& f);
   void report_unusable(int t, int p);
@@ -136,8 +138,10 @@ class TriangleChecker {
     bool ends_side = false;    // type B: ends a usable polygon's side along its edge
   };
   static constexpr std::uint8_t kMeshVertex = 1, kTypeB = 2, kTypeC = 3;
-  std::vector<ExactVertex> local_;
+  std::vector<SymbolicVertex> local_q_;
+  std::vector<ExactVertex> local_;  // the points of local_q_ (and some left from earlier triangles)
   std::vector<LocalVertex> info_;
+  TriangleEnclosures enclosures_;
   std::vector<int> lookup_;  // with many distinct vertices: an open-addressing table of local ids
   std::vector<int> of_;      // per polygon vertex of the triangle: its local id, -1 if malformed
   std::vector<int> first_;   // per polygon of the triangle: where its vertices start in of_ and frame_

@@ -37,25 +37,40 @@ const RationalPoint* RationalStore::find(const SymbolicVertex& q) const {
 
 ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store) {
   ExactVertex e;
-  e.q_ = q;
-  e.ctx_ = &ctx;
-  e.store_ = store;
+  e.reset(q, ctx, store);
   if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
     e.box = enclosure->box;
     e.parameter_box = enclosure->parameter;
     e.valid = true;
-    return e;
+  } else {
+    e.enclose_from_rationals();
   }
-  // The intervals cannot tell whether q exists: the rationals decide, and give the enclosure.
-  try {
-    e.p();
-  } catch (const std::domain_error&) {
-    return e;  // not valid: reported by the checks that meet it
-  }
-  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(e.p(), c));
-  if (q.type == SymbolicVertex::Type::B) e.parameter_box = enclose(e.edge_parameter());
-  e.valid = true;
   return e;
+}
+
+void ExactVertex::reset(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store) {
+  valid = false;
+  box = {Interval(0), Interval(0), Interval(0)};
+  parameter_box = Interval(0);
+  source_ = Source::Symbolic;
+  q_ = q;
+  barycentric_ = nullptr;
+  ctx_ = &ctx;
+  store_ = store;
+  shared_ = nullptr;
+  if (own_) own_ = Lazy<RationalPoint>();
+}
+
+void ExactVertex::enclose_from_rationals() {
+  try {
+    p();
+  } catch (const std::domain_error&) {
+    valid = false;  // reported by the checks that meet it
+    return;
+  }
+  for (int c = 0; c < 3; ++c) box[c] = enclose(coordinate(p(), c));
+  if (q_.type == SymbolicVertex::Type::B) parameter_box = enclose(edge_parameter());
+  valid = true;
 }
 
 ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx) {
@@ -76,9 +91,15 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
   return e;
 }
 
-const RationalPoint* ExactVertex::shared() const {
+const RationalPoint* ExactVertex::rationals() const {
+  if (!store_) return &own_.get([] { return RationalPoint{}; });
   if (!shared_) shared_ = &store_->entry(q_);
   return shared_;
+}
+
+const RationalPoint* ExactVertex::rationals_if_made() const {
+  if (!store_) return own_ ? &own_.get([] { return RationalPoint{}; }) : nullptr;
+  return shared_ ? shared_ : store_->find(q_);
 }
 
 const ExactPoint& ExactVertex::p() const {
@@ -96,7 +117,7 @@ const ExactPoint& ExactVertex::p() const {
     }
     return x;
   };
-  return store_ ? shared()->point.get(make) : exact_.get(make);
+  return rationals()->point.get(make);
 }
 
 const Q& ExactVertex::edge_parameter() const {
@@ -104,18 +125,16 @@ const Q& ExactVertex::edge_parameter() const {
     if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
     return exact_edge_parameter(q_, *ctx_);
   };
-  return store_ ? shared()->parameter.get(make) : parameter_.get(make);
+  return rationals()->parameter.get(make);
 }
 
 bool ExactVertex::has_rationals() const {
-  if (!store_) return static_cast<bool>(exact_) || static_cast<bool>(parameter_);
-  const RationalPoint* e = shared_ ? shared_ : store_->find(q_);
+  const RationalPoint* e = rationals_if_made();
   return e && e->made();
 }
 
 bool ExactVertex::has_point() const {
-  if (!store_) return static_cast<bool>(exact_);
-  const RationalPoint* e = shared_ ? shared_ : store_->find(q_);
+  const RationalPoint* e = rationals_if_made();
   return e && static_cast<bool>(e->point);
 }
 

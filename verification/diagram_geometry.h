@@ -103,10 +103,16 @@ class ExactVertex {
   //! `corners` (vertex indices into ctx.vertices). b and ctx must outlive the vertex.
   static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
 
-  //! The exact coordinates (computed on the first call, from any thread).
+  //! Makes this, in place, the point of q with no enclosure yet (not valid): the caller sets box
+  //! and parameter_box to enclose_position(q, ctx) and `valid`, or calls enclose_from_rationals.
+  void reset(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store);
+  //! For a point whose enclosure cannot be formed: the rationals decide whether it exists (valid)
+  //! and give the enclosure.
+  void enclose_from_rationals();
+
+  //! The exact coordinates (computed on the first call).
   const ExactPoint& p() const;
-  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first
-  //! call, from any thread).
+  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first call).
   const Q& edge_parameter() const;
   //! Whether p() or edge_parameter() has been computed (for a point of a RationalStore: by any point
   //! of its vertex).
@@ -126,9 +132,9 @@ class ExactVertex {
   // The store's entry of q_, found on first use. Not shared between threads: a point made with a
   // store belongs to the worker that made it.
   mutable RationalPoint* shared_ = nullptr;
-  Lazy<ExactPoint> exact_;
-  Lazy<Q> parameter_;
-  const RationalPoint* shared() const;
+  Lazy<RationalPoint> own_;  // without a store
+  const RationalPoint* rationals() const;
+  const RationalPoint* rationals_if_made() const;
 };
 
 const Q& coordinate(const ExactPoint& p, int axis);

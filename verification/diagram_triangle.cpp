@@ -81,7 +81,7 @@ void TriangleChecker::check_triangle(int t) {
 // The triangle's distinct vertices (its corners as 0, 1, 2), the local id of each polygon vertex,
 // and which polygons the geometric checks can use.
 void TriangleChecker::load_vertices(const Triangle& tri) {
-  local_.clear();
+  local_q_.clear();
   info_.clear();
   lookup_.clear();
   of_.clear();
@@ -92,6 +92,7 @@ void TriangleChecker::load_vertices(const Triangle& tri) {
     first_.push_back(static_cast<int>(of_.size()));
     for (int k = 0; k < poly.vertex_count; ++k) of_.push_back(local_index(d_.vertices[poly.first_vertex + k], tri));
   }
+  make_points(tri);
   usable_.assign(end_ - begin_, 0);
   area_sign_.assign(end_ - begin_, Sign::Zero);
   for (int p = begin_; p < end_; ++p) {
@@ -113,12 +114,12 @@ int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
     for (int c = 0; c < 3; ++c)
       if (q.v[0] == tri[c]) return c;
   if (lookup_.empty()) {
-    for (std::size_t id = 3; id < local_.size(); ++id)
-      if (local_[id].symbolic() == q) return static_cast<int>(id);
-    if (local_.size() < 3 + kLinearUpTo) return add_local(q, tri);
+    for (std::size_t id = 3; id < local_q_.size(); ++id)
+      if (local_q_[id] == q) return static_cast<int>(id);
+    if (local_q_.size() < 3 + kLinearUpTo) return add_local(q, tri);
     lookup_.assign(128, -1);  // a power of two, more than twice kLinearUpTo
-    for (std::size_t id = 3; id < local_.size(); ++id) {
-      std::size_t k = SymbolicVertexHash()(local_[id].symbolic()) & (lookup_.size() - 1);
+    for (std::size_t id = 3; id < local_q_.size(); ++id) {
+      std::size_t k = SymbolicVertexHash()(local_q_[id]) & (lookup_.size() - 1);
       while (lookup_[k] >= 0) k = (k + 1) & (lookup_.size() - 1);
       lookup_[k] = static_cast<int>(id);
     }
@@ -126,16 +127,16 @@ int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
   const std::size_t mask = lookup_.size() - 1;
   std::size_t k = SymbolicVertexHash()(q) & mask;
   for (; lookup_[k] >= 0; k = (k + 1) & mask)
-    if (local_[lookup_[k]].symbolic() == q) return lookup_[k];
+    if (local_q_[lookup_[k]] == q) return lookup_[k];
   const int id = add_local(q, tri);
   lookup_[k] = id;
-  if (2 * local_.size() > lookup_.size()) {  // at most half full
+  if (2 * local_q_.size() > lookup_.size()) {  // at most half full
     std::vector<int> ids;
     for (int x : lookup_)
       if (x >= 0) ids.push_back(x);
     lookup_.assign(2 * lookup_.size(), -1);
     for (int x : ids) {
-      std::size_t j = SymbolicVertexHash()(local_[x].symbolic()) & (lookup_.size() - 1);
+      std::size_t j = SymbolicVertexHash()(local_q_[x]) & (lookup_.size() - 1);
       while (lookup_[j] >= 0) j = (j + 1) & (lookup_.size() - 1);
       lookup_[j] = x;
     }
@@ -143,12 +144,11 @@ int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
   return id;
 }
 
-// Makes the point of q (an interval enclosure; rationals only when that cannot be formed) and
-// what the checks ask of it once: its edges, whether it is defined on the triangle, its identity
-// along an edge, and what kind of vertex the distinct count takes it for.
+// A new distinct vertex, and what the checks ask of it once: its edges, whether it is defined on
+// the triangle, its identity along an edge, and what kind of vertex the distinct count takes it for.
 int TriangleChecker::add_local(const SymbolicVertex& q, const Triangle& tri) {
-  const int id = static_cast<int>(local_.size());
-  local_.push_back(ExactVertex::of(q, in_.context, &in_.rationals));
+  const int id = static_cast<int>(local_q_.size());
+  local_q_.push_back(q);
   LocalVertex info;
   info.edges = edges_of(q, tri);
   info.defined = defined_on_triangle(q, tri);
@@ -166,6 +166,22 @@ int TriangleChecker::add_local(const SymbolicVertex& q, const Triangle& tri) {
   }
   info_.push_back(info);
   return id;
+}
+
+// The points of the triangle's distinct vertices: interval enclosures, all under one switch of the
+// rounding mode, and rationals only for a vertex whose enclosure cannot be formed.
+void TriangleChecker::make_points(const Triangle& tri) {
+  const std::size_t n = local_q_.size();
+  if (local_.size() < n) local_.resize(n);  // reused from triangle to triangle, made in place
+  for (std::size_t id = 0; id < n; ++id) local_[id].reset(local_q_[id], in_.context, &in_.rationals);
+  enclosures_.reset(tri, in_.context);
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    for (std::size_t id = 0; id < n; ++id)
+      local_[id].valid = enclosures_.enclose(local_q_[id], local_[id].box, local_[id].parameter_box);
+  }
+  for (std::size_t id = 0; id < n; ++id)
+    if (!local_[id].valid) local_[id].enclose_from_rationals();
 }
 
 // The triangle's corners and its polygons' vertices as FrameVertex, side by side:
