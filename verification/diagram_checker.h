@@ -15,6 +15,8 @@
 
 namespace lrvd::verify_detail {
 
+class Near;
+
 //! What every worker of one verification reads, and the per-polygon state the triangle pass
 //! leaves for the edge pass (each polygon written by the worker of its triangle).
 struct DiagramInput {
@@ -74,7 +76,8 @@ struct TriangleChunk {
   DiagramVerification part;  //!< (3), (4), (5); rational_points: the samples'
   std::vector<std::pair<int, std::string>> sample_failures;  //!< (1): sample, offender
   std::vector<SideSegment> sides;  //!< the sides of every usable polygon along its triangle's edges
-  std::vector<int> first_side;     //!< per triangle of the chunk, where its sides start; one more at the end
+  //! Per triangle of the chunk and edge e, where its sides along e start (3 t + e); one more at the end.
+  std::vector<int> first_side;
   //! Per triangle and edge: its distinct type B vertices on the edge, -1 when some of them ends no
   //! side along it (then the edge pass counts them from the polygons).
   std::vector<std::array<int, 3>> b_count;
@@ -99,6 +102,7 @@ class TriangleChecker {
   void make_points(const Triangle& tri);
   void load_frame(const Frame& f);
   void check_polygons(int t, const Triangle& tri, const Frame& f);
+  void check_structure(int t, const Frame& f);
   void report_unusable(int t, int p);
   void list_sides(const Triangle& tri);
   void count_vertices();
@@ -107,11 +111,15 @@ class TriangleChecker {
   bool vertex_inside(int id, const FrameVertex& x, const Frame& f);
   std::string convexity_problem(int p, const Frame& f);
   bool bounded_by_triangle(const Triangle& tri);
+  bool bounded_by_triangle_multisets(const Triangle& tri);
   void check_area_sum(int t, const Frame& f);
   void check_overlaps(int t, const Frame& f);
   bool separated(int p, int q, const Frame& f) const;
   // diagram_equidistance.cpp: (3).
   void check_equidistance(int t);
+  void equidistance_present(int t, int p);
+  void equidistance_near(int t, int p, const Near& near);
+  void report_unequal(int t, const SymbolicVertex& q, int i, int closer, int equidistant);
   // diagram_samples.cpp: (1).
   void check_samples(int t, const Triangle& tri, const Frame& f);
   std::string sample_problem(int i, int t, const Triangle& tri, const Frame& f);
@@ -160,11 +168,23 @@ class TriangleChecker {
   };
   std::vector<DirectedEdge> edges_;
   std::vector<std::array<int, 3>> along_bc_;
-  // bounded_by_triangle: the sides off the mesh edges, by direction; the starts and ends along each.
+  // bounded_by_triangle: the sides' counts per pair of vertices and their flow along each edge;
+  // with many vertices, the sides off the mesh edges by direction, the starts and ends along each.
+  static constexpr std::size_t kCountsUpTo = 32;
+  std::array<int, kCountsUpTo * kCountsUpTo> net_{};
+  std::array<int, 3 * kCountsUpTo> flow_{};
+  std::vector<std::size_t> touched_;
   std::vector<std::uint64_t> forward_, backward_;
   std::array<std::vector<int>, 3> from_, to_;
-  std::vector<int> present_;   // check_equidistance: the cells with a usable polygon in the triangle
-  std::vector<int> compared_;  // check_equidistance: the cells a vertex is compared with
+  // check_equidistance: the cells with a usable polygon in the triangle, e_j(q) for each local
+  // vertex q and cell j (made on first use), the cells a vertex is compared with (with many
+  // cells).
+  std::vector<int> present_;
+  std::vector<std::uint32_t> labels_;  // per local vertex: the bits of present_ that are its labels
+  std::vector<Interval> e_;
+  std::vector<std::uint32_t> e_made_;
+  std::uint32_t stamp_ = 0;
+  std::vector<int> compared_;
   // check_overlaps: the polygons to compare; above kAllPairsUpTo of them, their boxes in the frame.
   struct FrameBox {
     int polygon;
@@ -174,6 +194,7 @@ class TriangleChecker {
   std::vector<int> candidates_;
   std::vector<FrameBox> boxes_;
   std::vector<std::pair<int, int>> pairs_;
+  std::array<std::vector<SideSegment>, 3> sides_;  // list_sides: the triangle's, by edge
 };
 
 //! Above this many polygons (or cells) in a triangle, (3) and (4) compare only the pairs a

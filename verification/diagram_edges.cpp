@@ -67,13 +67,14 @@ class EdgeChecker {
   }
 
  private:
-  const SideSegment* sides_begin(int t) const {
+  // The sides of triangle t along its edge e, in polygon order.
+  const SideSegment* sides_begin(int t, int e) const {
     const TriangleChunk& c = chunks_[t / kCheckChunk];
-    return c.sides.data() + c.first_side[t % kCheckChunk];
+    return c.sides.data() + c.first_side[3 * (t % kCheckChunk) + e];
   }
-  const SideSegment* sides_end(int t) const {
+  const SideSegment* sides_end(int t, int e) const {
     const TriangleChunk& c = chunks_[t / kCheckChunk];
-    return c.sides.data() + c.first_side[t % kCheckChunk + 1];
+    return c.sides.data() + c.first_side[3 * (t % kCheckChunk) + e + 1];
   }
   int b_count(int t, int e) const { return chunks_[t / kCheckChunk].b_count[t % kCheckChunk][e]; }
 
@@ -150,34 +151,29 @@ class EdgeChecker {
     });
   }
 
-  // The SideSegments of triangle t along its edge e, in polygon order.
-  void along(int t, int e, std::vector<const SideSegment*>& out) const {
-    out.clear();
-    for (const SideSegment* s = sides_begin(t); s != sides_end(t); ++s)
-      if (s->edge == e) out.push_back(s);
-  }
-
   // Both sides have the same segments, by their ends' identities and their cells: then they
   // split the edge alike, (6) holds, and for (2) each segment of positive length joins its twin's
   // polygon. (A join the full comparison below would add besides, between segments of one cell
   // overlapping but not twins, needs two polygons of one side overlapping along the edge, which
   // (4) reports: without it (2) can only find more pieces, never fewer.)
   bool same_ids(int t, int e, int across, int e_across) {
-    along(t, e, mine_ids_);
-    along(across, e_across, theirs_ids_);
-    if (mine_ids_.size() != theirs_ids_.size()) return false;
+    const SideSegment *mine = sides_begin(t, e), *mine_end = sides_end(t, e);
+    const SideSegment *theirs = sides_begin(across, e_across), *theirs_end = sides_end(across, e_across);
+    const std::size_t n = mine_end - mine;
+    if (n != static_cast<std::size_t>(theirs_end - theirs)) return false;
     // Each segment's twin: the first one left of the other side with the same ends and cell.
     twin_.clear();
-    for (const SideSegment* m : mine_ids_) {
+    taken_.assign(n, 0);
+    for (const SideSegment* m = mine; m != mine_end; ++m) {
       std::size_t k = 0;
-      while (k < theirs_ids_.size() && (!theirs_ids_[k] || !m->same_split(*theirs_ids_[k]))) ++k;
-      if (k == theirs_ids_.size()) return false;
-      twin_.push_back(theirs_ids_[k]);
-      theirs_ids_[k] = nullptr;
+      while (k < n && (taken_[k] || !m->same_split(theirs[k]))) ++k;
+      if (k == n) return false;
+      twin_.push_back(&theirs[k]);
+      taken_[k] = 1;
     }
     ++conforming_.checked;
-    for (std::size_t k = 0; k < mine_ids_.size(); ++k) {
-      const SideSegment& m = *mine_ids_[k];
+    for (std::size_t k = 0; k < n; ++k) {
+      const SideSegment& m = mine[k];
       const int p = m.polygon, q = twin_[k]->polygon;
       if ((in_.polygon_state[p] & kPiece) && (in_.polygon_state[q] & kPiece) && positive_length(m, t))
         joins_.emplace_back(p, q);
@@ -282,7 +278,8 @@ class EdgeChecker {
   std::vector<std::pair<int, int>>& joins_;
   std::deque<ExactVertex> points_;  // the type B vertices' points of the edge at hand
   std::vector<Segment> mine_, theirs_;
-  std::vector<const SideSegment*> mine_ids_, theirs_ids_, twin_;
+  std::vector<const SideSegment*> twin_;
+  std::vector<char> taken_;
   std::vector<std::uint64_t> keys_;
 };
 

@@ -12,8 +12,6 @@
 
 namespace lrvd::verify_detail {
 
-namespace {
-
 // The sites of the cells present in a triangle, for the equidistance check's vertices: a k-d tree
 // (nanoflann) over their positions. A vertex q of cell i need not be compared with a site j that
 // is strictly farther in power distance, π_j(q) > π_i(q): that comparison is Negative, which the
@@ -63,14 +61,13 @@ class Near {
   mutable std::vector<std::pair<unsigned, double>> found_;
 };
 
-}  // namespace
-
 // (3) Every vertex q of cell i's polygon is at least as close (power distance, exact) to x_i as
 // to every cell with a polygon in the triangle, and lies on as many bisectors of i with those
 // cells as its type says (B: one, C: two). The cells come from the polygons, not from q's labels,
 // so a vertex with wrong labels is caught. q is equidistant from its own labels by construction:
 // its exact point is the solution of their bisector equations (exact_position, whose equations
 // tests/test_symbolic_vertex.cpp checks exactly), so those pairs are counted without arithmetic.
+// \pre the rounding mode is upward.
 void TriangleChecker::check_equidistance(int t) {
   present_.clear();
   for (int p = begin_; p < end_; ++p)
@@ -79,43 +76,108 @@ void TriangleChecker::check_equidistance(int t) {
   present_.erase(std::unique(present_.begin(), present_.end()), present_.end());
   // Many cells in the triangle: each vertex is compared only with the cells whose sites a
   // certified bound does not rule out (Near), the others being strictly farther from it.
-  std::optional<Near> near;
-  if (present_.size() > kAllPairsUpTo) near.emplace(d_.sites, present_);
-  const std::vector<SiteTerms>& terms = in_.terms;
-  for (int p = begin_; p < end_; ++p) {
-    if (!usable(p)) continue;
-    const CellPolygon& poly = d_.polygons[p];
-    const int i = poly.cell;
-    for (int k = 0; k < poly.vertex_count; ++k) {
-      ++out_.part.equidistant.checked;
-      const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
-      const ExactVertex& x = vertex(p, k);
-      int equidistant = 0, closer = -1;  // closer: the first cell strictly closer to q than x_i
-      if (near) near->select(x, d_.sites[i], q, compared_);
-      {
-        CGAL::Protect_FPU_rounding<true> upward;
-        std::optional<Interval> e_i;  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
-        for (int j : near ? compared_ : present_) {
-          if (j == i) continue;
-          Sign s = Sign::Zero;
-          if (!(q.has_label(i) && q.has_label(j))) {
-            if (!e_i) e_i = terms[i].e(x);
-            s = filtered_sign(*e_i - terms[j].e(x));
-            if (s == Sign::Zero) s = compare_power_distance_exact(x, d_.sites[i], d_.sites[j]);
-          }
-          if (s == Sign::Zero) ++equidistant;
-          if (s == Sign::Positive && closer < 0) closer = j;
-        }
-      }
-      std::string problem;
-      if (closer >= 0) problem = fmt::format("is closer to x_{} than to x_{}", closer, i);
-      if (problem.empty() && equidistant + 1 < q.num_labels())
-        problem = fmt::format("is equidistant from x_{} and {} other cell(s) of the triangle, not {}", i, equidistant,
-                              q.num_labels() - 1);
-      if (!problem.empty())
-        out_.part.equidistant.fail(fmt::format("triangle {}: vertex {} of cell {} {}", t, describe(q), i, problem));
+  if (present_.size() > kAllPairsUpTo) {
+    std::optional<Near> near;
+    {
+      CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);  // a k-d tree in doubles
+      near.emplace(d_.sites, present_);
     }
+    for (int p = begin_; p < end_; ++p)
+      if (usable(p)) equidistance_near(t, p, *near);
+    return;
   }
+  // Each vertex against every cell present: which of them are its labels, and e_j(q), made once
+  // per vertex and cell (e_made_ holds the stamp of the triangle that made it).
+  const std::size_t slots = local_q_.size() * present_.size();
+  if (e_.size() < slots) {
+    e_.resize(slots);
+    e_made_.resize(slots, 0);
+  }
+  ++stamp_;
+  labels_.resize(local_q_.size());
+  for (std::size_t id = 0; id < local_q_.size(); ++id) {
+    const SymbolicVertex& q = local_q_[id];
+    std::uint32_t mask = 0;
+    for (int a = 0; a < q.num_labels(); ++a)
+      for (std::size_t j = 0; j < present_.size(); ++j)
+        if (present_[j] == q.label[a]) mask |= std::uint32_t{1} << j;
+    labels_[id] = mask;
+  }
+  for (int p = begin_; p < end_; ++p)
+    if (usable(p)) equidistance_present(t, p);
+}
+
+// (3) for the vertices of polygon p, against every cell present in the triangle. A cell j that is,
+// with the polygon's cell i, a label of the vertex is equidistant by construction; the others are
+// compared in increasing order, so that the first closer one is the first in that order.
+void TriangleChecker::equidistance_present(int t, int p) {
+  const CellPolygon& poly = d_.polygons[p];
+  const SymbolicVertex* verts = d_.polygon_vertices(poly);
+  const int i = poly.cell, m = static_cast<int>(present_.size());
+  const int own = static_cast<int>(std::lower_bound(present_.begin(), present_.end(), i) - present_.begin());
+  const std::uint32_t own_bit = std::uint32_t{1} << own, all = (std::uint32_t{1} << m) - 1;
+  auto e = [&](int id, int j) -> const Interval& {  // e_j(q) for present_[j], q the local vertex id
+    const std::size_t k = static_cast<std::size_t>(id) * m + j;
+    if (e_made_[k] != stamp_) {
+      e_[k] = in_.terms[present_[j]].e(local_[id]);
+      e_made_[k] = stamp_;
+    }
+    return e_[k];
+  };
+  for (int k = 0; k < poly.vertex_count; ++k) {
+    const int id = local_of(p, k);
+    const std::uint32_t labels = labels_[id] & own_bit ? labels_[id] & ~own_bit : 0;
+    int equidistant = 0, closer = -1;  // closer: the first cell closer than x_i
+    for (std::uint32_t b = labels; b; b &= b - 1) ++equidistant;
+    for (std::uint32_t rest = all & ~own_bit & ~labels; rest; rest &= rest - 1) {
+      const int j = __builtin_ctz(rest);
+      Sign s = filtered_sign(e(id, own) - e(id, j));  // d_i(q) - d_j(q) = e_i(q) - e_j(q)
+      if (s == Sign::Zero) s = compare_power_distance_exact(local_[id], d_.sites[i], d_.sites[present_[j]]);
+      if (s == Sign::Zero) ++equidistant;
+      if (s == Sign::Positive && closer < 0) closer = present_[j];
+    }
+    if (closer >= 0 || equidistant + 1 < verts[k].num_labels()) report_unequal(t, verts[k], i, closer, equidistant);
+  }
+  out_.part.equidistant.checked += poly.vertex_count;
+}
+
+// (3) for the vertices of polygon p, against the cells `near` keeps for each.
+void TriangleChecker::equidistance_near(int t, int p, const Near& near) {
+  const CellPolygon& poly = d_.polygons[p];
+  const int i = poly.cell;
+  for (int k = 0; k < poly.vertex_count; ++k) {
+    ++out_.part.equidistant.checked;
+    const SymbolicVertex& q = d_.vertices[poly.first_vertex + k];
+    const ExactVertex& x = vertex(p, k);
+    int equidistant = 0, closer = -1;
+    {
+      CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);  // the bound's doubles
+      near.select(x, d_.sites[i], q, compared_);
+    }
+    std::optional<Interval> e_i;
+    for (int j : compared_) {
+      if (j == i) continue;
+      Sign s = Sign::Zero;
+      if (!(q.has_label(i) && q.has_label(j))) {
+        if (!e_i) e_i = in_.terms[i].e(x);
+        s = filtered_sign(*e_i - in_.terms[j].e(x));
+        if (s == Sign::Zero) s = compare_power_distance_exact(x, d_.sites[i], d_.sites[j]);
+      }
+      if (s == Sign::Zero) ++equidistant;
+      if (s == Sign::Positive && closer < 0) closer = j;
+    }
+    if (closer >= 0 || equidistant + 1 < q.num_labels()) report_unequal(t, q, i, closer, equidistant);
+  }
+}
+
+// The offender of a vertex q of cell i that some cell is closer to (closer >= 0), or that is
+// equidistant from fewer cells than its type says.
+void TriangleChecker::report_unequal(int t, const SymbolicVertex& q, int i, int closer, int equidistant) {
+  const std::string problem =
+      closer >= 0 ? fmt::format("is closer to x_{} than to x_{}", closer, i)
+                  : fmt::format("is equidistant from x_{} and {} other cell(s) of the triangle, not {}", i, equidistant,
+                                q.num_labels() - 1);
+  out_.part.equidistant.fail(fmt::format("triangle {}: vertex {} of cell {} {}", t, describe(q), i, problem));
 }
 
 }  // namespace lrvd::verify_detail

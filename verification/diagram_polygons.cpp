@@ -61,20 +61,17 @@ bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
 // definition and exactly inside it), convex and counterclockwise (every vertex on the closed left
 // side of every edge). Zero turns are allowed: at a degenerate input the unperturbed limit of a
 // polygon may have collinear or coincident vertices. Sets its area sign when there is no problem
-// (positive iff some turn is strictly left) and leaves the polygon's points in points_.
+// (positive iff some turn is strictly left). \pre the rounding mode is upward.
 std::string TriangleChecker::polygon_problem(int p, const Triangle& tri, const Frame& f) {
   const CellPolygon& poly = d_.polygons[p];
   const SymbolicVertex* verts = d_.polygon_vertices(poly);
   const FrameVertex* fv = frame_vertices(p);
   const int n = poly.vertex_count;
-  points_.clear();
-  for (int k = 0; k < n; ++k) points_.push_back(fv[k].x);
   if (n < 3) return fmt::format("has {} vertices", n);
   // One exact vertex per distinct symbolic vertex: equal points are equal vertices.
   for (int k = 0; k < n; ++k)
     for (int m = 0; m < k; ++m)
       if (fv[k].x == fv[m].x) return fmt::format("repeats vertex {}", describe(verts[k]));
-  CGAL::Protect_FPU_rounding<true> upward;
   for (int k = 0; k < n; ++k) {
     const int id = local_of(p, k);
     if (!info_[id].defined) return fmt::format("has vertex {} of another triangle", describe(verts[k]));
@@ -140,6 +137,52 @@ std::string TriangleChecker::convexity_problem(int p, const Frame& f) {
 // positive area winds once around its interior, so no two interiors meet (4) and the areas add
 // up to the triangle's (5), which is what check_area_sum and check_overlaps would find.
 bool TriangleChecker::bounded_by_triangle(const Triangle& tri) {
+  const std::size_t n = local_q_.size();
+  if (n > kCountsUpTo) return bounded_by_triangle_multisets(tri);
+  // net_[u n + w], u < w: the sides u -> w less the sides w -> u, off the mesh edges (all zero
+  // between triangles: the entries touched are set back); flow_[e n + v]: the sides along mesh
+  // edge e that end at v less those that start at v.
+  touched_.clear();
+  flow_.fill(0);
+  bool bounded = true;
+  for (int p = begin_; p < end_ && bounded; ++p) {
+    const CellPolygon& poly = d_.polygons[p];
+    const FrameVertex* fv = frame_vertices(p);
+    const int* ids = of_.data() + first_[p - begin_];
+    for (int k = 0; k < poly.vertex_count; ++k) {
+      const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
+      const std::size_t u = ids[k], w = ids[k1];
+      int e;
+      switch (fv[k].edges & fv[k1].edges) {
+        case 0: {
+          const std::size_t at = u < w ? u * n + w : w * n + u;
+          if (net_[at] == 0) touched_.push_back(at);
+          net_[at] += u < w ? 1 : -1;
+          continue;
+        }
+        case 1: e = 0; break;
+        case 2: e = 1; break;
+        case 4: e = 2; break;
+        default: bounded = false; continue;  // one vertex twice: no edge of the boundary
+      }
+      --flow_[e * n + u];
+      ++flow_[e * n + w];
+    }
+  }
+  for (std::size_t at : touched_) {
+    bounded = bounded && net_[at] == 0;
+    net_[at] = 0;
+  }
+  // Along mesh edge e: 1 at corner e + 1, -1 at corner e (the local vertices 0, 1, 2), 0 elsewhere.
+  for (int e = 0; e < 3 && bounded; ++e)
+    for (std::size_t v = 0; v < n; ++v)
+      if (flow_[e * n + v] != (v == static_cast<std::size_t>(e == 2 ? 0 : e + 1)) - (v == static_cast<std::size_t>(e)))
+        bounded = false;
+  return bounded;
+}
+
+// bounded_by_triangle for a triangle with many vertices: the sides as multisets.
+bool TriangleChecker::bounded_by_triangle_multisets(const Triangle& tri) {
   forward_.clear();
   backward_.clear();
   for (auto& ids : from_) ids.clear();
@@ -158,14 +201,13 @@ bool TriangleChecker::bounded_by_triangle(const Triangle& tri) {
         case 1: from_[0].push_back(u), to_[0].push_back(w); break;
         case 2: from_[1].push_back(u), to_[1].push_back(w); break;
         case 4: from_[2].push_back(u), to_[2].push_back(w); break;
-        default: return false;  // one vertex twice: no edge of the boundary
+        default: return false;
       }
     }
   }
   // Each pair of vertices as often in one direction as in the other.
   if (!same_multiset(forward_, backward_)) return false;
-  // Along mesh edge e: the edges' ends and tri[e] are, as a multiset, their starts and tri[e + 1]
-  // (the corners are the local vertices 0, 1, 2).
+  // Along mesh edge e: the edges' ends and corner e are, as a multiset, their starts and corner e + 1.
   for (int e = 0; e < 3; ++e) {
     from_[e].push_back(e == 2 ? 0 : e + 1);
     to_[e].push_back(e);
@@ -181,6 +223,7 @@ bool TriangleChecker::bounded_by_triangle(const Triangle& tri) {
 // cross(b - a, c - b) is twice the triangle's area. Any other edge left over is summed in full.
 // The edges along (b, c) add sum_v n_v s_v, n_v the times v ends such an edge less the times it
 // starts one: when only c is left with n_c = 1 (besides b, at s = 0), that is 1 without arithmetic.
+// \pre the rounding mode is upward (the rationals do not depend on it).
 void TriangleChecker::check_area_sum(int t, const Frame& f) {
   const Triangle& tri = in_.mesh.triangle(t);
   edges_.clear();
@@ -242,9 +285,11 @@ void TriangleChecker::check_area_sum(int t, const Frame& f) {
   points_.assign(corner_.begin(), corner_.end());
   const Q triangle = twice_area(points_, f);
   const Q ratio = rest ? along_bc + *rest / triangle : along_bc;
-  if (ratio != Q(1))
+  if (ratio != Q(1)) {
+    CGAL::Protect_FPU_rounding<true> nearest(CGAL_FE_TONEAREST);  // to print a double
     out_.part.coverage.fail(fmt::format("triangle {}: polygon areas sum to {:.6g} of the triangle, not 1", t,
                                         CGAL::to_double(ratio)));
+  }
 }
 
 // (4) pairwise: two convex polygons with interiors are interior-disjoint iff the line of an edge
@@ -254,8 +299,8 @@ void TriangleChecker::check_area_sum(int t, const Frame& f) {
 // make that quadratic: then only pairs whose boxes in the frame meet are tested, each box the
 // union of its vertices' enclosures (ExactVertex::box), so that boxes apart in u or v hold
 // polygons apart. A sweep along u finds those pairs; they are tested in the same order as all.
+// \pre the rounding mode is upward.
 void TriangleChecker::check_overlaps(int t, const Frame& f) {
-  CGAL::Protect_FPU_rounding<true> upward;
   auto test = [&](int p, int q) {
     if (separated(p, q, f) || separated(q, p, f)) return;
     out_.part.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,

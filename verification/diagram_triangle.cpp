@@ -55,7 +55,7 @@ bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
 }
 
 void TriangleChecker::check_triangles(int begin, int end) {
-  out_.first_side.reserve(end - begin + 1);
+  out_.first_side.reserve(3 * (end - begin) + 1);
   out_.b_count.reserve(end - begin);
   for (int t = begin; t < end; ++t) check_triangle(t);
   out_.first_side.push_back(static_cast<int>(out_.sides.size()));
@@ -65,7 +65,6 @@ void TriangleChecker::check_triangle(int t) {
   begin_ = d_.triangle_offsets[t];
   end_ = d_.triangle_offsets[t + 1];
   const Triangle& tri = in_.mesh.triangle(t);
-  out_.first_side.push_back(static_cast<int>(out_.sides.size()));
   load_vertices(tri);
   for (int c = 0; c < 3; ++c) corner_[c] = &local_[c];
   const Frame f = triangle_frame(in_.mesh, t, corner_);
@@ -109,10 +108,10 @@ void TriangleChecker::load_vertices(const Triangle& tri) {
 // The local id of q, made the first time the triangle meets it; -1 when q is malformed. Equal
 // symbolic vertices, and only those, get one id: one point each.
 int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
-  if (!well_formed(q, in_.mesh.vertex_count(), d_.sample_count)) return -1;
-  if (is_mesh_vertex(q))
+  if (is_mesh_vertex(q))  // the triangle's corners first: most type A vertices are
     for (int c = 0; c < 3; ++c)
       if (q.v[0] == tri[c]) return c;
+  if (!well_formed(q, in_.mesh.vertex_count(), d_.sample_count)) return -1;
   if (lookup_.empty()) {
     for (std::size_t id = 3; id < local_q_.size(); ++id)
       if (local_q_[id] == q) return static_cast<int>(id);
@@ -207,8 +206,15 @@ void TriangleChecker::check_polygons(int t, const Triangle& tri, const Frame& f)
     out.coverage.fail(fmt::format("triangle {}: no polygon", t));
     return;
   }
-  const bool exact = in_.options.exact_geometry;
-  if (exact) load_frame(f);
+  if (!in_.options.exact_geometry) {
+    check_structure(t, f);
+    return;
+  }
+  load_frame(f);
+  // One switch to upward rounding for the triangle's checks: the intervals need it, and their
+  // exact fallbacks (GMP; MPFR with rounding of its own) do not depend on it. What computes in
+  // doubles without a certificate (Near's bound) or prints a double switches back to nearest.
+  CGAL::Protect_FPU_rounding<true> upward;
   bool areas_known = true, polygons_sound = true;
   for (int p = begin_; p < end_; ++p) {
     ++out.disjoint.checked;
@@ -217,20 +223,15 @@ void TriangleChecker::check_polygons(int t, const Triangle& tri, const Frame& f)
       areas_known = false;
       continue;
     }
-    if (!exact) {  // (1) and (2) still need to know which polygons are flat
-      points_.clear();
-      for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(p, k));
-      area(p) = area_sign(points_, f);
-      continue;
-    }
     const std::string problem = polygon_problem(p, tri, f);
     if (!problem.empty()) {
       out.disjoint.fail(fmt::format("triangle {}: polygon of cell {} {}", t, d_.polygons[p].cell, problem));
+      points_.clear();
+      for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(p, k));
       area(p) = area_sign(points_, f);
       polygons_sound = false;
     }
   }
-  if (!exact) return;
   // Sound polygons whose edges add up to the triangle's boundary tile it: (5) and (4) pairwise
   // hold without arithmetic (bounded_by_triangle). Otherwise both are decided in full.
   const bool tiled = areas_known && polygons_sound && bounded_by_triangle(tri);
@@ -240,6 +241,20 @@ void TriangleChecker::check_polygons(int t, const Triangle& tri, const Frame& f)
     check_area_sum(t, f);
   if (!tiled) check_overlaps(t, f);
   check_equidistance(t);
+}
+
+// Without the exact geometry: the polygons' structure, and which are flat ((1) and (2) need it).
+void TriangleChecker::check_structure(int t, const Frame& f) {
+  for (int p = begin_; p < end_; ++p) {
+    ++out_.part.disjoint.checked;
+    if (!usable(p)) {
+      report_unusable(t, p);
+      continue;
+    }
+    points_.clear();
+    for (int k = 0; k < d_.polygons[p].vertex_count; ++k) points_.push_back(&vertex(p, k));
+    area(p) = area_sign(points_, f);
+  }
 }
 
 // A polygon the geometric checks cannot use: a cell that is no sample, or a vertex that is
@@ -263,34 +278,44 @@ void TriangleChecker::report_unusable(int t, int p) {
   }
 }
 
-// The sides of the usable polygons along the triangle's edges, in polygon order, each with its
-// ends' identities and whether the filter tells it has positive length; marks the type B
+// The sides of the usable polygons along the triangle's edges, by edge and in polygon order, each
+// with its ends' identities and whether the filter tells it has positive length; marks the type B
 // vertices that end one.
 void TriangleChecker::list_sides(const Triangle& tri) {
+  // A vertex with edge bits is type A (at 0 or 1 along the edge) or a type B vertex of that edge,
+  // whose v[0] is the edge's lower end: its parameter_box encloses its position from there. Two
+  // positions are apart when their boxes are (compare_filtered, neither reversed).
+  auto box = [&](int id, int lo) {
+    const SymbolicVertex& q = local_q_[id];
+    return q.type == SymbolicVertex::Type::A ? Interval(q.v[0] == lo ? 0 : 1) : local_[id].parameter_box;
+  };
+  for (auto& list : sides_) list.clear();
   for (int p = begin_; p < end_; ++p) {
     if (!usable(p)) continue;
     const CellPolygon& poly = d_.polygons[p];
-    const SymbolicVertex* verts = d_.polygon_vertices(poly);
+    const int* ids = of_.data() + first_[p - begin_];
     for (int k = 0; k < poly.vertex_count; ++k) {
-      const int k1 = k + 1 == poly.vertex_count ? 0 : k + 1;
-      const int a = local_of(p, k), b = local_of(p, k1);
+      const int a = ids[k], b = ids[k + 1 == poly.vertex_count ? 0 : k + 1];
       const int along = info_[a].edges & info_[b].edges;
       if (!along) continue;
+      const std::uint64_t ka = info_[a].key, kb = info_[b].key;
       for (int e = 0; e < 3; ++e) {
         if (!(along >> e & 1)) continue;
-        const std::uint64_t ka = info_[a].key, kb = info_[b].key;
         SideLength length = SideLength::Zero;
         if (ka != kb) {
-          const int from = std::min(tri[e], tri[e == 2 ? 0 : e + 1]);
-          const std::optional<Sign> s = compare_filtered(EdgePosition::of(ka, verts[k], local_[a], from),
-                                                         EdgePosition::of(kb, verts[k1], local_[b], from));
-          length = s ? SideLength::Positive : SideLength::Undecided;
+          const int lo = std::min(tri[e], tri[e == 2 ? 0 : e + 1]);
+          const Interval x = box(a, lo), y = box(b, lo);
+          length = x.inf() > y.sup() || x.sup() < y.inf() ? SideLength::Positive : SideLength::Undecided;
         }
-        out_.sides.push_back({std::min(ka, kb), std::max(ka, kb), poly.cell, p, k, static_cast<std::uint8_t>(e), length});
-        if (info_[a].kind == kTypeB) info_[a].ends_side = true;
-        if (info_[b].kind == kTypeB) info_[b].ends_side = true;
+        sides_[e].push_back({std::min(ka, kb), std::max(ka, kb), poly.cell, p, k, static_cast<std::uint8_t>(e), length});
       }
+      if (info_[a].kind == kTypeB) info_[a].ends_side = true;
+      if (info_[b].kind == kTypeB) info_[b].ends_side = true;
     }
+  }
+  for (const auto& list : sides_) {
+    out_.first_side.push_back(static_cast<int>(out_.sides.size()));
+    out_.sides.insert(out_.sides.end(), list.begin(), list.end());
   }
 }
 
