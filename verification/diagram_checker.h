@@ -96,7 +96,12 @@ class TriangleChecker {
  private:
   // diagram_triangle.cpp: the triangle's vertices, the driver, the sides along its edges.
   void check_triangle(int t);
+  int whole_rotation(const Triangle& tri) const;
+  void load_corners(const Triangle& tri);
   void load_vertices(const Triangle& tri);
+  void load_whole(const Triangle& tri, int r);
+  bool check_whole(const Frame& f);
+  void list_whole_sides(const Triangle& tri, int r);
   int local_index(const SymbolicVertex& q, const Triangle& tri);
   int add_local(const SymbolicVertex& q, const Triangle& tri);
   void make_points(const Triangle& tri);
@@ -204,6 +209,10 @@ constexpr std::size_t kAllPairsUpTo = 16;
 //! (2) connectedness and (6) conformity, from the sides the triangle pass listed. Returns the
 //! number of distinct type B vertices (each mesh edge's, from its two sides).
 std::int64_t check_edges(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, DiagramVerification& out);
+
+//! Whether the interval filters alone show the polygon (its n vertices in the frame) strictly convex
+//! and counterclockwise; false leaves the decision to the exact test. \pre the rounding mode is upward.
+bool strictly_convex(const FrameVertex* fv, int n, const Frame& f);
 
 //! A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count);

@@ -162,19 +162,20 @@ class EdgeChecker {
     const std::size_t n = mine_end - mine;
     if (n != static_cast<std::size_t>(theirs_end - theirs)) return false;
     // Each segment's twin: the first one left of the other side with the same ends and cell.
-    twin_.clear();
-    taken_.assign(n, 0);
-    for (const SideSegment* m = mine; m != mine_end; ++m) {
+    twin_.resize(n);
+    taken_.resize(n);
+    std::fill(taken_.begin(), taken_.end(), 0);
+    for (std::size_t a = 0; a < n; ++a) {
       std::size_t k = 0;
-      while (k < n && (taken_[k] || !m->same_split(theirs[k]))) ++k;
+      while (k < n && (taken_[k] || !mine[a].same_split(theirs[k]))) ++k;
       if (k == n) return false;
-      twin_.push_back(&theirs[k]);
+      twin_[a] = static_cast<int>(k);
       taken_[k] = 1;
     }
     ++conforming_.checked;
     for (std::size_t k = 0; k < n; ++k) {
       const SideSegment& m = mine[k];
-      const int p = m.polygon, q = twin_[k]->polygon;
+      const int p = m.polygon, q = theirs[twin_[k]].polygon;
       if ((in_.polygon_state[p] & kPiece) && (in_.polygon_state[q] & kPiece) && positive_length(m, t))
         joins_.emplace_back(p, q);
     }
@@ -183,7 +184,7 @@ class EdgeChecker {
 
   // Checks the edge; whether both sides had the same segments (same_ids).
   bool check_edge(int t, int e, int across, int e_across) {
-    points_.clear();
+    if (!points_.empty()) points_.clear();
     if (same_ids(t, e, across, e_across)) return true;
     collect(t, e, mine_);
     collect(across, e_across, theirs_);
@@ -278,7 +279,7 @@ class EdgeChecker {
   std::vector<std::pair<int, int>>& joins_;
   std::deque<ExactVertex> points_;  // the type B vertices' points of the edge at hand
   std::vector<Segment> mine_, theirs_;
-  std::vector<const SideSegment*> twin_;
+  std::vector<int> twin_;     // same_ids: each side's twin on the other side
   std::vector<char> taken_;
   std::vector<std::uint64_t> keys_;
 };
@@ -302,10 +303,11 @@ void count_components(const Samples& samples, const Diagram& diagram, const std:
     polys.assign(order.begin() + first[i], order.begin() + first[i + 1]);
     roots.clear();
     for (int p : polys) roots.push_back(find_root(parent, p));
+    // An empty cell is (1)'s business, not connectedness; one root is one piece.
+    if (std::all_of(roots.begin(), roots.end(), [&](int r) { return r == roots.front(); })) continue;
     std::vector<int> distinct = roots;
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-    if (distinct.size() <= 1) continue;  // an empty cell is (1)'s business, not connectedness
     ++out.cells_with_multiple_components;
     // The main piece holds the sample; the first other piece is named as the stray one.
     int home = roots.front();

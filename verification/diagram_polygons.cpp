@@ -14,6 +14,27 @@ namespace lrvd::verify_detail {
 
 namespace {
 
+// Whether a and b hold the same values as often (b reordered; a sorted when they are long).
+template <class T>
+bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
+  if (a.size() != b.size()) return false;
+  if (a.size() > 32) {
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    return a == b;
+  }
+  std::uint32_t used = 0;
+  for (const T& x : a) {
+    std::size_t k = 0;
+    while (k < b.size() && ((used >> k & 1) || b[k] != x)) ++k;
+    if (k == b.size()) return false;
+    used |= std::uint32_t{1} << k;
+  }
+  return true;
+}
+
+}  // namespace
+
 // Whether the interval filters alone show the polygon strictly convex and counterclockwise:
 // every turn strictly left, and its edges' directions turning once around (two changes of the
 // sign of their v component, each decided; a turn is less than a half turn, so the directions
@@ -35,27 +56,6 @@ bool strictly_convex(const FrameVertex* fv, int n, const Frame& f) {
   }
   return changes == 2;
 }
-
-// Whether a and b hold the same values as often (b reordered; a sorted when they are long).
-template <class T>
-bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
-  if (a.size() != b.size()) return false;
-  if (a.size() > 32) {
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    return a == b;
-  }
-  std::uint32_t used = 0;
-  for (const T& x : a) {
-    std::size_t k = 0;
-    while (k < b.size() && ((used >> k & 1) || b[k] != x)) ++k;
-    if (k == b.size()) return false;
-    used |= std::uint32_t{1} << k;
-  }
-  return true;
-}
-
-}  // namespace
 
 // (4) for one polygon: at least three distinct vertices, each a point of the triangle (by
 // definition and exactly inside it), convex and counterclockwise (every vertex on the closed left

@@ -55,6 +55,7 @@ bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
 }
 
 void TriangleChecker::check_triangles(int begin, int end) {
+  out_.sides.reserve(4 * (end - begin));  // three sides per triangle and about one more
   out_.first_side.reserve(3 * (end - begin) + 1);
   out_.b_count.reserve(end - begin);
   for (int t = begin; t < end; ++t) check_triangle(t);
@@ -65,27 +66,102 @@ void TriangleChecker::check_triangle(int t) {
   begin_ = d_.triangle_offsets[t];
   end_ = d_.triangle_offsets[t + 1];
   const Triangle& tri = in_.mesh.triangle(t);
-  load_vertices(tri);
+  const int whole = whole_rotation(tri);
+  if (whole >= 0) load_whole(tri, whole);
+  else load_vertices(tri);
   for (int c = 0; c < 3; ++c) corner_[c] = &local_[c];
   const Frame f = triangle_frame(in_.mesh, t, corner_);
-  check_polygons(t, tri, f);
+  if (whole < 0 || !check_whole(f)) check_polygons(t, tri, f);
   check_samples(t, tri, f);
-  list_sides(tri);
+  if (whole >= 0) list_whole_sides(tri, whole);
+  else list_sides(tri);
   count_vertices();
   for (int p = begin_; p < end_; ++p)
     in_.polygon_state[p] = static_cast<std::uint8_t>((usable(p) ? kUsable : 0) |
                                                      (usable(p) && area(p) == Sign::Positive ? kPiece : 0));
 }
 
-// The triangle's distinct vertices (its corners as 0, 1, 2), the local id of each polygon vertex,
-// and which polygons the geometric checks can use.
-void TriangleChecker::load_vertices(const Triangle& tri) {
+// A triangle whose one polygon is the triangle itself (cell valid, its corners in the triangle's
+// order from corner r): r, else -1. Most triangles are so where the mesh is finer than the cells.
+int TriangleChecker::whole_rotation(const Triangle& tri) const {
+  if (end_ - begin_ != 1) return -1;
+  const CellPolygon& poly = d_.polygons[begin_];
+  if (poly.vertex_count != 3 || poly.cell < 0 || poly.cell >= d_.sample_count) return -1;
+  const SymbolicVertex* q = d_.polygon_vertices(poly);
+  if (!is_mesh_vertex(q[0])) return -1;
+  const int r = q[0].v[0] == tri[0] ? 0 : (q[0].v[0] == tri[1] ? 1 : (q[0].v[0] == tri[2] ? 2 : -1));
+  if (r < 0) return -1;
+  for (int k = 1; k < 3; ++k)
+    if (!is_mesh_vertex(q[k]) || q[k].v[0] != tri[(r + k) % 3]) return -1;
+  return r;
+}
+
+// The triangle's corners as its local vertices 0, 1, 2 (the mesh has no triangle that repeats a vertex).
+void TriangleChecker::load_corners(const Triangle& tri) {
   local_q_.clear();
   info_.clear();
   lookup_.clear();
   of_.clear();
   first_.clear();
-  for (int c = 0; c < 3; ++c) add_local(SymbolicVertex::mesh_vertex(tri[c]), tri);
+  for (int c = 0; c < 3; ++c) {
+    local_q_.push_back(SymbolicVertex::mesh_vertex(tri[c]));
+    LocalVertex info;  // as add_local makes it
+    info.key = corner_key(tri[c]);
+    info.edges = static_cast<std::uint8_t>((1 << c) | (1 << (c + 2) % 3));
+    info.kind = kMeshVertex;
+    info.defined = true;
+    info_.push_back(info);
+  }
+}
+
+// load_vertices for a whole triangle (whole_rotation r): its polygon's vertices are the corners
+// r, r + 1, r + 2.
+void TriangleChecker::load_whole(const Triangle& tri, int r) {
+  load_corners(tri);
+  first_.push_back(0);
+  for (int k = 0; k < 3; ++k) of_.push_back((r + k) % 3);
+  make_points(tri);
+  usable_.assign(1, 1);
+  area_sign_.assign(1, Sign::Zero);
+}
+
+// check_polygons for a whole triangle when the filters show its polygon strictly convex: no
+// vertex is repeated, outside or of another triangle, the sides are the triangle's boundary, and
+// its one cell has no other to be compared with, so (4), (5), (3) hold as check_polygons would
+// find. False (nothing counted) when check_polygons has to decide.
+bool TriangleChecker::check_whole(const Frame& f) {
+  if (!f.valid || !in_.options.exact_geometry) return false;
+  load_frame(f);
+  bool convex;
+  {
+    CGAL::Protect_FPU_rounding<true> upward;
+    convex = strictly_convex(frame_vertices(begin_), 3, f);
+  }
+  if (!convex) return false;
+  DiagramVerification& out = out_.part;
+  ++out.coverage.checked;
+  ++out.disjoint.checked;
+  out.equidistant.checked += 3;
+  area(begin_) = Sign::Positive;
+  return true;
+}
+
+// list_sides for a whole triangle: along edge e, the polygon's side from corner e to e + 1 (its
+// side k = e - r), of positive length.
+void TriangleChecker::list_whole_sides(const Triangle& tri, int r) {
+  const CellPolygon& poly = d_.polygons[begin_];
+  for (int e = 0; e < 3; ++e) {
+    out_.first_side.push_back(static_cast<int>(out_.sides.size()));
+    const std::uint64_t a = corner_key(tri[e]), b = corner_key(tri[(e + 1) % 3]);
+    out_.sides.push_back({std::min(a, b), std::max(a, b), poly.cell, begin_, (e - r + 3) % 3, static_cast<std::uint8_t>(e),
+                          SideLength::Positive});
+  }
+}
+
+// The triangle's distinct vertices (its corners as 0, 1, 2), the local id of each polygon vertex,
+// and which polygons the geometric checks can use.
+void TriangleChecker::load_vertices(const Triangle& tri) {
+  load_corners(tri);
   for (int p = begin_; p < end_; ++p) {
     const CellPolygon& poly = d_.polygons[p];
     first_.push_back(static_cast<int>(of_.size()));
@@ -173,13 +249,19 @@ void TriangleChecker::make_points(const Triangle& tri) {
   const std::size_t n = local_q_.size();
   if (local_.size() < n) local_.resize(n);  // reused from triangle to triangle, made in place
   for (std::size_t id = 0; id < n; ++id) local_[id].reset(local_q_[id], in_.context, &in_.rationals);
+  for (int c = 0; c < 3; ++c) {  // a mesh vertex: its coordinates, as enclose_position gives them
+    const Vec3& x = in_.context.vertices[tri[c]];
+    local_[c].box = {Interval(x.x), Interval(x.y), Interval(x.z)};
+    local_[c].valid = true;
+  }
+  if (n == 3) return;
   enclosures_.reset(tri, in_.context);
   {
     CGAL::Protect_FPU_rounding<true> upward;
-    for (std::size_t id = 0; id < n; ++id)
+    for (std::size_t id = 3; id < n; ++id)
       local_[id].valid = enclosures_.enclose(local_q_[id], local_[id].box, local_[id].parameter_box);
   }
-  for (std::size_t id = 0; id < n; ++id)
+  for (std::size_t id = 3; id < n; ++id)
     if (!local_[id].valid) local_[id].enclose_from_rationals();
 }
 
