@@ -105,6 +105,7 @@ class TriangleChecker {
   int local_index(const SymbolicVertex& q, const Triangle& tri);
   int add_local(const SymbolicVertex& q, const Triangle& tri);
   void make_points(const Triangle& tri);
+
   void load_frame(const Frame& f);
   void check_polygons(int t, const Triangle& tri, const Frame& f);
   void check_structure(int t, const Frame& f);
@@ -199,7 +200,7 @@ class TriangleChecker {
   std::vector<int> candidates_;
   std::vector<FrameBox> boxes_;
   std::vector<std::pair<int, int>> pairs_;
-  std::array<std::vector<SideSegment>, 3> sides_;  // list_sides: the triangle's, by edge
+  std::vector<std::array<int, 5>> along_;  // list_sides: the polygon sides along the triangle's edges
 };
 
 //! Above this many polygons (or cells) in a triangle, (3) and (4) compare only the pairs a
@@ -213,6 +214,12 @@ std::int64_t check_edges(const DiagramInput& in, const std::vector<TriangleChunk
 //! Whether the interval filters alone show the polygon (its n vertices in the frame) strictly convex
 //! and counterclockwise; false leaves the decision to the exact test. \pre the rounding mode is upward.
 bool strictly_convex(const FrameVertex* fv, int n, const Frame& f);
+
+//! Equal to SymbolicVertex::mesh_vertex(q.v[0]), field by field.
+inline bool is_mesh_vertex(const SymbolicVertex& q) {
+  return q.type == SymbolicVertex::Type::A && q.v[1] == -1 && q.v[2] == -1 && q.label[0] == -1 && q.label[1] == -1 &&
+         q.label[2] == -1;
+}
 
 //! A symbolic vertex whose indices are in range and whose labels are distinct.
 bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count);

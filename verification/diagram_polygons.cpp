@@ -42,17 +42,22 @@ bool same_multiset(std::vector<T>& a, std::vector<T>& b) {
 // does not end, which is what polygon_problem checks; false leaves the decision to that check.
 // \pre the rounding mode is upward.
 bool strictly_convex(const FrameVertex* fv, int n, const Frame& f) {
-  int changes = 0;
-  Sign previous = filtered_sign(fv[0].v - fv[n - 1].v);
+  // The turn at vertex k is cross(d_{k-1}, d_k), d_k = fv[k + 1] - fv[k]: (b - a) x (c - a) = (b - a) x (c - b).
+  Interval du = fv[0].u - fv[n - 1].u, dv = fv[0].v - fv[n - 1].v;
+  Sign previous = filtered_sign(dv);
   if (previous == Sign::Zero) return false;
+  int changes = 0;
   for (int k = 0; k < n; ++k) {
-    const FrameVertex &a = fv[(k + n - 1) % n], &b = fv[k], &c = fv[(k + 1) % n];
-    const Sign turn = filtered_sign((b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u));
+    const FrameVertex &b = fv[k], &c = fv[k + 1 == n ? 0 : k + 1];
+    const Interval eu = c.u - b.u, ev = c.v - b.v;
+    const Sign turn = filtered_sign(du * ev - dv * eu);
     if (turn == Sign::Zero || (f.sign > 0) != (turn == Sign::Positive)) return false;
-    const Sign direction = filtered_sign(c.v - b.v);
+    const Sign direction = filtered_sign(ev);
     if (direction == Sign::Zero) return false;
     changes += direction != previous;
     previous = direction;
+    du = eu;
+    dv = ev;
   }
   return changes == 2;
 }
