@@ -12,7 +12,7 @@
 namespace lrvd::verify_detail {
 
 void TriangleChecker::check_triangles(int begin, int end) {
-  out_.sides.reserve(4 * (end - begin));  // three sides per triangle and about one more
+  out_.sides.reserve(6 * (end - begin));  // three sides per triangle, and more where cells meet
   out_.first_side.reserve(3 * (end - begin) + 1);
   out_.b_count.reserve(end - begin);
   for (int t = begin; t < end; ++t) check_triangle(t);
