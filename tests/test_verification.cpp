@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <random>
 #include <set>
 #include <string>
 #include <tuple>
@@ -21,6 +22,7 @@
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/diagram_geometry.h"
+#include "verification/triangle_enclosures.h"
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
@@ -208,6 +210,69 @@ TEST_CASE("A vertex the intervals cannot place is placed by the rationals", "[ve
   CHECK(x.edge_parameter() == exact_edge_parameter(q, ctx));
   CHECK(x.p().x == e.x);
   CHECK_FALSE(verify_detail::within_edge(x));  // far beyond the edge's end
+}
+
+TEST_CASE("The verification's enclosures, made triangle by triangle, are enclose_position's bit for bit",
+          "[verification]") {
+  // Random triangles at scales from 1e-3 to 1e3, some far from the origin, and six sites: every type
+  // B vertex of each edge, every type C of the triangle (in its corners' order, and in another order,
+  // which takes enclose_position's own path), the corners; sites 4 and 5 mirror each other across
+  // the first edge, so that their bisector is parallel to it (no enclosure: nullopt from both).
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int compared = 0, none = 0;
+  for (int round = 0; round < 300; ++round) {
+    const double scale = std::pow(10.0, -3 + round % 7), shift = round % 3 == 0 ? 100 * scale : 0;
+    std::vector<Vec3> points;
+    for (int k = 0; k < 3; ++k) points.push_back({shift + scale * unit(rng), scale * unit(rng), scale * unit(rng)});
+    points[1].y = points[0].y;  // the first edge along x: a mirror across it is exact in doubles
+    points[1].z = points[0].z;
+    std::vector<Site> sites;
+    for (int k = 0; k < 4; ++k) {
+      const Vec3 p{shift + scale * unit(rng), scale * unit(rng), scale * unit(rng)};
+      sites.push_back({p, round % 2 ? 0.0 : scale * scale * std::abs(unit(rng)), k});
+    }
+    const double off = scale * (0.5 + std::abs(unit(rng)));
+    sites.push_back({{shift, points[0].y + off, points[0].z}, 0.0, 4});
+    sites.push_back({{shift, points[0].y - off, points[0].z}, 0.0, 5});
+    const SymbolicContext ctx{points.data(), sites.data()};
+    std::vector<SymbolicVertex> vertices;
+    for (int c = 0; c < 3; ++c) vertices.push_back(SymbolicVertex::mesh_vertex(c));
+    for (int a = 0; a < 6; ++a)
+      for (int b = a + 1; b < 6; ++b) {
+        for (int e = 0; e < 3; ++e) vertices.push_back(SymbolicVertex::on_edge(e, (e + 1) % 3, a, b));
+        for (int c = b + 1; c < 4; ++c) {
+          vertices.push_back(SymbolicVertex::in_triangle({0, 1, 2}, a, b, c));
+          vertices.push_back(SymbolicVertex::in_triangle({1, 2, 0}, a, b, c));
+        }
+      }
+    verify_detail::TriangleEnclosures enclosures;
+    enclosures.reset({0, 1, 2}, ctx);
+    for (const SymbolicVertex& q : vertices) {
+      std::array<CGAL::Interval_nt<false>, 3> box;
+      CGAL::Interval_nt<false> parameter;
+      bool made;
+      {
+        CGAL::Protect_FPU_rounding<true> upward;
+        made = enclosures.enclose(q, box, parameter);
+      }
+      const std::optional<PositionEnclosure> e = enclose_position(q, ctx);
+      REQUIRE(made == e.has_value());
+      ++compared;
+      if (!made) {
+        ++none;
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        CHECK(box[c].inf() == e->box[c].inf());
+        CHECK(box[c].sup() == e->box[c].sup());
+      }
+      CHECK(parameter.inf() == e->parameter.inf());
+      CHECK(parameter.sup() == e->parameter.sup());
+    }
+  }
+  CHECK(compared == 300 * (3 + 15 * 3 + 2 * 4));
+  CHECK(none >= 300);  // the mirrored pair on the first edge, at least
 }
 
 TEST_CASE("The report of a diagram broken in many places is the same with one thread and with four",

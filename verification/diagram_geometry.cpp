@@ -7,6 +7,7 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
@@ -24,26 +25,52 @@ Sign sign_of(const Q& x) { return static_cast<Sign>(static_cast<int>(CGAL::sign(
 
 const Q& coordinate(const ExactPoint& p, int axis) { return axis == 0 ? p.x : (axis == 1 ? p.y : p.z); }
 
-ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx) {
+RationalPoint& RationalStore::entry(const SymbolicVertex& q) const {
+  if (auto it = map_.find(q); it != map_.end()) return it->second;
+  return map_.emplace(std::piecewise_construct, std::forward_as_tuple(q), std::forward_as_tuple()).first->second;
+}
+
+const RationalPoint* RationalStore::find(const SymbolicVertex& q) const {
+  const auto it = map_.find(q);
+  return it == map_.end() ? nullptr : &it->second;
+}
+
+ExactVertex ExactVertex::of(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store) {
   ExactVertex e;
-  e.q_ = q;
-  e.ctx_ = &ctx;
+  e.reset(q, ctx, store);
   if (const std::optional<PositionEnclosure> enclosure = enclose_position(q, ctx)) {
     e.box = enclosure->box;
     e.parameter_box = enclosure->parameter;
     e.valid = true;
-    return e;
+  } else {
+    e.enclose_from_rationals();
   }
-  // The intervals cannot tell whether q exists: the rationals decide, and give the enclosure.
-  try {
-    e.p();
-  } catch (const std::domain_error&) {
-    return ExactVertex{};  // invalid: reported by the checks that meet it
-  }
-  for (int c = 0; c < 3; ++c) e.box[c] = enclose(coordinate(e.p(), c));
-  if (q.type == SymbolicVertex::Type::B) e.parameter_box = enclose(e.edge_parameter());
-  e.valid = true;
   return e;
+}
+
+void ExactVertex::reset(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store) {
+  valid = false;
+  box = {Interval(0), Interval(0), Interval(0)};
+  parameter_box = Interval(0);
+  source_ = Source::Symbolic;
+  q_ = q;
+  barycentric_ = nullptr;
+  ctx_ = &ctx;
+  store_ = store;
+  shared_ = nullptr;
+  if (own_) own_ = Lazy<RationalPoint>();
+}
+
+void ExactVertex::enclose_from_rationals() {
+  try {
+    p();
+  } catch (const std::domain_error&) {
+    valid = false;  // reported by the checks that meet it
+    return;
+  }
+  for (int c = 0; c < 3; ++c) box[c] = enclose(coordinate(p(), c));
+  if (q_.type == SymbolicVertex::Type::B) parameter_box = enclose(edge_parameter());
+  valid = true;
 }
 
 ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx) {
@@ -64,8 +91,19 @@ ExactVertex ExactVertex::at_barycentric(const std::array<int, 3>& corners, const
   return e;
 }
 
+const RationalPoint* ExactVertex::rationals() const {
+  if (!store_) return &own_.get([] { return RationalPoint{}; });
+  if (!shared_) shared_ = &store_->entry(q_);
+  return shared_;
+}
+
+const RationalPoint* ExactVertex::rationals_if_made() const {
+  if (!store_) return own_ ? &own_.get([] { return RationalPoint{}; }) : nullptr;
+  return shared_ ? shared_ : store_->find(q_);
+}
+
 const ExactPoint& ExactVertex::p() const {
-  return exact_.get([&] {
+  auto make = [&] {
     if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::p: a point that names no vertex");
     if (source_ == Source::Symbolic) return exact_position(q_, *ctx_);
     const Q b[3] = {Q(barycentric_->x), Q(barycentric_->y), Q(barycentric_->z)};
@@ -78,14 +116,26 @@ const ExactPoint& ExactVertex::p() const {
       x.z += b[c] * corner.z / sum;
     }
     return x;
-  });
+  };
+  return rationals()->point.get(make);
 }
 
 const Q& ExactVertex::edge_parameter() const {
-  return parameter_.get([&] {
+  auto make = [&] {
     if (!ctx_ || !ctx_->vertices) throw std::logic_error("ExactVertex::edge_parameter: a point that names no vertex");
     return exact_edge_parameter(q_, *ctx_);
-  });
+  };
+  return rationals()->parameter.get(make);
+}
+
+bool ExactVertex::has_rationals() const {
+  const RationalPoint* e = rationals_if_made();
+  return e && e->made();
+}
+
+bool ExactVertex::has_point() const {
+  const RationalPoint* e = rationals_if_made();
+  return e && static_cast<bool>(e->point);
 }
 
 int ExactVertices::index(const SymbolicVertex& q) {
@@ -224,7 +274,7 @@ bool within_edge(const ExactVertex& b) {
   return !CGAL::is_negative(b.edge_parameter()) && b.edge_parameter() <= Q(1);
 }
 
-EdgePosition EdgePosition::of(int id, const SymbolicVertex& q, const ExactVertex& x, int from) {
+EdgePosition EdgePosition::of(std::uint64_t id, const SymbolicVertex& q, const ExactVertex& x, int from) {
   EdgePosition e;
   e.id = id;
   if (q.type == SymbolicVertex::Type::A) {
@@ -241,7 +291,7 @@ Q EdgePosition::exact() const {
   return reversed ? Q(1) - vertex->edge_parameter() : vertex->edge_parameter();
 }
 
-Sign compare(const EdgePosition& x, const EdgePosition& y) {
+std::optional<Sign> compare_filtered(const EdgePosition& x, const EdgePosition& y) {
   if (x.id == y.id && x.reversed == y.reversed) return Sign::Zero;
   Sign s = Sign::Zero;
   if (!x.reversed && !y.reversed) {
@@ -259,7 +309,12 @@ Sign compare(const EdgePosition& x, const EdgePosition& y) {
     CGAL::Protect_FPU_rounding<true> upward;
     s = filtered_sign(box(x) - box(y));
   }
-  if (s != Sign::Zero) return s;
+  if (s == Sign::Zero) return std::nullopt;
+  return s;
+}
+
+Sign compare(const EdgePosition& x, const EdgePosition& y) {
+  if (const std::optional<Sign> s = compare_filtered(x, y)) return *s;
   return sign_of(x.exact() - y.exact());
 }
 

@@ -7,11 +7,13 @@
 #include <array>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <CGAL/Gmpq.h>
 #include <CGAL/Interval_nt.h>
+#include <tbb/concurrent_unordered_map.h>
 
 #include "mesh/surface_mesh.h"
 #include "predicates/exact.h"
@@ -54,9 +56,39 @@ class Lazy {
   mutable std::atomic<T*> value_{nullptr};
 };
 
+//! The rational coordinates of one symbolic vertex, made on first use and shared by every point
+//! of the checks that stands for it (a type B vertex is met from both triangles of its edge).
+struct RationalPoint {
+  Lazy<ExactPoint> point;
+  Lazy<Q> parameter;  //!< type B: its position along its edge
+  bool made() const { return static_cast<bool>(point) || static_cast<bool>(parameter); }
+};
+
+//! One RationalPoint per symbolic vertex whose rationals some check asked for, from any thread.
+class RationalStore {
+ public:
+  RationalStore() = default;
+  RationalStore(const RationalStore&) = delete;
+  RationalStore& operator=(const RationalStore&) = delete;
+  //! The entry of q, made empty the first time q is asked for.
+  RationalPoint& entry(const SymbolicVertex& q) const;
+  //! The entry of q if some check asked for it, else null.
+  const RationalPoint* find(const SymbolicVertex& q) const;
+  //! visit(q, entry) for each entry, in no fixed order. \pre no thread adds entries meanwhile.
+  template <class Visit>
+  void for_each(Visit visit) const {
+    for (const auto& [q, e] : map_) visit(q, e);
+  }
+
+ private:
+  mutable tbb::concurrent_unordered_map<SymbolicVertex, RationalPoint, SymbolicVertexHash> map_;
+};
+
 //! A point of the checks: a diagram vertex, or a sample. `box` encloses its exact coordinates;
 //! the coordinates themselves (and a type B vertex's parameter along its edge) are rationals
-//! computed on first use, when a filter on the enclosure leaves a sign undecided.
+//! computed on first use, when a filter on the enclosure leaves a sign undecided: kept in the
+//! point itself, or, for a vertex made with a RationalStore, in the store's entry of its symbolic
+//! vertex, so that every point standing for that vertex shares them.
 class ExactVertex {
  public:
   std::array<Interval, 3> box{Interval(0), Interval(0), Interval(0)};
@@ -64,22 +96,31 @@ class ExactVertex {
   bool valid = false;  //!< false when the symbolic vertex names no point (its definition is degenerate)
 
   ExactVertex() = default;
-  //! The point q defines; not valid when it defines none (decided exactly). ctx must outlive the
-  //! vertex (its rationals are made from it on first use).
-  static ExactVertex of(const SymbolicVertex& q, const SymbolicContext& ctx);
+  //! The point q defines; not valid when it defines none (decided exactly). ctx (and store, when
+  //! given) must outlive the vertex: its rationals are made from ctx on first use, into store.
+  static ExactVertex of(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store = nullptr);
   //! The point at barycentric coordinates b (not normalised; their sum is positive) of triangle
   //! `corners` (vertex indices into ctx.vertices). b and ctx must outlive the vertex.
   static ExactVertex at_barycentric(const std::array<int, 3>& corners, const Vec3& b, const SymbolicContext& ctx);
 
-  //! The exact coordinates (computed on the first call, from any thread).
+  //! Makes this, in place, the point of q with no enclosure yet (not valid): the caller sets box
+  //! and parameter_box to enclose_position(q, ctx) and `valid`, or calls enclose_from_rationals.
+  void reset(const SymbolicVertex& q, const SymbolicContext& ctx, const RationalStore* store);
+  //! For a point whose enclosure cannot be formed: the rationals decide whether it exists (valid)
+  //! and give the enclosure.
+  void enclose_from_rationals();
+
+  //! The exact coordinates (computed on the first call).
   const ExactPoint& p() const;
-  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first
-  //! call, from any thread).
+  //! Type B only: the exact position along its edge, 0 at v[0], 1 at v[1] (computed on the first call).
   const Q& edge_parameter() const;
-  //! Whether p() or edge_parameter() has been computed.
-  bool has_rationals() const { return static_cast<bool>(exact_) || static_cast<bool>(parameter_); }
+  //! Whether p() or edge_parameter() has been computed (for a point of a RationalStore: by any point
+  //! of its vertex).
+  bool has_rationals() const;
   //! Whether p() has been computed.
-  bool has_point() const { return static_cast<bool>(exact_); }
+  bool has_point() const;
+  //! The symbolic vertex (type A with the corners in v for a point at barycentric coordinates).
+  const SymbolicVertex& symbolic() const { return q_; }
 
  private:
   enum class Source : std::uint8_t { Symbolic, Barycentric };
@@ -87,8 +128,13 @@ class ExactVertex {
   SymbolicVertex q_;  // Barycentric: q_.v holds the corners
   const Vec3* barycentric_ = nullptr;
   const SymbolicContext* ctx_ = nullptr;
-  Lazy<ExactPoint> exact_;
-  Lazy<Q> parameter_;
+  const RationalStore* store_ = nullptr;
+  // The store's entry of q_, found on first use. Not shared between threads: a point made with a
+  // store belongs to the worker that made it.
+  mutable RationalPoint* shared_ = nullptr;
+  Lazy<RationalPoint> own_;  // without a store
+  const RationalPoint* rationals() const;
+  const RationalPoint* rationals_if_made() const;
 };
 
 const Q& coordinate(const ExactPoint& p, int axis);
@@ -178,17 +224,19 @@ bool within_edge(const ExactVertex& b);
 //! positions of one vertex compare equal without arithmetic, so positions compared with each
 //! other must be measured from the same end. \pre the point lies on the edge by definition.
 struct EdgePosition {
-  int id = -1;                           //!< exact vertex id
+  std::uint64_t id = 0;                  //!< the vertex's identity: equal ids, one vertex
   const ExactVertex* vertex = nullptr;  //!< type B; null for an endpoint
   int end = 0;                           //!< endpoint: 0 at `from`, 1 at the other end
   bool reversed = false;                 //!< type B: its v[0] is not `from`, so the position is 1 - parameter
 
-  //! The position of exact vertex `id` (symbolic q) along its edge, measured from mesh vertex `from`.
-  static EdgePosition of(int id, const SymbolicVertex& q, const ExactVertex& x, int from);
+  //! The position of vertex `id` (symbolic q, point x) along its edge, measured from mesh vertex `from`.
+  static EdgePosition of(std::uint64_t id, const SymbolicVertex& q, const ExactVertex& x, int from);
   Q exact() const;
 };
 //! Exact sign of x - y, filtered.
 Sign compare(const EdgePosition& x, const EdgePosition& y);
+//! The same when the ids or the interval filter decide it; nullopt when the rationals would.
+std::optional<Sign> compare_filtered(const EdgePosition& x, const EdgePosition& y);
 
 //! Exact sign of d_a(q) - d_b(q), the power distances to sites a and b (Negative: q closer to a).
 Sign compare_power_distance(const ExactVertex& q, const Site& a, const Site& b);
@@ -209,12 +257,6 @@ std::vector<SiteTerms> site_terms(const std::vector<Site>& sites);
 //! "A(5)", "B(edge 3-9, cells 2|7)", "C(triangle 1-2-3, cells 2|7|9)".
 std::string describe(const SymbolicVertex& q);
 
-//! Indices of the exact vertices of each diagram vertex (parallel to Diagram::vertices).
-struct VertexIndex {
-  ExactVertices exact;
-  std::vector<int> of_diagram_vertex;
-};
-
 //! Triangles or samples a work item of the parallel checks takes; fixed, so that the chunks' results,
 //! merged in order, are the same for any number of threads.
 constexpr int kCheckChunk = 512;
@@ -222,13 +264,5 @@ constexpr int kCheckChunk = 512;
 //! Folds a range's results into the whole's, in range order: the first offenders are those a
 //! single pass would list.
 void merge_into(PropertyResult& into, const PropertyResult& part);
-
-//! (2) connectedness and (6) conformity, from the polygons' segments along mesh edges.
-//! polygon_ok: the polygon's cell and vertices are valid (both checks use it); piece: it also has
-//! positive area (only those make up a cell's region: a zero-area polygon is the unperturbed
-//! limit of an infinitesimal sliver at a degenerate input, no piece of its own).
-void check_edges(const SurfaceMesh& mesh, const Samples& samples, const Diagram& diagram,
-                 const std::vector<char>& polygon_ok, const std::vector<char>& piece, const VertexIndex& vertices,
-                 DiagramVerification& out);
 
 }  // namespace lrvd::verify_detail
