@@ -10,8 +10,14 @@ SANITIZE_BUILD ?= build-sanitize
 SANITIZE_TESTS ?=
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
+# CI's share of both: the tests of the input readers, the samples, the predicates, the diagrams
+# and their verification, the MPS, the metrics and the pictures (under the sanitizers about a
+# quarter of the suite's time: the remesh tests, three quarters of it, run the same predicates
+# and diagrams many times over), and 60 s of each fuzz target.
+CI_SANITIZE_TESTS ?= [\#test_hostile_inputs],[\#test_mesh_io],[\#test_samples],[\#test_predicates],[\#test_symbolic_vertex],[\#test_lrvd],[\#test_verification],[\#test_surface_mesh],[\#test_mps],[\#test_quality],[\#test_remesh_check],[\#test_render]
+CI_FUZZ_SECONDS ?= 60
 
-.PHONY: all setup configure build test sanitize fuzz demo bench images install clean
+.PHONY: all setup configure build test unit sanitize fuzz demo bench images install clean
 
 all: build
 
@@ -24,8 +30,13 @@ configure: setup
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Every unit test (what CI runs, .ci/run). `make sanitize` and `make fuzz` are run apart.
-test: build
+# What CI runs (.ci/run): every unit test, then the unit tests of CI_SANITIZE_TESTS under ASan and
+# UBSan, then each fuzz target for CI_FUZZ_SECONDS. `make unit` runs the unit tests alone.
+test: unit
+	$(MAKE) sanitize SANITIZE_TESTS='$(CI_SANITIZE_TESTS)'
+	$(MAKE) fuzz FUZZ_SECONDS=$(CI_FUZZ_SECONDS)
+
+unit: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
 
 # Every unit test under AddressSanitizer and UndefinedBehaviorSanitizer; any report fails its test.
