@@ -157,8 +157,10 @@ void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d
   DiagramInput in(mesh, samples, diagram, options);
   const int nt = mesh.triangle_count();
   std::vector<TriangleChunk> chunks((nt + kCheckChunk - 1) / kCheckChunk);
+  std::vector<EdgeChunk> edges(chunks.size());
   tbb::parallel_for(0, static_cast<int>(chunks.size()), [&](int c) {
     TriangleChecker(in, chunks[c]).check_triangles(c * kCheckChunk, std::min(nt, (c + 1) * kCheckChunk));
+    check_inner_edges(in, chunks, c, edges[c]);
   });
   bool irregular = !consecutive_ranges(diagram);
   std::int64_t counted = mesh.vertex_count();
@@ -170,7 +172,7 @@ void check_all(const SurfaceMesh& mesh, const Samples& samples, const Diagram& d
     irregular = irregular || c.irregular;
   }
   report_samples(samples, chunks, in, out.sample_in_cell);
-  counted += check_edges(in, chunks, out);
+  counted += check_edges(in, chunks, edges, out);
   out.distinct_vertices = irregular ? count_distinct(mesh, diagram) : counted;
   check_rational_vertices(in, out);
 }

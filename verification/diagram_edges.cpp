@@ -44,25 +44,24 @@ int find_root(std::vector<int>& parent, int x) {
 // B vertices on them (a boundary edge's from its one triangle).
 class EdgeChecker {
  public:
-  EdgeChecker(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, PropertyResult& conforming,
-              std::vector<std::pair<int, int>>& joins)
-      : in_(in), mesh_(in.mesh), diagram_(in.d), chunks_(chunks), conforming_(conforming), joins_(joins) {}
+  EdgeChecker(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, EdgeChunk& out)
+      : in_(in), mesh_(in.mesh), diagram_(in.d), chunks_(chunks), out_(out) {}
 
-  std::int64_t b_vertices = 0;
-
-  void check_triangles(int begin, int end) {
+  // The edges of triangles [begin, end) (a chunk) seen from their lower triangle: `inner`, those
+  // whose other triangle is in the chunk too, and the boundary edges; else those to a later chunk.
+  void check_triangles(int begin, int end, bool inner) {
     for (int t = begin; t < end; ++t)
       for (int e = 0; e < 3; ++e) {
         const int across = mesh_.neighbor(t, e);
         if (across < 0) {
-          b_vertices += b_count(t, e) >= 0 ? b_count(t, e) : distinct_b(t, e, -1, -1);
+          if (inner) out_.b_vertices += b_count(t, e) >= 0 ? b_count(t, e) : distinct_b(t, e, -1, -1);
           continue;
         }
-        if (across < t) continue;  // seen from the other side already
+        if (across < t || (across < end) != inner) continue;  // seen from the other side, or in the other pass
         const int e_across = mesh_.neighbor_edge(t, e);
         const bool same = check_edge(t, e, across, e_across);
         const bool counted = same && b_count(t, e) >= 0 && b_count(across, e_across) >= 0;
-        b_vertices += counted ? b_count(t, e) : distinct_b(t, e, across, e_across);
+        out_.b_vertices += counted ? b_count(t, e) : distinct_b(t, e, across, e_across);
       }
   }
 
@@ -172,12 +171,12 @@ class EdgeChecker {
       twin_[a] = static_cast<int>(k);
       taken_[k] = 1;
     }
-    ++conforming_.checked;
+    ++out_.checked;
     for (std::size_t k = 0; k < n; ++k) {
       const SideSegment& m = mine[k];
       const int p = m.polygon, q = theirs[twin_[k]].polygon;
       if ((in_.polygon_state[p] & kPiece) && (in_.polygon_state[q] & kPiece) && positive_length(m, t))
-        joins_.emplace_back(p, q);
+        out_.joins.emplace_back(p, q);
     }
     return true;
   }
@@ -190,7 +189,7 @@ class EdgeChecker {
     collect(across, e_across, theirs_);
     const Triangle& tri = mesh_.triangle(t);
     const int lo = std::min(tri[e], tri[(e + 1) % 3]), hi = std::max(tri[e], tri[(e + 1) % 3]);
-    check_split(t, across, lo, hi);
+    check_split(t, e, across, lo, hi);
     // (2) polygons of one cell are joined when their segments overlap in positive length.
     for (const Segment& m : mine_)
       for (const Segment& o : theirs_) {
@@ -198,7 +197,7 @@ class EdgeChecker {
           continue;
         const EdgePosition& from = compare(m.s0, o.s0) == Sign::Negative ? o.s0 : m.s0;  // the later start
         const EdgePosition& to = compare(m.s1, o.s1) == Sign::Negative ? m.s1 : o.s1;    // the earlier end
-        if (compare(from, to) == Sign::Negative) joins_.emplace_back(m.polygon, o.polygon);
+        if (compare(from, to) == Sign::Negative) out_.joins.emplace_back(m.polygon, o.polygon);
       }
     return false;
   }
@@ -206,8 +205,8 @@ class EdgeChecker {
   // (6) the same split points and the same cell on each segment, in the unperturbed geometry: a
   // segment of length zero there (a perturbed side between two vertices at one exact point) is
   // no part of the split, and two such vertices are one split point.
-  void check_split(int t, int across, int lo, int hi) {
-    ++conforming_.checked;
+  void check_split(int t, int e, int across, int lo, int hi) {
+    ++out_.checked;
     auto next_segment = [](const std::vector<Segment>& list, size_t k) {
       while (k < list.size() && compare(list[k].s0, list[k].s1) == Sign::Zero) ++k;
       return k;
@@ -224,13 +223,14 @@ class EdgeChecker {
     if (same) return;
     const auto cells_mine = cells_of(mine_), cells_theirs = cells_of(theirs_);
     if (cells_mine != cells_theirs)
-      conforming_.fail(fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]", lo, hi, t,
-                                   fmt::join(cells_mine, ", "), across, fmt::join(cells_theirs, ", ")));
+      out_.failures.emplace_back(3 * t + e, fmt::format("edge ({}, {}): triangle {} sees cells [{}], triangle {} sees [{}]",
+                                                        lo, hi, t, fmt::join(cells_mine, ", "), across,
+                                                        fmt::join(cells_theirs, ", ")));
     else
-      conforming_.fail(fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it at different "
-                                   "points: [{}] vs [{}]",
-                                   lo, hi, t, across, fmt::join(cells_mine, ", "), split_points(mine_),
-                                   split_points(theirs_)));
+      out_.failures.emplace_back(3 * t + e, fmt::format("edge ({}, {}): triangles {} and {} see cells [{}] but split it "
+                                                        "at different points: [{}] vs [{}]",
+                                                        lo, hi, t, across, fmt::join(cells_mine, ", "),
+                                                        split_points(mine_), split_points(theirs_)));
   }
 
   // The distinct type B vertices on the edge, from the polygons of its triangles (across < 0: a
@@ -275,8 +275,7 @@ class EdgeChecker {
   const SurfaceMesh& mesh_;
   const Diagram& diagram_;
   const std::vector<TriangleChunk>& chunks_;
-  PropertyResult& conforming_;
-  std::vector<std::pair<int, int>>& joins_;
+  EdgeChunk& out_;
   std::deque<ExactVertex> points_;  // the type B vertices' points of the edge at hand
   std::vector<Segment> mine_, theirs_;
   std::vector<int> twin_;     // same_ids: each side's twin on the other side
@@ -330,29 +329,53 @@ void count_components(const Samples& samples, const Diagram& diagram, const std:
 
 }  // namespace
 
-std::int64_t check_edges(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, DiagramVerification& out) {
-  // The edges in parallel, by fixed chunks of triangles merged in order; the joins then in that order.
+void check_inner_edges(const DiagramInput& in, std::vector<TriangleChunk>& chunks, int c, EdgeChunk& out) {
   const SurfaceMesh& mesh = in.mesh;
+  const int begin = c * kCheckChunk, end = std::min(mesh.triangle_count(), begin + kCheckChunk);
+  EdgeChecker(in, chunks, out).check_triangles(begin, end, true);
+  // Only the sides along edges to other chunks are read again.
+  TriangleChunk& chunk = chunks[c];
+  std::vector<SideSegment> kept;
+  std::vector<int> first;
+  first.reserve(chunk.first_side.size());
+  for (int t = begin; t < end; ++t)
+    for (int e = 0; e < 3; ++e) {
+      first.push_back(static_cast<int>(kept.size()));
+      const int across = mesh.neighbor(t, e);
+      if (across < 0 || (across >= begin && across < end)) continue;
+      const int j = 3 * (t - begin) + e;
+      kept.insert(kept.end(), chunk.sides.begin() + chunk.first_side[j], chunk.sides.begin() + chunk.first_side[j + 1]);
+    }
+  first.push_back(static_cast<int>(kept.size()));
+  chunk.sides.swap(kept);
+  chunk.first_side.swap(first);
+}
+
+std::int64_t check_edges(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, std::vector<EdgeChunk>& edges,
+                         DiagramVerification& out) {
+  // The edges between chunks in parallel, by the chunk of their lower triangle; then every chunk's
+  // results in order (its offenders by edge), and the joins in that order.
   const int count = static_cast<int>(chunks.size());
-  std::vector<PropertyResult> conforming(count);
-  std::vector<std::vector<std::pair<int, int>>> joins(count);
-  std::vector<std::int64_t> b_vertices(count);
   tbb::parallel_for(0, count, [&](int c) {
-    EdgeChecker checker(in, chunks, conforming[c], joins[c]);
-    checker.check_triangles(c * kCheckChunk, std::min(mesh.triangle_count(), (c + 1) * kCheckChunk));
-    b_vertices[c] = checker.b_vertices;
+    EdgeChecker(in, chunks, edges[c])
+        .check_triangles(c * kCheckChunk, std::min(in.mesh.triangle_count(), (c + 1) * kCheckChunk), false);
   });
   std::vector<int> parent(in.d.polygons.size());
   std::iota(parent.begin(), parent.end(), 0);
-  for (int c = 0; c < count; ++c) {
-    merge_into(out.conforming, conforming[c]);
-    for (const auto& [a, b] : joins[c]) {
+  std::int64_t b_vertices = 0;
+  for (EdgeChunk& chunk : edges) {
+    std::sort(chunk.failures.begin(), chunk.failures.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    out.conforming.checked += chunk.checked;
+    for (const auto& [edge, offender] : chunk.failures) out.conforming.fail(offender);
+    for (const auto& [a, b] : chunk.joins) {
       const int ra = find_root(parent, a), rb = find_root(parent, b);
       if (ra != rb) parent[ra] = rb;
     }
+    b_vertices += chunk.b_vertices;
   }
   count_components(in.samples, in.d, in.polygon_state, parent, out);
-  return std::accumulate(b_vertices.begin(), b_vertices.end(), std::int64_t{0});
+  return b_vertices;
 }
 
 }  // namespace lrvd::verify_detail
