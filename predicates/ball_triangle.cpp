@@ -10,6 +10,7 @@
 #include <CGAL/Interval_nt.h>
 
 #include "predicates/exact.h"
+#include "predicates/exact_vector.h"
 
 namespace lrvd {
 namespace {
@@ -17,22 +18,8 @@ namespace {
 using Interval = CGAL::Interval_nt<false>;
 using Q = CGAL::Gmpq;
 
-template <class NT>
-struct V {
-  NT x, y, z;
-};
-template <class NT>
-V<NT> sub(const V<NT>& a, const V<NT>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class NT>
-NT dot(const V<NT>& a, const V<NT>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class NT>
-V<NT> cross(const V<NT>& a, const V<NT>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+using detail::lift;
+using detail::V3;
 
 // Three-valued logic: 1 true, 0 false, -1 not known (an interval holding 0).
 int positive(const Interval& v) { return v.inf() > 0 ? 1 : (v.sup() <= 0 ? 0 : -1); }
@@ -42,16 +29,16 @@ int either(int a, int b) { return (a == 1 || b == 1) ? 1 : (a == 0 && b == 0 ? 0
 
 // 1 when B(x, √w) meets abc, 0 when not, -1 when the number type cannot tell (intervals).
 template <class NT>
-int meets(const V<NT>& x, const NT& w, const V<NT>& a, const V<NT>& b, const V<NT>& c) {
-  const V<NT> p[3] = {sub(a, x), sub(b, x), sub(c, x)};  // the corners about x
+int meets(const V3<NT>& x, const NT& w, const V3<NT>& a, const V3<NT>& b, const V3<NT>& c) {
+  const V3<NT> p[3] = {a - x, b - x, c - x};  // the corners about x
   int result = 0;
   for (int k = 0; k < 3 && result != 1; ++k) result = either(result, positive(w - dot(p[k], p[k])));
   for (int k = 0; k < 3 && result != 1; ++k) {
     // Edge p -> q: the foot x + ... at parameter s = -p·e / |e|² strictly inside (0, 1), and the
     // squared distance |p|² - (p·e)²/|e|² below w, i.e. (w - |p|²)|e|² + (p·e)² > 0.
-    const V<NT>& u = p[k];
-    const V<NT>& v = p[(k + 1) % 3];
-    const V<NT> e = sub(v, u);
+    const V3<NT>& u = p[k];
+    const V3<NT>& v = p[(k + 1) % 3];
+    const V3<NT> e = v - u;
     const NT ue = dot(u, e), ee = dot(e, e);
     const int inside = both(positive(-ue), positive(ee + ue));
     if (inside == 0) continue;
@@ -60,7 +47,7 @@ int meets(const V<NT>& x, const NT& w, const V<NT>& a, const V<NT>& b, const V<N
   if (result == 1) return 1;
   // The face: the foot of x on the plane strictly inside (x seen from each edge on the side of
   // the normal), and (n·a)² < w |n|².
-  const V<NT> n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+  const V3<NT> n = cross(p[1] - p[0], p[2] - p[0]);
   int inside = 1;
   for (int k = 0; k < 3 && inside != 0; ++k) inside = both(inside, positive(dot(cross(p[k], p[(k + 1) % 3]), n)));
   if (inside != 0) {
@@ -68,11 +55,6 @@ int meets(const V<NT>& x, const NT& w, const V<NT>& a, const V<NT>& b, const V<N
     result = either(result, both(inside, positive(w * dot(n, n) - h * h)));
   }
   return result;
-}
-
-template <class NT>
-V<NT> lift(const Vec3& a) {
-  return {NT(a.x), NT(a.y), NT(a.z)};
 }
 
 }  // namespace
@@ -90,7 +72,7 @@ bool ball_meets_triangle(const ExactPoint& x, const Q& w, const Vec3& a, const V
   {
     // The rationals' enclosing intervals first.
     CGAL::Protect_FPU_rounding<true> upward;
-    const V<Interval> xi{Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)), Interval(CGAL::to_interval(x.z))};
+    const V3<Interval> xi{Interval(CGAL::to_interval(x.x)), Interval(CGAL::to_interval(x.y)), Interval(CGAL::to_interval(x.z))};
     const int r = meets<Interval>(xi, Interval(CGAL::to_interval(w)), lift<Interval>(a), lift<Interval>(b), lift<Interval>(c));
     if (r >= 0) return r == 1;
   }

@@ -1,6 +1,7 @@
 // Exact rational positions of symbolic vertices (paper §3.6), used by verification and as the
 // fallback of position() when doubles overflow.
 #include "predicates/exact.h"
+#include "predicates/exact_vector.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,37 +15,9 @@ namespace {
 using Q = CGAL::Gmpq;
 using Interval = CGAL::Interval_nt<false>;
 
-// A vector of any number type (Q for exact values, Interval for enclosures).
-template <class NT>
-struct V3 {
-  NT x, y, z;
-};
+using detail::lift;
+using detail::V3;
 using QV = V3<Q>;
-
-template <class NT>
-V3<NT> lift(const Vec3& a) {
-  return {NT(a.x), NT(a.y), NT(a.z)};
-}
-template <class NT>
-V3<NT> operator-(const V3<NT>& a, const V3<NT>& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-template <class NT>
-V3<NT> operator+(const V3<NT>& a, const V3<NT>& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-template <class NT>
-V3<NT> operator*(const NT& s, const V3<NT>& a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-template <class NT>
-NT dot(const V3<NT>& a, const V3<NT>& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-template <class NT>
-V3<NT> cross(const V3<NT>& a, const V3<NT>& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
 
 // f_ab(q) = d_a(q) - d_b(q).
 template <class NT>
