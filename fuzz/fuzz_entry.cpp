@@ -20,7 +20,6 @@
 #include "report/report.h"
 #include "samples/samples.h"
 #include "verification/diagram_check.h"
-#include "voronoi/lrvd.h"
 
 namespace lrvd::fuzz {
 

@@ -44,8 +44,7 @@ class PyDiagram {
 
   void compute() {
     reset_predicate_stats();
-    diagram_ = compute_input_diagram(input_, diagram_kind_from_string(kind_));
-    components_ = cell_components(diagram_, input_.mesh);
+    diagram_ = compute_input_diagram(input_, diagram_kind_from_string(kind_), &components_);
     report_ = compute_report(input_, "", kind_, diagram_, components_);
     report_["verification"] = nullptr;
   }

@@ -53,13 +53,13 @@ int run_diagram(const ComputeOptions& opt, bool write_cells) {
 
   reset_predicate_stats();
   progress(fmt::format("computing the {} of {} samples", opt.kind, input.samples.size()));
-  const Diagram diagram = compute_input_diagram(input, kind);
+  CellComponents components;
+  const Diagram diagram = compute_input_diagram(input, kind, &components);
   if (input.connectivity_refinements > 0)
     std::printf("refined again, the edges halved %s (%s): a cell was in pieces on the coarser triangles; the "
                 "samples were made again on these\n",
                 input.connectivity_refinements == 1 ? "once" : fmt::format("{} times", input.connectivity_refinements).c_str(),
                 counted(input.mesh.triangle_count(), "triangle", "triangles").c_str());
-  const CellComponents components = cell_components(diagram, input.mesh);
   const int multiple = cells_in_pieces(components);
   nlohmann::json report = compute_report(input, opt.input.mesh_path, opt.kind, diagram, components);
 

@@ -186,11 +186,12 @@ void prepare_samples(Input& input, const SampleRequest& request) {
   }
 }
 
-Diagram compute_input_diagram(Input& input, DiagramKind kind) {
+Diagram compute_input_diagram(Input& input, DiagramKind kind, CellComponents* pieces) {
   Diagram diagram = compute_diagram(input.mesh, input.samples, kind);
-  if (!is_localized(kind) || input.request.refine != "auto") return diagram;
-  while (input.connectivity_refinements < kMaxConnectivityRefinements) {
-    const CellComponents components = cell_components(diagram, input.mesh);
+  const bool retry = is_localized(kind) && input.request.refine == "auto";
+  if (!retry && !pieces) return diagram;
+  CellComponents components = cell_components(diagram, input.mesh);
+  while (retry && input.connectivity_refinements < kMaxConnectivityRefinements) {
     const auto split = std::find_if(components.count.begin(), components.count.end(), [](int c) { return c > 1; });
     if (split == components.count.end()) break;
     Input finer = input;
@@ -207,7 +208,9 @@ Diagram compute_input_diagram(Input& input, DiagramKind kind) {
                                             counted(finer.mesh.triangle_count(), "triangle", "triangles")));
     diagram = compute_diagram(finer.mesh, finer.samples, kind);
     input = std::move(finer);
+    components = cell_components(diagram, input.mesh);
   }
+  if (pieces) *pieces = std::move(components);
   return diagram;
 }
 

@@ -82,8 +82,9 @@ constexpr int kMaxConnectivityRefinements = 3;
 //! of folded or overlapping sheets the connectivity restoration can run into a cycle that finer
 //! triangles do not have (docs/algorithms/lrvd.md, "Connectivity restoration"). `input` is then
 //! the last one computed on. A refinement past the request's limits ends the retries; the diagram
-//! is the last one made, in pieces, and its verification says so.
-Diagram compute_input_diagram(Input& input, DiagramKind kind);
+//! is the last one made, in pieces, and its verification says so. `pieces`, when given, gets the
+//! returned diagram's cell_components.
+Diagram compute_input_diagram(Input& input, DiagramKind kind, CellComponents* pieces = nullptr);
 
 //! Weights given for a power diagram (lrpd, rpd) and only then. \throw InputError otherwise.
 void check_diagram_weights(const Samples& samples, const std::string& kind);
