@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "verification/diagram_checker.h"
+#include "verification/diagram_edges.h"
 
 namespace lrvd {
 

@@ -1,6 +1,6 @@
-// The parts of verify_diagram (internal to verification/): what its workers share, the checks of
-// one triangle at a time on the triangle's own copy of its vertices ((1), (3), (4), (5)), and the
-// checks along mesh edges ((2), (6)) on the polygon sides the triangle pass lists.
+// The parts of verify_diagram (internal to verification/): what its workers share, and the checks of
+// one triangle at a time on the triangle's own copy of its vertices ((1), (3), (4), (5)), which list
+// the polygon sides the checks along mesh edges read (diagram_edges.h).
 #pragma once
 
 #include <array>
@@ -206,24 +206,6 @@ class TriangleChecker {
 //! Above this many polygons (or cells) in a triangle, (3) and (4) compare only the pairs a
 //! certified bound does not tell apart.
 constexpr std::size_t kAllPairsUpTo = 16;
-
-//! The edge checks' results for one chunk of triangles, each edge from its lower triangle.
-struct EdgeChunk {
-  std::int64_t checked = 0;                               //!< (6): the edges compared
-  std::vector<std::pair<int, std::string>> failures;      //!< (6): 3 t + e and the offender
-  std::vector<std::pair<int, int>> joins;                 //!< (2): the polygons an edge joins
-  std::int64_t b_vertices = 0;                            //!< the distinct type B vertices of the edges
-};
-
-//! (2) and (6) on the edges of chunk c whose other triangle is in the chunk too (and its boundary
-//! edges), right after the triangle pass made the chunk's sides; then only the sides along edges
-//! to other chunks are kept.
-void check_inner_edges(const DiagramInput& in, std::vector<TriangleChunk>& chunks, int c, EdgeChunk& out);
-
-//! (2) and (6) on the edges between chunks, then every chunk's results in order and (2)'s
-//! components. Returns the number of distinct type B vertices (each mesh edge's, from its two sides).
-std::int64_t check_edges(const DiagramInput& in, const std::vector<TriangleChunk>& chunks, std::vector<EdgeChunk>& edges,
-                         DiagramVerification& out);
 
 //! Whether the interval filters alone show the polygon (its n vertices in the frame) strictly convex
 //! and counterclockwise; false leaves the decision to the exact test. \pre the rounding mode is upward.

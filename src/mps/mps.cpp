@@ -15,8 +15,11 @@
 #include "common/error.h"
 #include "common/timing.h"
 #include "mesh/curvature.h"
+#include "mesh/refine.h"
+#include "mps/mps_disks.h"
 #include "mps/mps_features.h"
 #include "mps/mps_gaps.h"
+#include "mps/mps_lrpd_part.h"
 #include "mps/mps_sampler.h"
 #include "voronoi/lrvd.h"
 
