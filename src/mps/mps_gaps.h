@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <utility>
 #include <vector>
 
@@ -58,16 +57,6 @@ class GapSet {
   //! next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
-  //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
-  //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
-  //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
-  //! a disk reaching its triangle would, and the piece is split by it. Else the piece is halved
-  //! across its longest diagonal, then the half holding the dart, and so on until the chain holds
-  //! on the dart's part (it holds at the dart), which is then split by the sample; the other halves
-  //! stay as pieces. A piece's polygon is halved at most kMaxCarveHalvings times in all. Returns
-  //! whether anything was done.
-  bool carve(int piece, int sample, const Vec3& dart);
-  int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
   //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
@@ -82,18 +71,6 @@ class GapSet {
   //! only when a round placed no sample), against the disks of extract()'s time, leaving the
   //! pieces as they are.
   int required_pieces();
-  //! candidates(t, q, count, out): every sample whose ball may meet the polygon q[0..count) of
-  //! triangle t along a chain of triangles (certify_required()).
-  using Candidates = std::function<void(int, const Vec3*, int, std::vector<int>&)>;
-  //! The paper's rule, at the end: how many of the required pieces left (alive, or given up since
-  //! extract()) are not shown to lie where a dart is refused from its own side, in the ball of a
-  //! sample whose chain (reach_chain, exact) holds on the whole piece. Each piece is split by the
-  //! ball of such a sample among its candidates, and halved where none holds, up to
-  //! kMaxCertifyHalvings halvings and kCertifyBudget pieces looked at in all. Meant for after an
-  //! extract() with set_required_only() (no deferred pieces); the pieces are used up.
-  int certify_required(const Candidates& candidates);
-  //! The required pieces certify_required() was given, when it showed them all covered; else 0.
-  int certified() const { return certified_; }
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -114,7 +91,7 @@ class GapSet {
   //! The dust of the pieces dropped since the last call (or extract()), handed over.
   std::vector<Dust> take_dust() { return std::exchange(dust_, {}); }
 
- private:
+ protected:  // ReachGapSet (mps_gap_reach.h) builds on the pieces
   struct Piece {
     int triangle = -1;
     int owner = -1;
@@ -156,15 +133,9 @@ class GapSet {
   //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
   //! `disk_limit`); returns how many live.
   int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
-  //! add_outside, the new pieces marked as `halvings` times halved (carve()).
-  void add_outside_with_halvings(const std::vector<Vec3>& q, int t, int owner, int halvings);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
-  //! Halves piece `index` across its polygon's longest diagonal (both halves as pieces).
-  void halve(int index);
-  //! reach_chain for the corners of piece `index` and the ball of `sample` to its triangles.
-  bool chain_holds(int index, int sample);
   void fenwick_add(int index, double delta);
   void rebuild();
 
@@ -182,7 +153,7 @@ class GapSet {
   std::vector<GivenUp> given_up_pieces_;
   std::vector<Vec3> given_up_points_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
-  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0, certified_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
   // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.
@@ -199,7 +170,7 @@ class GapSet {
     Vec3 p;
     int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
   };
-  std::vector<int> scratch_pieces_, fresh_, carve_targets_;
+  std::vector<int> scratch_pieces_, fresh_;
   std::vector<double> fan_;
   std::vector<Event> events_;
   std::vector<char> outside_;
