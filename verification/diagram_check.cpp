@@ -15,6 +15,8 @@
 
 #include "verification/diagram_checker.h"
 #include "verification/diagram_edges.h"
+#include "verification/diagram_triangle.h"
+#include "verification/diagram_vertices.h"
 
 namespace lrvd {
 

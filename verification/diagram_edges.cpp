@@ -16,6 +16,8 @@
 #include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 
+#include "verification/diagram_vertices.h"
+
 namespace lrvd::verify_detail {
 
 namespace {
