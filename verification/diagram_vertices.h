@@ -1,5 +1,5 @@
 // The vertices of one triangle at a time, for verify_diagram's triangle pass: each distinct symbolic
-// vertex of the triangle's polygons made once, in the triangle's own copy, with its point and what the checks ask of it.
+// vertex of its polygons made once, in the triangle's own copy, with its point and what the checks ask of it.
 #pragma once
 
 #include <array>
