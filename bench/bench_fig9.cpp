@@ -30,6 +30,7 @@
 #include "samples/samples.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
+#include "voronoi/rvd.h"
 
 namespace {
 

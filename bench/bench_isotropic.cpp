@@ -26,6 +26,7 @@
 
 #include "bench_util.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
 #include "remesh/remesh_pipeline.h"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 
 namespace {
 

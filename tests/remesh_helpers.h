@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/mesh_io.h"
+#include "mesh/refine.h"
 #include "metrics/quality.h"
 #include "remesh/remesh_pipeline.h"
 #include "verification/remesh_check.h"

@@ -21,6 +21,7 @@
 
 #include "common/error.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mesh/closest_point.h"
 #include "remesh/remesh_pipeline.h"
 #include "test_meshes.h"

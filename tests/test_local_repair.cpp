@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "io/mesh_io.h"
+#include "mesh/refine.h"
 #include "mesh/stress.h"
 #include "remesh/local_repair.h"
 #include "remesh/remesh.h"

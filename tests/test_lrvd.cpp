@@ -15,6 +15,7 @@
 #include "common/error.h"
 #include "diagram/clip.h"
 #include "io/mesh_io.h"
+#include "mesh/refine.h"
 #include "mesh/stress.h"
 #include "mps/mps.h"
 #include "remesh/cvt.h"
@@ -26,6 +27,7 @@
 #include "verification/mps_check.h"
 #include "voronoi/growth_entry.h"
 #include "voronoi/lrvd.h"
+#include "voronoi/rvd.h"
 
 using namespace lrvd;
 

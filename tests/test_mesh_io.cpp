@@ -17,6 +17,7 @@
 
 #include "common/error.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mesh/weld.h"
 
 using namespace lrvd;

@@ -14,11 +14,14 @@
 #include "common/error.h"
 #include "diagram/cells_output.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mesh/stress.h"
 #include "metrics/quality.h"
 #include "render/render.h"
+#include "render/render_scenes.h"
 #include "test_meshes.h"
 #include "voronoi/lrvd.h"
+#include "voronoi/rvd.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"

@@ -12,6 +12,7 @@
 #include "common/error.h"
 #include "io/mesh_io.h"
 #include "mesh/closest_point.h"
+#include "mesh/refine.h"
 #include "mesh/surface_mesh.h"
 #include "samples/samples.h"
 #include "test_meshes.h"

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "mesh/curvature.h"
+#include "mesh/refine.h"
 #include "mesh/spatial_order.h"
 #include "mesh/stress.h"
 #include "mesh/surface_mesh.h"

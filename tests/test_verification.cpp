@@ -19,11 +19,13 @@
 #include "common/error.h"
 #include "diagram/cells_output.h"
 #include "diagram/dual.h"
+#include "mesh/refine.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
 #include "verification/diagram_geometry.h"
 #include "verification/triangle_enclosures.h"
 #include "voronoi/lrvd.h"
+#include "voronoi/rvd.h"
 
 using namespace lrvd;
 

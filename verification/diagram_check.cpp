@@ -14,6 +14,9 @@
 #include <tbb/parallel_for.h>
 
 #include "verification/diagram_checker.h"
+#include "verification/diagram_edges.h"
+#include "verification/diagram_triangle.h"
+#include "verification/diagram_vertices.h"
 
 namespace lrvd {
 

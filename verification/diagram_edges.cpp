@@ -4,6 +4,8 @@
 // from the exact parameters of their vertices along the edge), independently of the diagram's own
 // helpers (cell_components), so a bug there shows up. Also counts each edge's type B vertices.
 // Part of verify_diagram (verification/diagram_check.h); the triangle pass: diagram_triangle.cpp.
+#include "verification/diagram_edges.h"
+
 #include <algorithm>
 #include <array>
 #include <deque>
@@ -14,7 +16,7 @@
 #include <fmt/ranges.h>
 #include <tbb/parallel_for.h>
 
-#include "verification/diagram_checker.h"
+#include "verification/diagram_vertices.h"
 
 namespace lrvd::verify_detail {
 

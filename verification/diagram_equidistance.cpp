@@ -1,6 +1,8 @@
 // (3) Every polygon vertex is (power-)equidistant from its cell and from as many other cells of
 // its triangle as its type says, and no cell of the triangle is nearer: the local Voronoi property,
 // decided exactly. Part of verify_diagram's triangle pass (diagram_triangle.cpp).
+#include "verification/diagram_equidistance.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -8,7 +10,6 @@
 #include <fmt/format.h>
 
 #include "mesh/kd_tree.h"
-#include "verification/diagram_checker.h"
 
 namespace lrvd::verify_detail {
 
@@ -68,7 +69,7 @@ class Near {
 // its exact point is the solution of their bisector equations (exact_position, whose equations
 // tests/test_symbolic_vertex.cpp checks exactly), so those pairs are counted without arithmetic.
 // \pre the rounding mode is upward.
-void TriangleChecker::check_equidistance(int t) {
+void EquidistanceChecks::check_equidistance(int t) {
   present_.clear();
   for (int p = begin_; p < end_; ++p)
     if (usable(p)) present_.push_back(d_.polygons[p].cell);
@@ -110,7 +111,7 @@ void TriangleChecker::check_equidistance(int t) {
 // (3) for the vertices of polygon p, against every cell present in the triangle. A cell j that is,
 // with the polygon's cell i, a label of the vertex is equidistant by construction; the others are
 // compared in increasing order, so that the first closer one is the first in that order.
-void TriangleChecker::equidistance_present(int t, int p) {
+void EquidistanceChecks::equidistance_present(int t, int p) {
   const CellPolygon& poly = d_.polygons[p];
   const SymbolicVertex* verts = d_.polygon_vertices(poly);
   const int i = poly.cell, m = static_cast<int>(present_.size());
@@ -142,7 +143,7 @@ void TriangleChecker::equidistance_present(int t, int p) {
 }
 
 // (3) for the vertices of polygon p, against the cells `near` keeps for each.
-void TriangleChecker::equidistance_near(int t, int p, const Near& near) {
+void EquidistanceChecks::equidistance_near(int t, int p, const Near& near) {
   const CellPolygon& poly = d_.polygons[p];
   const int i = poly.cell;
   for (int k = 0; k < poly.vertex_count; ++k) {
@@ -172,7 +173,7 @@ void TriangleChecker::equidistance_near(int t, int p, const Near& near) {
 
 // The offender of a vertex q of cell i that some cell is closer to (closer >= 0), or that is
 // equidistant from fewer cells than its type says.
-void TriangleChecker::report_unequal(int t, const SymbolicVertex& q, int i, int closer, int equidistant) {
+void EquidistanceChecks::report_unequal(int t, const SymbolicVertex& q, int i, int closer, int equidistant) {
   const std::string problem =
       closer >= 0 ? fmt::format("is closer to x_{} than to x_{}", closer, i)
                   : fmt::format("is equidistant from x_{} and {} other cell(s) of the triangle, not {}", i, equidistant,

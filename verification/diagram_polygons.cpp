@@ -2,13 +2,13 @@
 // interior-disjoint, and (5) they cover it: exact area sums, or, when their sides add up to the
 // triangle's boundary on exact vertex identities, no arithmetic at all. Part of verify_diagram's
 // triangle pass (diagram_triangle.cpp).
+#include "verification/diagram_polygons.h"
+
 #include <algorithm>
 #include <optional>
 #include <tuple>
 
 #include <fmt/format.h>
-
-#include "verification/diagram_checker.h"
 
 namespace lrvd::verify_detail {
 
@@ -67,7 +67,7 @@ bool strictly_convex(const FrameVertex* fv, int n, const Frame& f) {
 // side of every edge). Zero turns are allowed: at a degenerate input the unperturbed limit of a
 // polygon may have collinear or coincident vertices. Sets its area sign when there is no problem
 // (positive iff some turn is strictly left). \pre the rounding mode is upward.
-std::string TriangleChecker::polygon_problem(int p, const Triangle& tri, const Frame& f) {
+std::string PolygonChecks::polygon_problem(int p, const Triangle& tri, const Frame& f) {
   const CellPolygon& poly = d_.polygons[p];
   const SymbolicVertex* verts = d_.polygon_vertices(poly);
   const FrameVertex* fv = frame_vertices(p);
@@ -88,7 +88,7 @@ std::string TriangleChecker::polygon_problem(int p, const Triangle& tri, const F
 // Whether the vertex (local id, in the frame) lies exactly inside the triangle, decided once per
 // triangle: type B on its edge's line, inside iff within the edge; type C against the triangle's
 // three edges. \pre it is defined on the triangle; the rounding mode is upward.
-bool TriangleChecker::vertex_inside(int id, const FrameVertex& x, const Frame& f) {
+bool PolygonChecks::vertex_inside(int id, const FrameVertex& x, const Frame& f) {
   LocalVertex& info = info_[id];
   if (info.inside < 0) {
     bool inside = true;
@@ -106,7 +106,7 @@ bool TriangleChecker::vertex_inside(int id, const FrameVertex& x, const Frame& f
 
 // (4) convex and counterclockwise: the filters' strict convexity, else every vertex against every
 // edge. Sets the polygon's area sign. \pre the rounding mode is upward.
-std::string TriangleChecker::convexity_problem(int p, const Frame& f) {
+std::string PolygonChecks::convexity_problem(int p, const Frame& f) {
   const SymbolicVertex* verts = d_.polygon_vertices(d_.polygons[p]);
   const FrameVertex* fv = frame_vertices(p);
   const int n = d_.polygons[p].vertex_count;
@@ -141,7 +141,7 @@ std::string TriangleChecker::convexity_problem(int p, const Frame& f) {
 // sum of their winding numbers is the triangle's, 1 inside and 0 outside, and each polygon of
 // positive area winds once around its interior, so no two interiors meet (4) and the areas add
 // up to the triangle's (5), which is what check_area_sum and check_overlaps would find.
-bool TriangleChecker::bounded_by_triangle(const Triangle& tri) {
+bool PolygonChecks::bounded_by_triangle(const Triangle& tri) {
   const std::size_t n = local_q_.size();
   if (n > kCountsUpTo) return bounded_by_triangle_multisets(tri);
   // net_[u n + w], u < w: the sides u -> w less the sides w -> u, off the mesh edges (all zero
@@ -187,7 +187,7 @@ bool TriangleChecker::bounded_by_triangle(const Triangle& tri) {
 }
 
 // bounded_by_triangle for a triangle with many vertices: the sides as multisets.
-bool TriangleChecker::bounded_by_triangle_multisets(const Triangle& tri) {
+bool PolygonChecks::bounded_by_triangle_multisets(const Triangle& tri) {
   forward_.clear();
   backward_.clear();
   for (auto& ids : from_) ids.clear();
@@ -229,7 +229,7 @@ bool TriangleChecker::bounded_by_triangle_multisets(const Triangle& tri) {
 // The edges along (b, c) add sum_v n_v s_v, n_v the times v ends such an edge less the times it
 // starts one: when only c is left with n_c = 1 (besides b, at s = 0), that is 1 without arithmetic.
 // \pre the rounding mode is upward (the rationals do not depend on it).
-void TriangleChecker::check_area_sum(int t, const Frame& f) {
+void PolygonChecks::check_area_sum(int t, const Frame& f) {
   const Triangle& tri = in_.mesh.triangle(t);
   edges_.clear();
   for (int p = begin_; p < end_; ++p) {
@@ -305,7 +305,7 @@ void TriangleChecker::check_area_sum(int t, const Frame& f) {
 // union of its vertices' enclosures (ExactVertex::box), so that boxes apart in u or v hold
 // polygons apart. A sweep along u finds those pairs; they are tested in the same order as all.
 // \pre the rounding mode is upward.
-void TriangleChecker::check_overlaps(int t, const Frame& f) {
+void PolygonChecks::check_overlaps(int t, const Frame& f) {
   auto test = [&](int p, int q) {
     if (separated(p, q, f) || separated(q, p, f)) return;
     out_.part.disjoint.fail(fmt::format("triangle {}: polygons of cells {} and {} overlap", t, d_.polygons[p].cell,
@@ -345,7 +345,7 @@ void TriangleChecker::check_overlaps(int t, const Frame& f) {
 }
 
 // Whether the line of some edge of p has q on its closed outer side. \pre the rounding mode is upward.
-bool TriangleChecker::separated(int p, int q, const Frame& f) const {
+bool PolygonChecks::separated(int p, int q, const Frame& f) const {
   const CellPolygon &pp = d_.polygons[p], &qq = d_.polygons[q];
   const FrameVertex* pv = frame_vertices(p);
   const FrameVertex* qv = frame_vertices(q);

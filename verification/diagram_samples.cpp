@@ -1,15 +1,15 @@
 // (1) Each sample lies in its own cell's polygon in its triangle, exactly. Part of
 // verify_diagram's triangle pass (diagram_triangle.cpp): the samples of a triangle are checked
 // with the triangle's vertices at hand; verify_diagram lists the offenders by sample.
+#include "verification/diagram_samples.h"
+
 #include <cmath>
 
 #include <fmt/format.h>
 
-#include "verification/diagram_checker.h"
-
 namespace lrvd::verify_detail {
 
-void TriangleChecker::check_samples(int t, const Triangle& tri, const Frame& f) {
+void SampleChecks::check_samples(int t, const Triangle& tri, const Frame& f) {
   for (int s = in_.sample_first[t]; s < in_.sample_first[t + 1]; ++s) {
     const int i = in_.sample_order[s];
     std::string problem = sample_problem(i, t, tri, f);
@@ -19,7 +19,7 @@ void TriangleChecker::check_samples(int t, const Triangle& tri, const Frame& f) 
 
 // x_i, at its barycentric coordinates taken as exact rationals, lies in the closed polygon of
 // cell i in its triangle t. "" when it does, else the offender.
-std::string TriangleChecker::sample_problem(int i, int t, const Triangle& tri, const Frame& f) {
+std::string SampleChecks::sample_problem(int i, int t, const Triangle& tri, const Frame& f) {
   const Vec3& b = in_.samples.barycentric[i];
   // Finite and not negative, and not all zero: their exact sum is then positive.
   const bool located = std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z) && b.x >= 0 && b.y >= 0 &&
@@ -56,7 +56,7 @@ std::string TriangleChecker::sample_problem(int i, int t, const Triangle& tri, c
 
 // Exact point-in-closed-convex-polygon in the frame. A polygon of zero area (a degenerate
 // input's limit) contains the points of its segment.
-bool TriangleChecker::contains_point(int p, const ExactVertex& x, const Frame& f) {
+bool SampleChecks::contains_point(int p, const ExactVertex& x, const Frame& f) {
   const CellPolygon& poly = d_.polygons[p];
   points_.clear();
   for (int k = 0; k < poly.vertex_count; ++k) points_.push_back(&vertex(p, k));

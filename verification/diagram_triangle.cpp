@@ -3,11 +3,11 @@
 // of the distinct vertices. The checks themselves: diagram_polygons.cpp (4, 5),
 // diagram_equidistance.cpp (3), diagram_samples.cpp (1). A triangle whose one polygon is the
 // triangle itself takes a short way through all of it.
+#include "verification/diagram_triangle.h"
+
 #include <algorithm>
 
 #include <fmt/format.h>
-
-#include "verification/diagram_checker.h"
 
 namespace lrvd::verify_detail {
 

@@ -3,9 +3,9 @@
 // (a type C vertex belongs to one triangle, a type B vertex to the two of its edge: no index over
 // the whole diagram), with what the checks ask of it once, and its point: an interval enclosure,
 // rationals only where that cannot be formed.
-#include <algorithm>
+#include "verification/diagram_vertices.h"
 
-#include "verification/diagram_checker.h"
+#include <algorithm>
 
 namespace lrvd::verify_detail {
 
@@ -47,7 +47,7 @@ bool well_formed(const SymbolicVertex& q, int vertex_count, int sample_count) {
 }
 
 // The triangle's corners as its local vertices 0, 1, 2 (the mesh has no triangle that repeats a vertex).
-void TriangleChecker::load_corners(const Triangle& tri) {
+void TriangleVertices::load_corners(const Triangle& tri) {
   local_q_.clear();
   info_.clear();
   lookup_.clear();
@@ -66,7 +66,7 @@ void TriangleChecker::load_corners(const Triangle& tri) {
 
 // load_vertices for a whole triangle (whole_rotation r): its polygon's vertices are the corners
 // r, r + 1, r + 2.
-void TriangleChecker::load_whole(const Triangle& tri, int r) {
+void TriangleVertices::load_whole(const Triangle& tri, int r) {
   load_corners(tri);
   first_.push_back(0);
   for (int k = 0; k < 3; ++k) of_.push_back((r + k) % 3);
@@ -77,7 +77,7 @@ void TriangleChecker::load_whole(const Triangle& tri, int r) {
 
 // The triangle's distinct vertices (its corners as 0, 1, 2), the local id of each polygon vertex,
 // and which polygons the geometric checks can use.
-void TriangleChecker::load_vertices(const Triangle& tri) {
+void TriangleVertices::load_vertices(const Triangle& tri) {
   load_corners(tri);
   for (int p = begin_; p < end_; ++p) {
     const CellPolygon& poly = d_.polygons[p];
@@ -100,7 +100,7 @@ void TriangleChecker::load_vertices(const Triangle& tri) {
 
 // The local id of q, made the first time the triangle meets it; -1 when q is malformed. Equal
 // symbolic vertices, and only those, get one id: one point each.
-int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
+int TriangleVertices::local_index(const SymbolicVertex& q, const Triangle& tri) {
   if (is_mesh_vertex(q))  // the triangle's corners first: most type A vertices are
     for (int c = 0; c < 3; ++c)
       if (q.v[0] == tri[c]) return c;
@@ -138,7 +138,7 @@ int TriangleChecker::local_index(const SymbolicVertex& q, const Triangle& tri) {
 
 // A new distinct vertex, and what the checks ask of it once: its edges, whether it is defined on
 // the triangle, its identity along an edge, and what kind of vertex the distinct count takes it for.
-int TriangleChecker::add_local(const SymbolicVertex& q, const Triangle& tri) {
+int TriangleVertices::add_local(const SymbolicVertex& q, const Triangle& tri) {
   const int id = static_cast<int>(local_q_.size());
   local_q_.push_back(q);
   LocalVertex info;
@@ -162,7 +162,7 @@ int TriangleChecker::add_local(const SymbolicVertex& q, const Triangle& tri) {
 
 // The points of the triangle's distinct vertices: interval enclosures, all under one switch of the
 // rounding mode, and rationals only for a vertex whose enclosure cannot be formed.
-void TriangleChecker::make_points(const Triangle& tri) {
+void TriangleVertices::make_points(const Triangle& tri) {
   const std::size_t n = local_q_.size();
   if (local_.size() < n) local_.resize(n);  // reused from triangle to triangle, made in place
   for (std::size_t id = 0; id < n; ++id) local_[id].reset(local_q_[id], in_.context, &in_.rationals);
@@ -184,7 +184,7 @@ void TriangleChecker::make_points(const Triangle& tri) {
 
 // The triangle's corners and its polygons' vertices as FrameVertex, side by side:
 // frame_[first_[p - begin_] + k] is vertex k of polygon p (null x for a malformed one).
-void TriangleChecker::load_frame(const Frame& f) {
+void TriangleVertices::load_frame(const Frame& f) {
   for (int c = 0; c < 3; ++c) corner_frame_[c] = {local_[c].box[f.u], local_[c].box[f.v], &local_[c], info_[c].edges};
   frame_.resize(of_.size());
   for (std::size_t j = 0; j < of_.size(); ++j) {

@@ -12,7 +12,7 @@
 #include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
 #include "samples/samples.h"
-#include "verification/diagram_check.h"
+#include "verification/report.h"
 
 namespace lrvd {
 

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/surface_mesh.h"
-#include "verification/diagram_check.h"
+#include "verification/report.h"
 
 namespace lrvd {
 

@@ -1,8 +1,7 @@
 // JSON and text forms of verification results.
-// The members of the result types of verification/diagram_check.h.
-#include <fmt/format.h>
+#include "verification/report.h"
 
-#include "verification/diagram_check.h"
+#include <fmt/format.h>
 
 namespace lrvd {
 

@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "remesh/remesh_pipeline.h"
 #include "samples/samples.h"
 #include "verification/diagram_check.h"

@@ -15,6 +15,7 @@
 #include "arrays.h"
 #include "common/error.h"
 #include "diagram/cells_output.h"
+#include "io/mesh_writers.h"
 #include "mesh/stress.h"
 #include "predicates/predicates.h"
 #include "render/render.h"

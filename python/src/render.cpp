@@ -11,6 +11,7 @@
 #include "arrays.h"
 #include "common/error.h"
 #include "render/render.h"
+#include "render/render_scenes.h"
 #include "report/report.h"
 #include "voronoi/lrvd.h"
 

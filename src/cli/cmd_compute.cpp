@@ -1,6 +1,7 @@
 // `lrvd compute` and `lrvd verify`: one diagram (LRVD, RVD, LRPD, RPD) of samples on a mesh, its
 // cells as a PLY and its verification as a JSON report.
-// Declared in cli/commands.h, with the other subcommands.
+#include "cli/cmd_compute.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -8,10 +9,10 @@
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
 #include "diagram/cells_output.h"
+#include "io/mesh_writers.h"
 #include "predicates/predicates.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"

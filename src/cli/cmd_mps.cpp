@@ -1,15 +1,16 @@
 // `lrvd mps`: maximal Poisson-disk sampling (paper §4.2), its independent verification on a
 // fresh LRPD, and optionally the LRRT remesh of the samples, checked like any remesh.
-// Declared in cli/commands.h, with the other subcommands.
+#include "cli/cmd_mps.h"
+
 #include <cmath>
 #include <cstdio>
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
 #include "diagram/dual.h"
+#include "io/mesh_writers.h"
 #include "metrics/quality.h"
 #include "mps/mps.h"
 #include "predicates/predicates.h"

@@ -1,6 +1,7 @@
 // `lrvd remesh` (CVT on the LRVD, output the dual with exactly N vertices, checked) and
 // `lrvd quality` (the metrics alone, for any remesher's output).
-// Declared in cli/commands.h, with the other subcommands.
+#include "cli/cmd_remesh.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,10 +12,10 @@
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
 #include "diagram/dual.h"
+#include "io/mesh_writers.h"
 #include "metrics/quality.h"
 #include "predicates/predicates.h"
 #include "remesh/remesh.h"

@@ -1,16 +1,17 @@
 // `lrvd render`: a PNG of a mesh, or of the cells of a diagram of samples on it (stray pieces
 // hatched, so an RVD's broken cells show beside the LRVD's whole ones).
-// Declared in cli/commands.h, with the other subcommands.
+#include "cli/cmd_render.h"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
 #include "render/render.h"
+#include "render/render_scenes.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::cli {

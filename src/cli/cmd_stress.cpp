@@ -1,18 +1,21 @@
 // `lrvd stress`: list and write the stress meshes (nearby sheets, thin walls, tubes, ...).
-// Declared in cli/commands.h, with the other subcommands.
+#include "cli/cmd_stress.h"
+
 #include <cstdio>
 #include <filesystem>
 
 #include <fmt/format.h>
 
-#include "cli/commands.h"
 #include "cli/common.h"
 #include "common/error.h"
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
+#include "mesh/refine.h"
 #include "mesh/stress.h"
 #include "render/render.h"
+#include "render/render_scenes.h"
 #include "verification/diagram_check.h"
 #include "voronoi/lrvd.h"
+#include "voronoi/rvd.h"
 
 namespace lrvd::cli {
 

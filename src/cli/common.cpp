@@ -20,6 +20,7 @@
 #include "common/error.h"
 #include "common/text.h"
 #include "io/mesh_file_diagnosis.h"
+#include "io/mesh_writers.h"
 #include "predicates/predicates.h"
 
 namespace lrvd::cli {

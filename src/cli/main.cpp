@@ -12,9 +12,14 @@
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
+#include "cli/cmd_compute.h"
+#include "cli/cmd_mps.h"
+#include "cli/cmd_remesh.h"
+#include "cli/cmd_render.h"
+#include "cli/cmd_stress.h"
 #include "cli/commands.h"
 #include "common/error.h"
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 
 namespace {
 

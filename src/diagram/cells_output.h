@@ -3,7 +3,7 @@
 #pragma once
 
 #include "diagram/diagram.h"
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 
 namespace lrvd {
 

@@ -1,6 +1,7 @@
 // Mesh files out: OFF / OBJ (ascii, %.17g so doubles round-trip) and binary PLY, and the
 // Voronoi-cell polygons with a cell label and colour per face.
-// Declared in io/mesh_io.h, with the readers.
+#include "io/mesh_writers.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -18,7 +19,6 @@
 
 #include "common/error.h"
 #include "io/mesh_file_diagnosis.h"
-#include "io/mesh_io.h"
 
 namespace lrvd {
 

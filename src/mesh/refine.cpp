@@ -1,6 +1,8 @@
 // Refinement by splitting long edges (paper §4.2): every edge longer than a bound (one length, or
 // a length field over the vertices) is split at its midpoint, longest first, until none is left.
-// Declared in mesh/surface_mesh.h: the refinements are friends of SurfaceMesh, whose adjacency they build.
+// The refinements are friends of SurfaceMesh, whose adjacency they build.
+#include "mesh/refine.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -18,7 +20,6 @@
 
 #include "common/error.h"
 #include "mesh/spatial_order.h"
-#include "mesh/surface_mesh.h"
 
 namespace lrvd {
 

@@ -15,8 +15,12 @@
 #include "common/error.h"
 #include "common/timing.h"
 #include "mesh/curvature.h"
+#include "mesh/refine.h"
+#include "mps/mps_disks.h"
 #include "mps/mps_features.h"
+#include "mps/mps_gap_reach.h"
 #include "mps/mps_gaps.h"
+#include "mps/mps_lrpd_part.h"
 #include "mps/mps_sampler.h"
 #include "voronoi/lrvd.h"
 
@@ -361,7 +365,7 @@ class PoissonDiskSampling {
   //! radius) or almost always (adaptive), so the limit only ends hopeless rounds; the paper's
   //! loop recomputes the LRPD after 300 rejections in a row.
   void throw_gap_darts() {
-    GapSet& gaps = *gaps_;
+    ReachGapSet& gaps = *gaps_;
     const std::int64_t limit = local_ ? std::max<std::int64_t>(100000, 1000 * std::int64_t(gaps.alive()))
                                       : options_.max_consecutive_rejections;
     for (std::int64_t rejections = 0; !gaps.empty() && rejections < limit;) {
@@ -421,7 +425,7 @@ class PoissonDiskSampling {
   //! when the sampling is done.
   bool decide_without_progress() {
     if (!connected_cells_) return false;  // the next LRPD (of the open triangles' part) decides
-    GapSet& gaps = *gaps_;
+    ReachGapSet& gaps = *gaps_;
     const bool reach = !sampler_->disks().facing_cut();
     // Adaptive, spots no dart fits: outside their cells' balls, where the power-cell condition
     // against a sample across (another sheet, a big disk past a fold) leaves no radius. Once, the
@@ -479,7 +483,7 @@ class PoissonDiskSampling {
   std::optional<AliasTable> by_area_;
   Random random_;
   // Gap filling.
-  std::optional<GapSet> gaps_;
+  std::optional<ReachGapSet> gaps_;
   LrvdOptions lrpd_options_;
   std::vector<char> shapeless_;  // triangles whose LRPD polygons need no shape
   GapLrpd lrpd_;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/refine.h"
 #include "mesh/surface_mesh.h"
 #include "samples/samples.h"
 

@@ -1,7 +1,8 @@
 // The disks of maximal Poisson-disk sampling as the triangles know them (paper §4.2, second
 // change): region growing from a dart's triangle instead of a 3D grid, per-triangle lists of the
 // disks that cover or reach each triangle, and the exact point-in-disk test.
-// Part of the gap filling's DiskIndex, declared in mps/mps_gaps.h.
+#include "mps/mps_disks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,7 +10,6 @@
 #include <utility>
 
 #include "mesh/closest_point.h"
-#include "mps/mps_gaps.h"
 #include "predicates/ball_triangle.h"
 #include "predicates/exact.h"
 

@@ -1,14 +1,15 @@
 // Gap pieces under the paper's conflict rule read from the dart's side (MpsConflict::Reach): a
 // spot is covered when a sample lies within its radius and the spot's ball of that radius reaches
 // the sample's triangle along the surface. Such spots are in no disk the triangles list, so the
-// pieces learn of them from refused darts (GapSet::carve) and, at the end, from the samples that
-// refused their darts (GapSet::certify_required). Part of GapSet (mps_gaps.h).
+// pieces learn of them from refused darts (ReachGapSet::carve) and, at the end, from the samples that
+// refused their darts (ReachGapSet::certify_required).
+#include "mps/mps_gap_reach.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
 #include "mps/mps_gap_geometry.h"
-#include "mps/mps_gaps.h"
 
 namespace lrvd::mps_detail {
 
@@ -20,7 +21,7 @@ constexpr int kCertifyBudget = 4096;      // certify_required(): pieces looked a
 
 }  // namespace
 
-bool GapSet::chain_holds(int index, int sample) {
+bool ReachGapSet::chain_holds(int index, int sample) {
   const Piece& pc = pieces_[index];
   std::vector<int>& targets = carve_targets_;
   targets.clear();
@@ -28,14 +29,14 @@ bool GapSet::chain_holds(int index, int sample) {
   return reach_chain(mesh_, pc.triangle, points_.data() + pc.first, pc.count, disks_.weight(sample), targets);
 }
 
-void GapSet::add_outside_with_halvings(const std::vector<Vec3>& q, int t, int owner, int halvings) {
+void ReachGapSet::add_outside_with_halvings(const std::vector<Vec3>& q, int t, int owner, int halvings) {
   if (q.size() < 3) return;
   const size_t before = pieces_.size();
   add_outside(q, t, owner);
   for (size_t i = before; i < pieces_.size(); ++i) pieces_[i].halvings = halvings;
 }
 
-void GapSet::halve(int index) {
+void ReachGapSet::halve(int index) {
   const Piece pc = pieces_[index];
   const std::vector<Vec3> q(points_.begin() + pc.first, points_.begin() + pc.first + pc.count);
   kill(index);
@@ -49,7 +50,7 @@ void GapSet::halve(int index) {
   required_ = required;
 }
 
-bool GapSet::carve(int piece, int sample, const Vec3& dart) {
+bool ReachGapSet::carve(int piece, int sample, const Vec3& dart) {
   if (piece < 0 || piece >= static_cast<int>(pieces_.size()) || !pieces_[piece].alive) return false;
   const Piece pc = pieces_[piece];
   if (pc.count < 3) return false;
@@ -91,7 +92,7 @@ bool GapSet::carve(int piece, int sample, const Vec3& dart) {
   return true;
 }
 
-int GapSet::certify_required(const Candidates& candidates) {
+int ReachGapSet::certify_required(const Candidates& candidates) {
   std::vector<Vec3> polygon;
   required_ = true;
   for (const GivenUp& g : given_up_pieces_) {

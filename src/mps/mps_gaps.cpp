@@ -6,6 +6,7 @@
 
 #include "mps/mps_gap_geometry.h"
 #include "mps/mps_gaps.h"
+#include "mps/mps_lrpd_part.h"
 #include "predicates/exact.h"
 
 namespace lrvd::mps_detail {

@@ -1,200 +1,19 @@
-// Internals of maximal Poisson-disk sampling (paper §4.2), shared by mps.cpp, mps_disks.cpp and
-// mps_gaps.cpp: the disks as the triangles know them (second change of §4.2) and the gap pieces
-// found with the LRPD (third change). Not part of the public API.
+// The gap pieces of maximal Poisson-disk sampling (paper §4.2, third change): the parts of the LRPD
+// cells their disks leave uncovered, kept exact under insertions and drawn from by area. Internal to mps/.
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <utility>
 #include <vector>
 
 #include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
+#include "mps/mps_disks.h"
 #include "samples/samples.h"
 
 namespace lrvd::mps_detail {
 
-//! Two triangles "face alike" when the cosine of the angle between their normals exceeds this.
-constexpr double kFacingCosine = 0.0;
-
-//! inside_disk decided with rational arithmetic (its slow path).
-bool inside_disk_exact(const Vec3& p, const Vec3& c, double w);
-
-//! |p - c|² < w, decided exactly: doubles when the rounding error cannot change the answer,
-//! rational arithmetic otherwise. Inline: the double test decides almost every call.
-inline bool inside_disk(const Vec3& p, const Vec3& c, double w) {
-  const double d = squared_distance(p, c);
-  // fl(d) is within 5u·d of |p - c|² (three rounded differences, squares and sums, u = 2^-53),
-  // and the subtraction below adds at most u·|d - w|: a margin of 1e-15·(d + w) decides, unless
-  // d is so small that the squares may have underflowed.
-  if (d >= 1e-250) {
-    const double margin = 1e-15 * (d + w);
-    if (d - w > margin) return false;
-    if (w - d > margin) return true;
-  } else if (w > 1e-240) {
-    return true;  // |p - c|² is below 1e-249 however the squares rounded (a centre on a mesh vertex: 0)
-  }
-  return inside_disk_exact(p, c, w);
-}
-
-//! The disks of the samples and, per triangle, which of them reach it. The *local region* of a
-//! ball B(x, r) around a point of triangle t: the triangles that the ball meets, edge-connected to
-//! t through such triangles — the paper's region growing ("until the disk does not intersect with
-//! a neighboring triangle"). With the facing cut (MpsConflict::CloseAcrossTurns) only triangles facing the
-//! same way as t (normals at less than 90°) count. The disk of sample i is B(x_i, r_i) on the
-//! triangles of its local region.
-//! Each triangle lists the disks that cover it fully and those that reach it only partly, and the
-//! sample centres it holds.
-class DiskIndex {
- public:
-  //! facing_cut: regions grow only through triangles facing like the centre's (MpsConflict::CloseAcrossTurns).
-  explicit DiskIndex(const SurfaceMesh& mesh, bool facing_cut = false);
-  //! Regions stop where the surface turns by 90° or more (MpsConflict::CloseAcrossTurns).
-  bool facing_cut() const { return facing_cut_; }
-
-  int size() const { return static_cast<int>(disk_records_.size()); }
-  const Vec3& center(int i) const { return disk_records_[i].center; }
-  double weight(int i) const { return disk_records_[i].weight; }
-  int triangle(int i) const { return triangles_[i]; }
-  const Vec3& barycentric(int i) const { return barycentric_[i]; }
-
-  //! Some disk covers triangle t entirely (a dart there is rejected without a distance test).
-  bool fully_covered(int t) const { return covered_head_[t] >= 0; }
-  //! p, a point of triangle t, lies in the disk of a sample that reaches t.
-  bool in_some_disk(const Vec3& p, int t) const;
-
-  //! The local region of the ball (p, w) around a point of triangle t. Valid until the next call.
-  const std::vector<int>& grow(const Vec3& p, int t, double w);
-  //! Every triangle the ball (p, w) meets, edge-connected to t through such triangles whichever
-  //! way they face. Valid until the next call.
-  const std::vector<int>& met(const Vec3& p, int t, double w);
-  //! Triangles s and t face the same way (normals at less than 90°).
-  bool faces_like(int s, int t) const { return faces(s, normals_[t]); }
-  //! Unit normal of triangle t (mesh.triangle_normal(t)).
-  const Vec3& normal(int t) const { return normals_[t]; }
-  //! Bounding sphere of triangle t: its centroid and the distance from there to its farthest corner.
-  Vec3 triangle_center(int t) const;
-  double triangle_radius(int t) const;
-  //! Area of each triangle (mesh.triangle_area(t): the normal's cross product gives both).
-  const std::vector<double>& triangle_areas() const { return areas_; }
-  //! Whether `target` is in the local region of (p, w) around t (leaves grow()'s result alone,
-  //! not met()'s).
-  bool reaches(const Vec3& p, int t, double w, int target);
-  //! Whether `target` is in the local region of sample i's ball at weight w, grown from every
-  //! triangle the sample lies on (SurfaceMesh::triangles_at).
-  bool sample_reaches(int i, double w, int target);
-  //! The weight at which the local region of the ball about p, grown from the triangles `from`
-  //! (those p lies on), starts to reach one of `to`: the least, over chains of edge-adjacent
-  //! triangles from `from` to `to`, of the largest squared distance from p to a triangle of the
-  //! chain (the region at weight w holds the triangles closer than √w, so it reaches `to` iff w is
-  //! above this). `cap` when no chain stays below cap. In doubles: a candidate for an exact test.
-  double reach_threshold(const Vec3& p, const std::vector<int>& from, const std::vector<int>& to, double cap);
-
-  //! Adds a sample whose local region is `region` (from grow(p, t, w)) and returns its index.
-  int insert(const Vec3& p, int t, const Vec3& barycentric, double w, const std::vector<int>& region);
-
-  //! f(sample) for every disk that reaches t (covering ones first).
-  template <class F>
-  void for_each_disk(int t, F&& f) const {
-    for (int k = covered_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
-    for (int k = partial_head_[t]; k >= 0; k = links_[k].next) f(links_[k].item);
-  }
-  //! f(sample) for every sample whose centre lies in t: a centre exactly on an edge or a corner
-  //! lies in every triangle there (SurfaceMesh::triangles_at).
-  template <class F>
-  void for_each_center(int t, F&& f) const {
-    for (int k = center_head_[t]; k >= 0; k = center_links_[k].next) f(center_links_[k].item);
-  }
-
-  Samples samples() const;
-
- private:
-  struct Link {
-    int item, next;
-  };
-  //! What region growing reads of a triangle, in half a cache line (the growth is bound by memory
-  //! reads): the unit normal and a bounding sphere in floats, and the last growth that visited it.
-  //! The sphere is the float centroid's with its radius rounded up, so it holds the triangle and
-  //! rejects only what the double one would; a facing test too close to call in floats reads the
-  //! double normal (faces()).
-  struct alignas(32) TriangleInfo {
-    float normal[3];
-    float center[3];
-    float radius;
-    std::uint32_t stamp = 0;
-  };
-  //! dot(normal of triangle s, facing) > kFacingCosine, decided as the double normals decide it.
-  bool faces(int s, const Vec3& facing) const {
-    const TriangleInfo& info = triangles_info_[s];
-    // Each float component is within 2^-24 (relative) of the double one; for unit vectors the
-    // dot product then differs by less than 1e-6 from the double one.
-    const double d = info.normal[0] * facing.x + info.normal[1] * facing.y + info.normal[2] * facing.z - kFacingCosine;
-    if (d > 1e-6) return true;
-    if (d < -1e-6) return false;
-    return dot(normals_[s], facing) > kFacingCosine;
-  }
-  template <class F>
-  bool search(const Vec3& p, int t, double w, bool region, F&& f);
-  //! The ball (p, w), r = √w, meets triangle t (triangle_squared_distance < w), balls far from t's
-  //! bounding sphere rejected at once.
-  bool meets(int t, const Vec3& p, double w, double r) const;
-  const SurfaceMesh& mesh_;
-  bool facing_cut_;
-  //! A disk's centre and weight together: the disk tests read both.
-  struct Disk {
-    Vec3 center;
-    double weight;
-  };
-  std::vector<Disk> disk_records_;
-  std::vector<Vec3> barycentric_;
-  std::vector<int> triangles_;
-  std::vector<Link> center_links_;
-  std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
-  std::vector<Link> links_;
-  std::uint32_t stamp_value_ = 0;  // of the current growth (TriangleInfo::stamp)
-  std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
-  std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
-  std::uint32_t vertex_stamp_value_ = 0;
-  std::vector<int> region_, queue_, seeds_;
-  std::vector<double> threshold_key_;  // per triangle, reach_threshold(): the best key found (this stamp)
-  std::vector<TriangleInfo> triangles_info_;  // per triangle
-  std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
-  std::vector<double> areas_;                 // per triangle
-};
-
-//! Whether a chain of edge-adjacent triangles leads from t to one of `targets` through triangles
-//! that the ball of weight w about every one of the `count` points meets (exactly). For points of
-//! a convex polygon in t, the ball about any point of the polygon then meets them too (the
-//! distance to a triangle is convex): the region of that ball reaches the target from t.
-bool reach_chain(const SurfaceMesh& mesh, int t, const Vec3* points, int count, double w, const std::vector<int>& targets);
-
-//! Squared distance from p to triangle t of the mesh.
-double triangle_squared_distance(const SurfaceMesh& mesh, int t, const Vec3& p);
-
-//! Barycentric coordinates of p (a point of the plane of triangle t) in t, clamped to the triangle.
-Vec3 barycentric_in_triangle(const SurfaceMesh& mesh, int t, const Vec3& p);
-
-//! An LRPD for gap detection: of the whole mesh, or of the part of it around some triangles
-//! (compute_lrpd_around), whose triangles and cells map back to the mesh's triangles and samples.
-struct GapLrpd {
-  Diagram diagram;
-  bool on_part = false;
-  SurfaceMesh part;              //!< on_part: the triangles the diagram covers, as a mesh of their own
-  std::vector<int> triangle_of;  //!< on_part: the mesh triangle of each part triangle
-  std::vector<int> sample_of;    //!< on_part: the sample of each part cell
-};
-
-//! The LRPD of the samples located on the part of the mesh around `triangles`: every triangle a
-//! ball of four times the largest radius reaching one of them meets (edge-connected to it),
-//! and the whole star of each vertex where those would touch at a point only. The cells of a
-//! maximal sampling are a few radii across, so on `triangles` the part's LRPD has the cells of the
-//! whole mesh's unless a cell there grows from beyond the part's rim; either way its polygons
-//! partition those triangles among cells of samples, which is all gap detection needs (the verifier
-//! judges maximality on the whole mesh's LRPD). `shaped`, per mesh triangle: the triangles whose
-//! polygons need shapes (LrvdOptions::shapeless). Returns false, leaving `out` alone, when the part
-//! would hold more than a quarter of the mesh or a component of it holds no sample.
-bool compute_lrpd_around(const SurfaceMesh& mesh, DiskIndex& disks, const std::vector<int>& triangles,
-                         const std::vector<char>& shaped, GapLrpd& out);
+struct GapLrpd;  // mps_lrpd_part.h
 
 //! The uncovered parts of the surface as pieces: a convex polygon Q in the plane of a triangle
 //! and the disk of an `owner` sample (or none); the piece's gap is Q minus that disk. At
@@ -238,16 +57,6 @@ class GapSet {
   //! next LRPD shows it again (counted per extract()).
   void dart_refused(int piece);
   int given_up() const { return given_up_; }
-  //! The dart drawn in `piece` was refused by `sample` from the dart's side (the sample's centre
-  //! lies in the dart's region, closer than its radius): when the region of that ball reaches the
-  //! sample's triangle from every corner of the piece (reach_chain), the sample covers the piece as
-  //! a disk reaching its triangle would, and the piece is split by it. Else the piece is halved
-  //! across its longest diagonal, then the half holding the dart, and so on until the chain holds
-  //! on the dart's part (it holds at the dart), which is then split by the sample; the other halves
-  //! stay as pieces. A piece's polygon is halved at most kMaxCarveHalvings times in all. Returns
-  //! whether anything was done.
-  bool carve(int piece, int sample, const Vec3& dart);
-  int carved() const { return carved_; }
   //! With local updates, the triangles that may hold a spot no disk reaching them covers: those of
   //! the live pieces, of the pieces given up and those the sampler noted for dust (note_open()).
   //! Every other spot that extract() saw lies in a disk reaching its triangle, and stays so.
@@ -262,18 +71,6 @@ class GapSet {
   //! only when a round placed no sample), against the disks of extract()'s time, leaving the
   //! pieces as they are.
   int required_pieces();
-  //! candidates(t, q, count, out): every sample whose ball may meet the polygon q[0..count) of
-  //! triangle t along a chain of triangles (certify_required()).
-  using Candidates = std::function<void(int, const Vec3*, int, std::vector<int>&)>;
-  //! The paper's rule, at the end: how many of the required pieces left (alive, or given up since
-  //! extract()) are not shown to lie where a dart is refused from its own side, in the ball of a
-  //! sample whose chain (reach_chain, exact) holds on the whole piece. Each piece is split by the
-  //! ball of such a sample among its candidates, and halved where none holds, up to
-  //! kMaxCertifyHalvings halvings and kCertifyBudget pieces looked at in all. Meant for after an
-  //! extract() with set_required_only() (no deferred pieces); the pieces are used up.
-  int certify_required(const Candidates& candidates);
-  //! The required pieces certify_required() was given, when it showed them all covered; else 0.
-  int certified() const { return certified_; }
   //! From the next extract() on, only required pieces are kept (no remote claims): the darts then
   //! go only where a spot would stay uncovered.
   void set_required_only() { required_only_ = true; }
@@ -294,7 +91,7 @@ class GapSet {
   //! The dust of the pieces dropped since the last call (or extract()), handed over.
   std::vector<Dust> take_dust() { return std::exchange(dust_, {}); }
 
- private:
+ protected:  // ReachGapSet (mps_gap_reach.h) builds on the pieces
   struct Piece {
     int triangle = -1;
     int owner = -1;
@@ -336,15 +133,9 @@ class GapSet {
   //! add_outside, then splits the new pieces by every disk reaching t (of the samples before
   //! `disk_limit`); returns how many live.
   int add_split(const std::vector<Vec3>& polygon, int t, int owner, int disk_limit = 1 << 30);
-  //! add_outside, the new pieces marked as `halvings` times halved (carve()).
-  void add_outside_with_halvings(const std::vector<Vec3>& q, int t, int owner, int halvings);
   //! Splits the gap of piece `index` by the disk of `sample` (both power cells of owner and sample).
   void split(int index, int sample);
   void kill(int index);
-  //! Halves piece `index` across its polygon's longest diagonal (both halves as pieces).
-  void halve(int index);
-  //! reach_chain for the corners of piece `index` and the ball of `sample` to its triangles.
-  bool chain_holds(int index, int sample);
   void fenwick_add(int index, double delta);
   void rebuild();
 
@@ -362,7 +153,7 @@ class GapSet {
   std::vector<GivenUp> given_up_pieces_;
   std::vector<Vec3> given_up_points_;
   std::vector<int> open_;  // triangles of pieces given up and of dust, since extract()
-  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0, carved_ = 0, certified_ = 0;
+  int alive_ = 0, created_ = 0, dropped_ = 0, dead_since_rebuild_ = 0;
   int uncovered_polygons_ = 0, remote_claims_ = 0, given_up_ = 0, required_pieces_ = 0;
   // Polygons of remote balls whose required pieces are not counted yet (required_pieces()):
   // triangle, cell, vertices in deferred_points_; and how many samples extract() saw.
@@ -379,7 +170,7 @@ class GapSet {
     Vec3 p;
     int kind;  // 0 corner inside, 1 corner outside, 2 entry, 3 exit
   };
-  std::vector<int> scratch_pieces_, fresh_, carve_targets_;
+  std::vector<int> scratch_pieces_, fresh_;
   std::vector<double> fan_;
   std::vector<Event> events_;
   std::vector<char> outside_;

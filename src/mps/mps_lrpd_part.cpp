@@ -1,11 +1,11 @@
 // The LRPD of maximal Poisson-disk sampling on the part of the mesh around a few triangles: the
 // later gap rounds look only at the triangles that may still hold a gap, and a diagram of the
 // whole mesh for a handful of them costs as much as the first one.
-// Declared in mps/mps_gaps.h, with the gap filling it serves.
+#include "mps/mps_lrpd_part.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "mps/mps_gaps.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd::mps_detail {

@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mps/mps_gaps.h"
+#include "mps/mps_disks.h"
 
 namespace lrvd::mps_detail {
 

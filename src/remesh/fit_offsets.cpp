@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <utility>
+#include <vector>
 
 #include "metrics/quality.h"
-#include "remesh/fit_offsets_detail.h"
+#include "remesh/fit_offsets_samples.h"
 
 namespace lrvd {
 
@@ -36,6 +39,87 @@ template <int P>
 double power(double x) {
   return power_by_squaring<P>(1.0, x);
 }
+
+// The steps of balance_offsets on the samples' linearised distances: coordinate descent over the
+// vertices, one at a time (sweep) or, in the focus rounds, with their one-ring (group_sweep).
+class OffsetBalancer : public OffsetSamples {
+ public:
+  OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
+                 const std::function<bool(int)>& acceptable, const OffsetOptions& options,
+                 const ClosestPointIndex* mesh_index, const std::vector<int>* input_vertex_cell)
+      : OffsetSamples(mesh, dual, options, mesh_index, input_vertex_cell), incident_(incident), acceptable_(acceptable) {}
+
+  // The unit normal of vertex v (its triangles' area-weighted normals) and the shortest edge of
+  // its triangles; false when either is degenerate.
+  bool vertex_frame(int v, Vec3& normal, double& shortest) const;
+
+  // One sweep of coordinate descent on the linearised distances: each vertex tries a few directions
+  // (its normal; the steepest descent of its samples' Σ|d|^p, which leaves the normal at a tip the
+  // vertex must reach sideways; that descent's tangential part) and keeps the best accepted step.
+  void sweep(double floor);
+
+  // Coordinate descent on groups, for the focus rounds: each vertex whose samples reach `floor`,
+  // largest |d| first, moves alone (ring_share = 0) or with its one-ring, the ring by `ring_share` of
+  // the vertex's step (1: the triangles at the vertex keep their shape and the ring's outer
+  // triangles deform instead; where the vertex alone is stopped by a triangle at the floor, the
+  // group can still move). A step is taken under `relaxed` (the worst-Q floor) when that beats the
+  // best step under `strict` (the rounds' floor) and the Q it takes from the group's triangles fits
+  // in what is left of the budget; otherwise under `strict`.
+  void group_sweep(double floor, const std::function<bool(int)>& strict, const std::function<bool(int)>& relaxed,
+                   double ring_share);
+
+  void set_quality_budget(double budget) { quality_budget_ = budget; }
+
+ private:
+  // The vertex's samples, gathered: d / scale, weight and direction.
+  inline void gather(int v, double scale);
+  inline void set_coefficients(const Vec3& direction, double scale);
+  // Σ |d + c t|^p / scale^p over the gathered samples (c = 0 when t = 0).
+  inline double objective(double t) const;
+  template <int P>  // P = options_.power, or 0 when that is not one compiled for
+  inline double objective_with(double t) const;
+  // The offset t in [-limit, limit] that minimises Σ |d + c t|^p over the gathered samples: the
+  // function is convex, so Newton's method on its derivative inside a shrinking bracket.
+  inline double best_offset(double limit) const;
+  template <int P>  // as in objective_with
+  inline double best_offset_with(double limit) const;
+
+  // The largest |d| of the samples of vertex v.
+  inline double largest_distance(int v) const;
+
+  // group_sweep's steps. The group (group_, its vertex first; group_from_, where they start) moves
+  // together, the ring by ring_share of the vertex's step.
+  struct GroupSteps {
+    double start = 0;                  // the objective before any step
+    double strict_value = 0, relaxed_value = 0;
+    Vec3 strict_move{0, 0, 0}, relaxed_move{0, 0, 0};  // the best step under each floor (0: none better)
+  };
+  // The vertices whose samples' largest |d| reaches `floor`, largest first, as (-|d|, vertex).
+  std::vector<std::pair<double, int>> vertices_by_distance(double floor) const;
+  // The vertex v, and with a ring_share its one-ring, as the group.
+  void collect_group(int v, double ring_share);
+  // The group's samples gathered (combined_ and touched_: each with the weight of its moving
+  // corners, the ring's scaled by its share), and the steepest descent of their Σ|d|^p; returns
+  // their largest |d|, the scale of the gathered values.
+  double gather_group(double ring_share, Vec3& descent);
+  void place_group(const Vec3& move, double ring_share);
+  bool group_holds(const std::function<bool(int)>& accept) const;
+  // The best accepted steps along the normal, the descent and its tangential part.
+  GroupSteps best_group_steps(const Vec3& normal, const Vec3& descent, double limit, double group_scale,
+                              const std::function<bool(int)>& strict, const std::function<bool(int)>& relaxed,
+                              double ring_share);
+  // The Q the group's `move` takes from the triangles around the group, summed.
+  double quality_spent(const Vec3& move, double ring_share);
+
+  const std::vector<std::vector<int>>& incident_;
+  const std::function<bool(int)>& acceptable_;
+  std::vector<double> coefficient_, local_d_, local_w_;
+  std::vector<Vec3> local_g_;
+  double quality_budget_ = 0;  // the Q the focus rounds' relaxed steps may still take, summed over triangles
+  std::vector<double> combined_;  // group_sweep: per sample, the weight of the group's moving corners
+  std::vector<int> group_, touched_, around_;  // group_sweep: the group, its samples, its triangles
+  std::vector<Vec3> group_from_;
+};
 
 }  // namespace
 

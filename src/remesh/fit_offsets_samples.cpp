@@ -1,5 +1,6 @@
-// The samples of balance_offsets on both surfaces and their measured distances (see fit_offsets_detail.h).
-// Part of OffsetBalancer, declared in remesh/fit_offsets_detail.h with the rest of it.
+// The samples of balance_offsets on both surfaces and their measured distances.
+#include "remesh/fit_offsets_samples.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -8,7 +9,6 @@
 
 #include "mesh/closest_point.h"
 #include "mesh/self_intersections.h"
-#include "remesh/fit_offsets_detail.h"
 
 namespace lrvd::fit_detail {
 
@@ -57,11 +57,9 @@ void signed_offset(const Vec3& to, const Vec3& from, const Vec3& normal, double&
 
 }  // namespace
 
-OffsetBalancer::OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const std::vector<std::vector<int>>& incident,
-                               const std::function<bool(int)>& acceptable, const OffsetOptions& options,
-                               const ClosestPointIndex* mesh_index, const std::vector<int>* input_vertex_cell)
-    : mesh_(mesh), dual_(dual), incident_(incident), acceptable_(acceptable), options_(options),
-      proper_(proper_triangles(dual.positions, dual.triangles)) {
+OffsetSamples::OffsetSamples(const SurfaceMesh& mesh, DualMesh& dual, const OffsetOptions& options,
+                             const ClosestPointIndex* mesh_index, const std::vector<int>* input_vertex_cell)
+    : mesh_(mesh), dual_(dual), options_(options), proper_(proper_triangles(dual.positions, dual.triangles)) {
   if (!mesh_index) own_index_.emplace(mesh);
   mesh_index_ = mesh_index ? mesh_index : &*own_index_;
   for (int t = 0; t < static_cast<int>(dual_.triangles.size()); ++t)
@@ -80,7 +78,7 @@ OffsetBalancer::OffsetBalancer(const SurfaceMesh& mesh, DualMesh& dual, const st
   moved_.assign(dual.positions.size(), 1);
 }
 
-double OffsetBalancer::measure(double floor) {
+double OffsetSamples::measure(double floor) {
   const int nr = static_cast<int>(remesh_.size()), ni = static_cast<int>(input_points_.size());
   // Only the samples on triangles with a moved corner can have changed (an input sample's
   // distance to its old triangle is unchanged then, so its stale value is an upper bound).
@@ -132,12 +130,12 @@ double OffsetBalancer::measure(double floor) {
   return largest;
 }
 
-Vec3 OffsetBalancer::triangle_normal(int t) const {
+Vec3 OffsetSamples::triangle_normal(int t) const {
   const Triangle& f = dual_.triangles[t];
   return lrvd::triangle_normal(dual_.positions[f[0]], dual_.positions[f[1]], dual_.positions[f[2]]);
 }
 
-void OffsetBalancer::place_samples() {
+void OffsetSamples::place_samples() {
   const std::vector<Vec3>& x = dual_.positions;
   double length_sum = 0;
   int edges = 0;
@@ -174,7 +172,7 @@ void OffsetBalancer::place_samples() {
   input_.resize(input_points_.size());
 }
 
-void OffsetBalancer::hint_input_vertices(const std::vector<int>& cell_of) {
+void OffsetSamples::hint_input_vertices(const std::vector<int>& cell_of) {
   if (static_cast<int>(cell_of.size()) != mesh_.vertex_count()) return;
   // A proper triangle at each remesh vertex, as its index in proper_triangles_.
   std::vector<int> proper_at(dual_.positions.size(), -1);
@@ -185,7 +183,7 @@ void OffsetBalancer::hint_input_vertices(const std::vector<int>& cell_of) {
     if (cell_of[u] >= 0 && cell_of[u] < static_cast<int>(proper_at.size())) input_[u].hint = proper_at[cell_of[u]];
 }
 
-void OffsetBalancer::index_samples() {
+void OffsetSamples::index_samples() {
   const int n = static_cast<int>(dual_.positions.size());
   first_.assign(n + 1, 0);
   auto each = [&](auto&& visit) {
@@ -210,7 +208,7 @@ void OffsetBalancer::index_samples() {
   each([&](int v, int i, double w) { entries_[next[v]++] = {i, w}; });
 }
 
-int OffsetBalancer::refine_input(double threshold, int level) {
+int OffsetSamples::refine_input(double threshold, int level) {
   const int nv = static_cast<int>(mesh_.positions().size());
   input_refined_.resize(mesh_.triangle_count(), 0);
   std::vector<int> triangles;
@@ -241,7 +239,7 @@ int OffsetBalancer::refine_input(double threshold, int level) {
   return static_cast<int>(input_points_.size() - before);
 }
 
-int OffsetBalancer::refine_remesh(double threshold, int level) {
+int OffsetSamples::refine_remesh(double threshold, int level) {
   std::vector<char> refine(dual_.triangles.size(), 0);
   for (const Sample& s : remesh_)
     if (std::abs(s.d) >= threshold) refine[s.triangle] = 1;
@@ -259,7 +257,7 @@ int OffsetBalancer::refine_remesh(double threshold, int level) {
   return static_cast<int>(remesh_.size() - before);
 }
 
-void OffsetBalancer::reset(const std::vector<Vec3>& positions) {
+void OffsetSamples::reset(const std::vector<Vec3>& positions) {
   for (size_t v = 0; v < positions.size(); ++v)
     if (positions[v] != dual_.positions[v]) moved_[v] = 1;
   dual_.positions = positions;

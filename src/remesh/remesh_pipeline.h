@@ -6,6 +6,7 @@
 #include <functional>
 #include <optional>
 
+#include "mesh/refine.h"
 #include "mesh/surface_mesh.h"
 #include "remesh/remesh.h"
 #include "samples/samples.h"
@@ -20,7 +21,7 @@ void require_remesh_vertex_count(const SurfaceMesh& input, int n);
 //! caches whatever the order (elk 516, 3290 triangles: 2 % faster reordered, within the spread).
 constexpr int kSpatialOrderMinTriangles = 20000;
 
-//! Renumbers `mesh` along a Morton curve (spatially_ordered, mesh/surface_mesh.h) and the samples'
+//! Renumbers `mesh` along a Morton curve (spatially_ordered, mesh/refine.h) and the samples'
 //! triangles with it, when it has at least kSpatialOrderMinTriangles triangles; the samples stay
 //! where they are. A CVT computes hundreds of diagrams of the mesh, whose passes over it then stay
 //! local in memory (armadillo 4000, 52k triangles: 10 % less time; dragon_100k 1000: 14 %).

@@ -12,7 +12,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"

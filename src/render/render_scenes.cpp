@@ -1,6 +1,7 @@
 // The scenes `lrvd render` draws: a mesh, a diagram's cells with their stray pieces hatched, and a
 // mesh coloured by triangle quality or by the remesh checks its triangles fail.
-// Declared in render/render.h, with the rasterizer that draws them.
+#include "render/render_scenes.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -10,10 +11,10 @@
 #include "common/error.h"
 #include "diagram/cells_output.h"
 #include "diagram/diagram.h"
+#include "io/mesh_writers.h"
 #include "mesh/self_intersections.h"
 #include "mesh/surface_mesh.h"
 #include "metrics/quality.h"
-#include "render/render.h"
 #include "samples/samples.h"
 
 namespace lrvd {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "mesh/refine.h"
 #include "predicates/predicates.h"
 #include "voronoi/lrvd.h"
 

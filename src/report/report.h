@@ -11,6 +11,7 @@
 
 #include "diagram/diagram.h"
 #include "io/mesh_io.h"
+#include "mesh/refine.h"
 #include "metrics/quality.h"
 #include "samples/samples.h"
 #include "verification/remesh_check.h"
@@ -21,7 +22,7 @@ namespace lrvd {
 using ProgressFn = std::function<void(const std::string&)>;
 
 //! The most samples a command takes; the refinement they call for is bounded by
-//! kMaxRefinedTriangles (mesh/surface_mesh.h), for the memory a verified diagram needs.
+//! kMaxRefinedTriangles (mesh/refine.h), for the memory a verified diagram needs.
 constexpr int kMaxSamples = 5'000'000;
 
 //! "1 vertex", "3 vertices": a count with its noun in the right number.

@@ -15,7 +15,7 @@
 
 #include "common/error.h"
 #include "common/text.h"
-#include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mesh/closest_point.h"
 #include "mesh/surface_mesh.h"
 

@@ -17,6 +17,7 @@
 #include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
 #include "voronoi/lrvd_workspace.h"
+#include "voronoi/rvd.h"
 
 namespace lrvd {
 

@@ -1,5 +1,5 @@
-// The localized restricted Voronoi / power diagram (paper §3) and the restricted Voronoi / power
-// diagram it is compared with, behind one entry point.
+// The localized restricted Voronoi / power diagram (paper §3), and one entry point for it and for
+// the restricted Voronoi / power diagram it is compared with (voronoi/rvd.h).
 #pragma once
 
 #include "diagram/diagram.h"
@@ -24,10 +24,6 @@ struct LrvdOptions {
 //! \pre every sample's triangle is set; weights present when options.weighted.
 //! \throw InputError on an empty sample set or weights missing for a power diagram.
 Diagram compute_lrvd(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options = {});
-
-//! The exact RVD (or restricted power diagram): the 3D Voronoi (power) diagram of the samples,
-//! with neighbours from CGAL's Delaunay (regular) triangulation, intersected with every triangle.
-Diagram compute_rvd(const SurfaceMesh& mesh, const Samples& samples, bool weighted = false);
 
 //! \throw InputError when there are no samples, a sample has no triangle, or weights are missing.
 void check_diagram_input(const SurfaceMesh& mesh, const Samples& samples, bool weighted);

@@ -1,7 +1,8 @@
 // The exact restricted Voronoi (power) diagram, the baseline the LRVD is compared with: for each
 // triangle, the cells meeting it are found by walking the Delaunay (regular) neighbour graph from
 // the cell of one corner, and each is clipped by all its neighbours' bisectors exactly.
-// Declared in voronoi/lrvd.h, beside compute_lrvd, whose Diagram it returns.
+#include "voronoi/rvd.h"
+
 #include <algorithm>
 #include <chrono>
 #include <map>
