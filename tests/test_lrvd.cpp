@@ -322,7 +322,8 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
     options.seed = seed;
     options.refinement = MpsRefinement::MinRadius;  // the splitting these samples were found with,
     options.refine_order = RefineOrder::Input;      // in that order,
-    options.conflict = MpsConflict::CloseAcrossTurns;  // by that conflict rule
+    options.conflict = MpsConflict::CloseAcrossTurns;  // by that conflict rule,
+    options.sample_features = false;                   // with darts alone
     const MpsResult r = maximal_poisson_disk_sampling(dragon, options);
     const Samples samples = locate_points(dragon, r.samples.positions, r.samples.weights);
     INFO("seed " << seed);

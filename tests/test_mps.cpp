@@ -199,7 +199,7 @@ TEST_CASE("MPS of CGAL's elk, uniform and adaptive, is maximal and remeshes vali
   const SurfaceMesh elk = cgal_mesh("elk.off");
   SECTION("uniform r = 0.02: a few thousand samples on thin antlers and legs") {
     // The LRRT is not valid for every seed: where the elk is thinner than r, samples on both sides
-    // can make three cells meet twice (a pair of duplicate triangles). Seeds 1-8: 6 valid (docs/algorithms/mps.md,
+    // can make three cells meet twice (a pair of duplicate triangles). Seeds 1-8: 7 valid (docs/algorithms/mps.md,
     // "Known limits"). Seed 2 is one of them; the maximal sampling holds for all.
     MpsOptions options;
     options.radius = 0.02;
@@ -316,11 +316,13 @@ TEST_CASE("Adaptive MPS fills a spot past a sharp fold that a sample's ball hold
   // angles to the spot's (cosine 0.012, so "facing alike") and whose disk does not reach it. No
   // radius keeps both power cells apart, also against the facing samples only; the dart keeps the
   // condition against the samples local to it. Before, 7 gap pieces stayed and `maximal` failed.
+  // The spot is one of the darts alone: man's 1,213 feature edges sampled first put others there.
   const SurfaceMesh man = cgal_mesh("man.off");
   MpsOptions options;
   options.radius = 0.01;
   options.adaptive = true;
   options.seed = 1;
+  options.sample_features = false;
   const MpsResult r = maximal_poisson_disk_sampling(man, options);
   CHECK(r.gaps_closed);
   CHECK(r.power_cell_exceptions > 0);  // the case this test is about: if it vanishes, find a seed that shows it
@@ -488,6 +490,7 @@ TEST_CASE("MPS darts are unbiased: uniform by area over a very uneven triangulat
   std::vector<double> count(cells * cells, 0);
   MpsOptions options;
   options.radius = 0.05;
+  options.sample_features = false;  // the darts alone: the square's boundary would be sampled first
   for (int run = 0; run < runs; ++run) {
     options.seed = 1000 + run;
     const MpsResult r = maximal_poisson_disk_sampling(square, options);
@@ -803,11 +806,13 @@ TEST_CASE("MPS of CGAL's ChineseDragon is maximal where the LRPD's cells miss sp
   // input triangle's pieces together and a cell removed from a triangle was re-checked across its edges,
   // seed 40 until the edges were split to twice the radius, seed 16 until the refined mesh was put in
   // spatial order, seeds 92 and 108 until the first LRPD of local updates skipped the connectivity
-  // restoration; of seeds 1-160, seeds 54, 146 and 147 show it now.)
+  // restoration; of seeds 1-160, seeds 54, 146 and 147 show it now, all without the features
+  // sampled first.)
   const SurfaceMesh dragon = cgal_mesh("ChineseDragon-10kv.off");
   MpsOptions options;
   options.radius = 0.01;
   options.seed = 54;
+  options.sample_features = false;
   for (MpsGapUpdate update : {MpsGapUpdate::Local, MpsGapUpdate::Lrpd}) {
     options.gap_update = update;
     INFO((update == MpsGapUpdate::Local ? "local gap updates" : "the paper's gap loop"));
@@ -828,9 +833,11 @@ TEST_CASE("MPS fills a real gap too small for its area to be told from rounding:
   // corners of dropped pieces were tried as darts, the verifier found that spot uncovered. (In the
   // default spatial order the darts land elsewhere, and no seed of 1-80 nor any of CGAL's meshes at
   // r = 0.01, seed 1, meets such a spot.) The dropped pieces' darts do not depend on the conflict
-  // rule; the spot was found with the facing cut, and by the paper's rule no seed of 1-40 meets one.
+  // rule; the spot was found with the facing cut, and by the paper's rule no seed of 1-40 meets one;
+  // and without the gear's feature lines sampled first.
   const SurfaceMesh pinion = cgal_mesh("pinion_small.off");
   MpsOptions options;
+  options.sample_features = false;
   options.radius = 0.01;
   options.adaptive = true;
   options.seed = 1;
@@ -887,13 +894,15 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor b
   options.radius = 1e-6;  // about 10^13 samples
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
   options.radius = 0.1;
-  options.sample_features = true;
   options.feature_angle = 180;
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
   options.feature_angle = std::nan("");
   CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
-  // A model whose areas would overflow or vanish in doubles.
+  // Features off still counts the feature lines, at this angle: it is checked all the same.
   options.sample_features = false;
+  CHECK_THROWS_AS(maximal_poisson_disk_sampling(sphere, options), InputError);
+  options.feature_angle = 60;
+  // A model whose areas would overflow or vanish in doubles.
   for (double s : {1e-100, 1e100}) {
     std::vector<Vec3> scaled = sphere.positions();
     for (Vec3& p : scaled) p = s * p;
@@ -903,7 +912,7 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor b
 
 TEST_CASE("lrvd mps says in one line and in its report when its samples give no valid LRRT, and exits 3",
           "[mps][cli]") {
-  // A closed box 1 x 1 x 0.01 at R = 0.05 without features: both sides of its sheet are sampled,
+  // A closed box 1 x 1 x 0.01 at R = 0.05 with --no-features: both sides of its sheet are sampled,
   // and the LRRT of some samplings has duplicate triangles there (docs/algorithms/mps.md, "Known
   // limits"). Every run exits 0 exactly when its LRRT passes the checks.
   const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_lrrt_";
@@ -915,7 +924,7 @@ TEST_CASE("lrvd mps says in one line and in its report when its samples give no 
     INFO("seed " << seed);
     const std::string report = dir + "report.json", console = dir + "console.txt";
     std::remove(report.c_str());
-    const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + mesh + " --radius 0.05 --seed " +
+    const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + mesh + " --radius 0.05 --no-features --seed " +
                                  std::to_string(seed) + " -o " + dir + "s.xyz --remesh " + dir + "lrrt.off --report " +
                                  report + " > " + console + " 2>&1")
                                     .c_str());
@@ -937,6 +946,7 @@ TEST_CASE("lrvd mps says in one line and in its report when its samples give no 
     ++refused;
     const std::string refusal = j["remesh"]["refusal"].get<std::string>();
     CHECK(refusal.rfind(line, 0) == 0);
+    CHECK(refusal.find("the features sampled first (without --no-features)") != std::string::npos);
     CHECK(text.find(refusal + "\n") != std::string::npos);  // the same line on the console
   }
   CHECK(refused > 0);  // the case this is about: if no seed shows it, pick others
@@ -986,7 +996,10 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   const nlohmann::json one = nlohmann::json::parse(one_in);
   CHECK(one["refined"]["max_edge_length"].get<double>() <= one["radius"]["absolute"].get<double>());
   CHECK(one["refined"]["triangles"].get<int>() > j["refined"]["triangles"].get<int>());
-  CHECK(j["features"].is_null());
+  // The icosphere has no feature lines: none sampled, though feature sampling is on by default.
+  CHECK(j["features"]["on"].get<bool>());
+  CHECK(!j["features"]["sampled"].get<bool>());
+  CHECK(j["features"]["edges"].get<int>() == 0);
   // The paper's rule by default, judged by it.
   CHECK(j["conflict"]["rule"] == "reach");
   CHECK(j["conflict"]["close_pairs_let_through"].is_null());
@@ -1017,9 +1030,10 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   std::ifstream feature_in(feature_report);
   const nlohmann::json features = nlohmann::json::parse(feature_in);
   CHECK(features["features"]["angle_deg"].get<double>() == 45);
+  CHECK(features["features"]["boundary_edges"].get<int>() == 4);
   CHECK(features["features"]["samples"].get<int>() > 4);
   CHECK(features["verification"]["passed"].get<bool>());
-  CHECK(run(square + " --radius 0.1 --feature-angle 45 -o " + dir + "bad.xyz") == 2);  // without --features
+  CHECK(run(square + " --radius 0.1 --no-features --feature-angle 45 -o " + dir + "bad.xyz") == 2);
   CHECK(run(square + " --radius 0.1 --features --feature-angle 0 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-factor 0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 0.1 --split-to rmin --split-factor 3 -o " + dir + "bad.xyz") == 2);  // one or the other
@@ -1105,9 +1119,12 @@ TEST_CASE("MPS by the paper's rule keeps r on sharp edges, corners, tips and bou
           CHECK(all_close_pairs(r.samples).empty());
           check_sampling(mesh, r, false);
         }
+  // Without the features sampled first: with them the cube's edges hold samples placed r apart
+  // and the facing cut has nothing left to let through there.
   MpsOptions facing;
   facing.radius = 0.08;
   facing.conflict = MpsConflict::CloseAcrossTurns;
+  facing.sample_features = false;
   const MpsResult r = maximal_poisson_disk_sampling(cube, facing);
   const size_t close = all_close_pairs(r.samples).size();
   CHECK(close > 0);

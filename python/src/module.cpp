@@ -303,7 +303,7 @@ PYBIND11_MODULE(lrvd, m) {
         "CVT remesh to exactly n vertices: (V2, F2, report)");
   m.def("mps", &mps, py::arg("V"), py::arg("F"), py::arg("radius"), py::arg("adaptive") = false,
         py::arg("max_radius_ratio") = py::none(), py::arg("seed") = 1, py::arg("gap_update") = "local",
-        py::arg("split_to") = "field", py::arg("split_factor") = py::none(), py::arg("features") = false,
+        py::arg("split_to") = "field", py::arg("split_factor") = py::none(), py::arg("features") = true,
         py::arg("feature_angle") = py::none(), py::arg("exact") = false, py::arg("lrrt") = false,
         py::arg("threads") = py::none(), py::arg("conflict") = "reach",
         "Maximal Poisson-disk sampling: (points, report), with lrrt=True (points, report, V2, F2)");

@@ -100,6 +100,24 @@ def test_mps_maximal_on_a_stress_mesh(cli, tmp_path):
     assert F2.shape == (report2["remesh"]["triangles"], 3)
 
 
+def test_mps_samples_the_features_first_by_default(cli, tmp_path):
+    # A cube: its 12 edges and 8 corners are sampled first unless features=False (--no-features).
+    V = np.array([[x, y, z] for z in (0, 1) for y in (0, 1) for x in (0, 1)], dtype=float)
+    F = np.array([[0, 3, 1], [0, 2, 3], [4, 5, 7], [4, 7, 6], [0, 1, 5], [0, 5, 4],
+                  [1, 3, 7], [1, 7, 5], [3, 2, 6], [3, 6, 7], [2, 0, 4], [2, 4, 6]], dtype=np.int32)
+    points, report = lrvd.mps(V, F, 0.1)
+    features = report["features"]
+    assert features["on"] and features["sampled"] and features["edges"] == 12 and features["corners"] == 8
+    assert features["samples"] > 8 and report["mps_verification"]["passed"]
+    _, off = lrvd.mps(V, F, 0.1, features=False)
+    assert not off["features"]["on"] and not off["features"]["sampled"] and off["features"]["samples"] == 0
+    with pytest.raises(ValueError, match="--no-features"):
+        lrvd.mps(V, F, 0.1, features=False, feature_angle=45)
+    lrvd.write_mesh(str(tmp_path / "cube.off"), V, F)
+    cli("mps", tmp_path / "cube.off", "--radius", 0.1, "-o", tmp_path / "c.xyz", "--report", tmp_path / "c.json")
+    assert without_times_and_paths(report) == without_times_and_paths(json.load(open(tmp_path / "c.json")))
+
+
 def test_threads_do_not_change_the_output(elk):
     V, F = elk
     a = lrvd.compute(V, F, n=300, threads=1)

@@ -23,13 +23,32 @@ namespace lrvd::cli {
 
 namespace {
 
-
 struct MpsCommandOptions {
   std::string mesh_path;
   ReadOptions read;  //!< --repair, --weld, --fill-holes
   MpsSettings settings;  //!< the `*_given` flags set by the parser's callbacks below
   std::string output, remesh, report;
+  bool features_flag = false;  //!< --features, accepted: sampling the features first is the default
 };
+
+// One line on the feature lines the input has and whether they were sampled first, e.g.
+// "features: 12 edges where the surface turns by more than 60 degrees, 8 corners: sampled first
+// (98 samples; --no-features turns this off)"; "" for a mesh without any (sampled as with --no-features).
+std::string features_line(const MpsRun& run) {
+  const MpsResult& r = run.result;
+  if (r.feature_edges == 0) return "";
+  const int sharp = r.feature_edges - r.boundary_edges;
+  std::string edges;
+  if (sharp > 0)
+    edges = fmt::format("{} where the surface turns by more than {:g} degrees", counted(sharp, "edge", "edges"),
+                        run.options.feature_angle);
+  if (r.boundary_edges > 0)
+    edges += (edges.empty() ? "" : " and ") + counted(r.boundary_edges, "boundary edge", "boundary edges");
+  const std::string found = fmt::format("features: {}, {}", edges, counted(r.feature_corners, "corner", "corners"));
+  if (!run.options.sample_features) return found + ": not sampled first (--no-features)";
+  return found + fmt::format(": sampled first ({}; --no-features turns this off)",
+                             counted(r.feature_samples, "sample", "samples"));
+}
 
 int run_mps_command(const MpsCommandOptions& opt) {
   check_mps_settings(opt.settings);
@@ -75,6 +94,8 @@ int run_mps_command(const MpsCommandOptions& opt) {
                                                   ? "no two samples local to each other, the only kind it bounds"
                                                   : "no two samples near each other")
                                 : fmt::format("smallest ratio {:.4f}", check.min_distance_ratio);
+  const std::string features = features_line(run);
+  if (!features.empty()) std::printf("%s\n", features.c_str());
   std::printf("maximal: %s, minimum distance: %s (%s)\n", maximal ? "yes" : "NO", min_distance_ok ? "yes" : "NO",
               ratio.c_str());
   // Closer pairs the disk condition does not cover (docs/algorithms/mps.md, "Conflict rule"): said, not hidden.
@@ -137,12 +158,15 @@ Action add_mps_command(CLI::App& app) {
       ->check(CLI::Range(1.0, 64.0))
       ->each([opt](const std::string&) { opt->settings.split_factor_given = true; })
       ->capture_default_str();
-  cmd->add_flag("--features", opt->settings.features,
-                "Samples on the corners and feature lines first (the boundary, and edges sharper than --feature-angle): "
-                "the LRRT then keeps them; the samples there are not uniform");
+  CLI::Option* features = cmd->add_flag("--features", opt->features_flag,
+                                        "Samples on the corners and feature lines first (the boundary, and edges "
+                                        "sharper than --feature-angle) when the mesh has any: the default");
+  cmd->add_flag_callback("--no-features", [opt]() { opt->settings.features = false; },
+                         "Darts everywhere, none placed on the feature lines first (the paper's sampling; the "
+                         "LRRT may then cut sharp edges and boundary corners)")
+      ->excludes(features);
   cmd->add_option("--feature-angle", opt->settings.feature_angle,
-                  "With --features: an edge is a feature when its triangles' normals are more than this many "
-                  "degrees apart")
+                  "An edge is a feature when its triangles' normals are more than this many degrees apart")
       ->check(CLI::Range(1.0, 179.0))
       ->each([opt](const std::string&) { opt->settings.feature_angle_given = true; })
       ->capture_default_str();

@@ -135,7 +135,7 @@ void check_options(const MpsOptions& options) {
                                  kMaxMpsRadius, options.radius));
   if (!(options.split_factor >= 1) || !std::isfinite(options.split_factor))
     throw InputError(fmt::format("the split factor must be a number of at least 1 (got {})", options.split_factor));
-  if (options.sample_features && !(options.feature_angle > 0 && options.feature_angle < 180))
+  if (!(options.feature_angle > 0 && options.feature_angle < 180))
     throw InputError(fmt::format("the feature angle must be between 0 and 180 degrees (got {})", options.feature_angle));
   if (options.adaptive) {
     if (!(options.max_radius_ratio >= 1) || !(options.max_radius_ratio <= 1e6))
@@ -190,11 +190,20 @@ class PoissonDiskSampling {
     std::vector<double> vertex_radius;
     // The field is linear over each input triangle; the refinement carries it to the new vertices.
     if (options_.adaptive) vertex_radius = adaptive_radius_field(input_, r_min_, options_);
+    count_features();
     refine(vertex_radius);
     result_.max_radius = options_.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min_;
     sampler_.emplace(result_.mesh, r_min_, std::move(vertex_radius), options_.conflict == MpsConflict::CloseAcrossTurns);
     by_area_.emplace(sampler_->disks().triangle_areas());
     result_.time_s.init = seconds_since(start_);
+  }
+
+  //! The input's feature lines, counted on the mesh the user gave (the refinement only splits them).
+  void count_features() {
+    const FeatureLines f = find_feature_lines(input_, options_.feature_angle);
+    result_.feature_edges = static_cast<int>(f.edges.size());
+    result_.boundary_edges = f.boundary_edges;
+    result_.feature_corners = static_cast<int>(f.corners.size());
   }
 
   //! result_.mesh = the input with its long edges split. The paper splits to r_min everywhere
@@ -224,15 +233,17 @@ class PoissonDiskSampling {
     }
   }
 
-  //! Samples on the features if asked, then darts until too many consecutive rejections (§4.2,
-  //! second change), then a sample in every component the darts missed.
+  //! Samples on the features if asked and there are any, then darts until too many consecutive
+  //! rejections (§4.2, second change), then a sample in every component the darts missed.
   void throw_darts() {
     progress("dart throwing");
     const auto dart_start = Clock::now();
     const SurfaceMesh& m = result_.mesh;
-    if (options_.sample_features) {
-      progress(fmt::format("samples on the corners and feature lines (edges with normals more than {:g}° apart, and the boundary)",
-                           options_.feature_angle));
+    if (options_.sample_features && result_.feature_edges > 0) {
+      progress(fmt::format("samples on {} feature edges ({} on the boundary, the others' normals more than {:g}° apart) "
+                           "and {} corners",
+                           result_.feature_edges, result_.boundary_edges, options_.feature_angle,
+                           result_.feature_corners));
       result_.feature_samples = sample_features(m, *sampler_, options_.feature_angle);
     }
     const double sample_cap = 4 * expected_ + 1000;

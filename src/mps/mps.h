@@ -59,11 +59,13 @@ struct MpsOptions {
   //! land, not what is checked.
   RefineOrder refine_order = RefineOrder::Spatial;
   //! Samples on the corners and feature lines (boundary edges, and edges whose triangles' normals
-  //! are more than feature_angle degrees apart) before the surface's darts: the samples then follow the
-  //! features, which the LRRT needs at sharp edges and boundary corners (docs/algorithms/mps.md, "Features").
-  //! Off by default: the samples on the features are not uniform over the surface.
-  bool sample_features = false;
-  double feature_angle = 60;             //!< degrees, for sample_features
+  //! are more than feature_angle degrees apart) before the surface's darts, when the mesh has any:
+  //! the samples then follow the features, which the LRRT needs at sharp edges and boundary corners
+  //! (docs/algorithms/mps.md, "Features"). On by default; a mesh without feature lines is sampled
+  //! as with it off. The samples on the features are placed, not thrown: off gives the paper's
+  //! uniform darts everywhere.
+  bool sample_features = true;
+  double feature_angle = 60;             //!< degrees, 0 < angle < 180: what counts as a feature line
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
   //! Called with a short message at each stage (for progress output); may be empty.
@@ -85,6 +87,10 @@ struct MpsResult {
   double scale = 0;               //!< longest side of the input's bounding box (the unit-cube normalisation)
   double radius = 0;              //!< absolute r (r_min when adaptive)
   double max_radius = 0;          //!< absolute largest radius of the radius field
+  //! The input's feature lines at MpsOptions::feature_angle, counted whether or not they are sampled:
+  int feature_edges = 0;          //!< edges whose triangles' normals are more than the angle apart, and boundary edges
+  int boundary_edges = 0;         //!< of feature_edges: on the boundary
+  int feature_corners = 0;        //!< vertices with other than two feature edges, or two that turn by more than the angle
   int feature_samples = 0;        //!< samples placed on corners and feature edges (MpsOptions::sample_features)
   int dart_samples = 0;           //!< samples placed by the initial dart throwing (feature samples included)
   int gap_samples = 0;            //!< samples placed into gaps

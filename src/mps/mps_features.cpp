@@ -19,78 +19,86 @@ namespace {
 constexpr double kFeatureSpacing = 1.2;
 constexpr double kFeatureSlide = 0.5, kFeatureSlideStep = 0.05;  // in radii
 
-//! The feature lines of a mesh, as edges and the corners where lines meet or turn, and the
-//! sampler that places samples on them.
+}  // namespace
+
+FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg) {
+  const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
+  FeatureLines f;
+  // As the sampler's DiskIndex computes them: a triangle without area has a NaN normal, and its
+  // edges are features (no comparison with NaN holds).
+  std::vector<Vec3> normal(mesh.triangle_count());
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    const Triangle& tri = mesh.triangle(t);
+    const Vec3 n = cross(mesh.position(tri[1]) - mesh.position(tri[0]), mesh.position(tri[2]) - mesh.position(tri[0]));
+    normal[t] = n / norm(n);
+  }
+  f.at_vertex.assign(mesh.vertex_count(), {});
+  for (int t = 0; t < mesh.triangle_count(); ++t)
+    for (int e = 0; e < 3; ++e) {
+      const int n = mesh.neighbor(t, e);
+      if (n >= 0 && (n < t || dot(normal[t], normal[n]) >= cos_limit)) continue;
+      const Triangle& tri = mesh.triangle(t);
+      const int a = tri[e], b = tri[(e + 1) % 3];
+      f.at_vertex[a].push_back(static_cast<int>(f.edges.size()));
+      f.at_vertex[b].push_back(static_cast<int>(f.edges.size()));
+      f.edges.push_back({t, e, a, b});
+      f.boundary_edges += n < 0;
+    }
+  f.corner.assign(mesh.vertex_count(), 0);
+  for (int v = 0; v < mesh.vertex_count(); ++v) {
+    if (f.at_vertex[v].empty()) continue;
+    double c = 1;
+    if (f.at_vertex[v].size() == 2) {
+      Vec3 dir[2];
+      for (int k = 0; k < 2; ++k) {
+        const FeatureLines::Edge& g = f.edges[f.at_vertex[v][k]];
+        const Vec3 d = mesh.position(g.a == v ? g.b : g.a) - mesh.position(v);
+        dir[k] = d / norm(d);
+      }
+      c = dot(dir[0], dir[1]);
+      if (c <= -cos_limit) continue;  // nearly straight on
+    }
+    f.corner[v] = 1;
+    f.corners.push_back({-c, v});
+  }
+  std::sort(f.corners.begin(), f.corners.end());
+  return f;
+}
+
+namespace {
+
+//! The sampler that places samples on the feature lines: one at each corner, the sharpest first,
+//! then along each line from corner to corner.
 class FeatureSampling {
  public:
   FeatureSampling(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg)
-      : m_(mesh), sampler_(sampler), cos_limit_(std::cos(angle_deg * M_PI / 180.0)) {}
+      : m_(mesh), sampler_(sampler), f_(find_feature_lines(mesh, angle_deg)) {}
 
   int run() {
-    find_edges();
-    if (edges_.empty()) return 0;
+    if (f_.edges.empty()) return 0;
     const int before = sampler_.disks().size();
-    find_corners();
-    for (const auto& [c, v] : corners_) insert_on(at_vertex_[v][0], edges_[at_vertex_[v][0]].a == v ? 0.0 : 1.0);
+    for (const auto& [c, v] : f_.corners) {
+      const int k = f_.at_vertex[v][0];
+      insert_on(k, f_.edges[k].a == v ? 0.0 : 1.0);
+    }
     // The lines: from each corner along each of its edges to the next corner, then the closed
     // loops without one.
-    used_.assign(edges_.size(), 0);
-    for (const auto& [c, v] : corners_)
-      for (int k : at_vertex_[v])
+    used_.assign(f_.edges.size(), 0);
+    for (const auto& [c, v] : f_.corners)
+      for (int k : f_.at_vertex[v])
         if (!used_[k]) walk(v, k);
-    for (int k = 0; k < static_cast<int>(edges_.size()); ++k)
-      if (!used_[k]) walk(edges_[k].a, k);
+    for (int k = 0; k < static_cast<int>(f_.edges.size()); ++k)
+      if (!used_[k]) walk(f_.edges[k].a, k);
     return sampler_.disks().size() - before;
   }
 
  private:
-  struct Edge {
-    int t, e, a, b;  // triangle, its edge e from corner a to corner b
-  };
-
-  //! Boundary edges and edges whose triangles' normals are more than the feature angle apart.
-  void find_edges() {
-    const DiskIndex& disks = sampler_.disks();
-    at_vertex_.assign(m_.vertex_count(), {});
-    for (int t = 0; t < m_.triangle_count(); ++t)
-      for (int e = 0; e < 3; ++e) {
-        const int n = m_.neighbor(t, e);
-        if (n >= 0 && (n < t || dot(disks.normal(t), disks.normal(n)) >= cos_limit_)) continue;
-        const Triangle& tri = m_.triangle(t);
-        const int a = tri[e], b = tri[(e + 1) % 3];
-        at_vertex_[a].push_back(static_cast<int>(edges_.size()));
-        at_vertex_[b].push_back(static_cast<int>(edges_.size()));
-        edges_.push_back({t, e, a, b});
-      }
-  }
-
-  //! Corners, the sharpest first: a vertex with other than two feature edges, or with two that
-  //! turn by more than the feature angle.
-  void find_corners() {
-    corner_.assign(m_.vertex_count(), 0);
-    for (int v = 0; v < m_.vertex_count(); ++v) {
-      if (at_vertex_[v].empty()) continue;
-      double c = 1;
-      if (at_vertex_[v].size() == 2) {
-        Vec3 dir[2];
-        for (int k = 0; k < 2; ++k) {
-          const Edge& g = edges_[at_vertex_[v][k]];
-          const Vec3 d = m_.position(g.a == v ? g.b : g.a) - m_.position(v);
-          dir[k] = d / norm(d);
-        }
-        c = dot(dir[0], dir[1]);
-        if (c <= -cos_limit_) continue;  // nearly straight on
-      }
-      corner_[v] = 1;
-      corners_.push_back({-c, v});
-    }
-    std::sort(corners_.begin(), corners_.end());
-  }
+  using Edge = FeatureLines::Edge;
 
   //! A sample at the point of edge k at `u` from its end a to its end b (exactly on the edge: its
   //! region grows on both sides, Sampler::region_of).
   bool insert_on(int k, double u) {
-    const Edge& g = edges_[k];
+    const Edge& g = f_.edges[k];
     Vec3 bary;
     bary[g.e] = 1 - u;
     bary[(g.e + 1) % 3] = u;
@@ -102,7 +110,7 @@ class FeatureSampling {
   void walk(int v, int k) {
     const int end = collect_line(v, k);
     measure_line();
-    spread_along_line(!corner_[end]);  // closed: a loop back to its first vertex, which is no corner
+    spread_along_line(!f_.corner[end]);  // closed: a loop back to its first vertex, which is no corner
   }
 
   //! line_ = the edges from vertex v on, starting with edge k, up to a corner or the end of the
@@ -111,11 +119,11 @@ class FeatureSampling {
     line_.clear();
     while (!used_[k]) {
       used_[k] = 1;
-      const bool reverse = edges_[k].b == v;
+      const bool reverse = f_.edges[k].b == v;
       line_.push_back({k, reverse});
-      v = reverse ? edges_[k].a : edges_[k].b;
-      if (corner_[v] || at_vertex_[v].size() != 2) break;
-      k = at_vertex_[v][0] == k ? at_vertex_[v][1] : at_vertex_[v][0];
+      v = reverse ? f_.edges[k].a : f_.edges[k].b;
+      if (f_.corner[v] || f_.at_vertex[v].size() != 2) break;
+      k = f_.at_vertex[v][0] == k ? f_.at_vertex[v][1] : f_.at_vertex[v][0];
     }
     return v;
   }
@@ -126,7 +134,7 @@ class FeatureSampling {
     span_.resize(line_.size());
     total_ = 0;
     for (size_t i = 0; i < line_.size(); ++i) {
-      const Edge& g = edges_[line_[i].first];
+      const Edge& g = f_.edges[line_[i].first];
       const double r0 = sampler_.radius_at(g.a), r1 = sampler_.radius_at(g.b);
       const double length = distance(m_.position(g.a), m_.position(g.b));
       span_[i] = std::abs(r1 - r0) > 1e-12 * r0 ? length * std::log(r1 / r0) / (r1 - r0) : length / r0;
@@ -140,7 +148,7 @@ class FeatureSampling {
     size_t i = 0;
     double start = 0;  // radii walked before edge i
     while (i + 1 < line_.size() && start + span_[i] < at) start += span_[i++];
-    const Edge& g = edges_[line_[i].first];
+    const Edge& g = f_.edges[line_[i].first];
     const bool reverse = line_[i].second;
     const double x = std::clamp(at - start, 0.0, span_[i]);
     const double r0 = sampler_.radius_at(reverse ? g.b : g.a), r1 = sampler_.radius_at(reverse ? g.a : g.b);
@@ -173,11 +181,7 @@ class FeatureSampling {
 
   const SurfaceMesh& m_;
   Sampler& sampler_;
-  double cos_limit_;
-  std::vector<Edge> edges_;
-  std::vector<std::vector<int>> at_vertex_;  // the feature edges at each vertex
-  std::vector<char> corner_;
-  std::vector<std::pair<double, int>> corners_;  // (minus the cosine of the angle between the two edges, vertex)
+  const FeatureLines f_;
   std::vector<char> used_;                       // per edge: on a line already walked
   std::vector<std::pair<int, bool>> line_;       // edges, and whether each is walked from b to a
   std::vector<double> span_;                     // per edge of line_: its length in radii

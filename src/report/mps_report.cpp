@@ -48,8 +48,8 @@ namespace {
 
 // "" for an LRRT that passed its checks; else one line: these samples give no valid LRRT at this
 // radius, with the properties it fails. MPS cannot move its samples to mend the dual as the CVT
-// remesh does (docs/algorithms/mps.md, "Known limits"); another seed, another radius or --features
-// is a new sampling.
+// remesh does (docs/algorithms/mps.md, "Known limits"); another seed, another radius or (after
+// --no-features) the features sampled first is a new sampling.
 std::string lrrt_refusal(const RemeshVerification& check, const MpsSettings& settings) {
   if (check.passed) return "";
   std::string failed;
@@ -61,8 +61,9 @@ std::string lrrt_refusal(const RemeshVerification& check, const MpsSettings& set
   for (const auto& [name, property] : properties)
     if (property->promised && !property->passed) failed += (failed.empty() ? "" : ", ") + std::string(name);
   return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}): its dual fails {}; written for "
-                     "inspection, exit status 3 (another seed, radius or --features samples anew)",
-                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, failed);
+                     "inspection, exit status 3 (another seed or radius{} samples anew)",
+                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, failed,
+                     settings.features ? "" : ", or the features sampled first (without --no-features),");
 }
 
 // The sampler's options, as the settings name them. \throw InputError on options that do not go together.
@@ -78,7 +79,8 @@ MpsOptions mps_options(const MpsSettings& settings, const ProgressFn& on_progres
   if (settings.split_factor_given && options.refinement == MpsRefinement::MinRadius)
     throw InputError("--split-factor applies to --split-to field; --split-to rmin splits to r_min");
   options.split_factor = settings.split_factor;
-  if (settings.feature_angle_given && !settings.features) throw InputError("--feature-angle applies to --features");
+  if (settings.feature_angle_given && !settings.features)
+    throw InputError("--feature-angle applies to the feature lines, which --no-features leaves unsampled");
   options.sample_features = settings.features;
   options.feature_angle = settings.feature_angle;
   options.on_progress = on_progress;
@@ -122,8 +124,14 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
                                                         ? nlohmann::json(check.close_pairs_local_past_facing_cut)
                                                         : nlohmann::json(nullptr)}};
   report["samples"] = samples.size();
-  report["features"] = settings.features ? nlohmann::json{{"angle_deg", settings.feature_angle}, {"samples", result.feature_samples}}
-                                     : nlohmann::json(nullptr);
+  // The feature lines are counted whether or not they are sampled first (--no-features).
+  report["features"] = {{"on", options.sample_features},
+                        {"sampled", options.sample_features && result.feature_edges > 0},
+                        {"angle_deg", options.feature_angle},
+                        {"edges", result.feature_edges},
+                        {"boundary_edges", result.boundary_edges},
+                        {"corners", result.feature_corners},
+                        {"samples", result.feature_samples}};
   report["dart_samples"] = result.dart_samples;
   report["gap_samples"] = result.gap_samples;
   report["darts"] = result.darts;

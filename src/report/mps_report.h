@@ -28,7 +28,7 @@ struct MpsSettings {
   double split_factor = MpsOptions{}.split_factor;
   bool split_factor_given = false;
   bool exact = false;     //!< decide every vertex of the maximality check with rational arithmetic
-  bool features = false;
+  bool features = true;   //!< sample the feature lines first when the mesh has any (--no-features: false)
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
 };
