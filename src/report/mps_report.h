@@ -31,6 +31,9 @@ struct MpsSettings {
   bool features = false;
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
+  //! With the LRRT: keep the radius where the LRRT has defects (by default the radius is halved
+  //! round them and the surface sampled again, up to kMaxLrrtRounds times: report/lrrt_repair.h).
+  bool keep_radius = false;
 };
 
 //! verify_mps (verification/mps_check.h) on an LRPD of the samples computed here with compute_lrvd;
@@ -47,8 +50,15 @@ struct MpsRun {
   MpsResult result;
   MpsVerification check;
   bool maximal = false, min_distance_ok = false;
+  Diagram lrpd;       //!< the samples' LRPD the check computed (the LRRT is its dual)
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
+  //! The rounds that halved the radius round the LRRT's defects and sampled again, and the input
+  //! vertices whose radius they lowered (MpsSettings::keep_radius).
+  struct {
+    int rounds = 0;
+    int vertices = 0;
+  } smaller_disks;
   RemeshVerification remesh_check;
   //! The LRRT failed its checks: one line saying that these samples give no valid LRRT at this
   //! radius and which properties fail; empty when it passed.
