@@ -1019,7 +1019,7 @@ TEST_CASE("halve_radius_round lowers the radius round the given samples only, wi
   // A sampling with that field: the samples' radii follow it, and it is still maximal.
   options.radius_field = field;
   const MpsResult again = maximal_poisson_disk_sampling(sphere, options);
-  CHECK(again.radius == Catch::Approx(sampled.radius / 2));
+  CHECK(again.radius == Approx(sampled.radius / 2));
   check_sampling(sphere, again, false);
 }
 
