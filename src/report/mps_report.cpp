@@ -1,11 +1,13 @@
 // The sampling the `lrvd mps` command and the Python module share (mps_report.h).
 #include "report/mps_report.h"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "predicates/predicates.h"
 #include "report/lrrt_repair.h"
 #include "voronoi/lrvd.h"
@@ -197,6 +199,8 @@ void remesh_and_check(const SurfaceMesh& input, MpsRun& run) {
 // sampling and its LRRT again (up to kMaxLrrtRounds); the last sampling is the result.
 void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& settings, const std::string& mesh_path,
                               const ProgressFn& on_progress, MpsRun& run) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
   std::vector<double> field = sampled_radius_field(input, run.options, run.result);
   const std::vector<double> initial = field;
   for (int round = 1; round <= kMaxLrrtRounds && !run.remesh_check.passed; ++round) {
@@ -215,6 +219,8 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
   }
   run.smaller_disks.vertices = 0;
   for (std::size_t v = 0; v < field.size(); ++v) run.smaller_disks.vertices += field[v] < initial[v];
+  run.smaller_disks.time_s = seconds_since(start);
+  run.smaller_disks.cpu_s = process_cpu_seconds() - cpu_start;
 }
 
 }  // namespace
@@ -253,7 +259,9 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
                       {"refusal", run.lrrt_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.lrrt_refusal)},
                       {"smaller_disks", {{"rounds", run.smaller_disks.rounds},
                                          {"vertices", run.smaller_disks.vertices},
-                                         {"smallest_radius", run.result.radius / run.result.scale}}}};
+                                         {"smallest_radius", run.result.radius / run.result.scale},
+                                         {"time_s", run.smaller_disks.time_s},
+                                         {"cpu_s", run.smaller_disks.cpu_s}}}};
   return run;
 }
 

@@ -53,11 +53,13 @@ struct MpsRun {
   Diagram lrpd;       //!< the samples' LRPD the check computed (the LRRT is its dual)
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
-  //! The rounds that halved the radius round the LRRT's defects and sampled again, and the input
-  //! vertices whose radius they lowered (MpsSettings::keep_radius).
+  //! The rounds that halved the radius round the LRRT's defects and sampled again, the input
+  //! vertices whose radius they lowered, and their seconds, wall and CPU (each round's sampling,
+  //! check and LRRT; MpsSettings::keep_radius). `result` and `check` are the last round's.
   struct {
     int rounds = 0;
     int vertices = 0;
+    double time_s = 0, cpu_s = 0;
   } smaller_disks;
   RemeshVerification remesh_check;
   //! The LRRT failed its checks: one line saying that these samples give no valid LRRT at this
