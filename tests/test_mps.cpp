@@ -27,6 +27,7 @@
 #include "mps/mps_disks.h"
 #include "mps/mps_gaps.h"
 #include "mps/mps_lrpd_part.h"
+#include "report/lrrt_repair.h"
 #include "report/mps_report.h"
 #include "test_meshes.h"
 #include "verification/diagram_check.h"
@@ -910,46 +911,130 @@ TEST_CASE("MPS refuses a non-positive or absurdly small radius, a split factor b
   }
 }
 
-TEST_CASE("lrvd mps says in one line and in its report when its samples give no valid LRRT, and exits 3",
-          "[mps][cli]") {
-  // A closed box 1 x 1 x 0.01 at R = 0.05 with --no-features: both sides of its sheet are sampled,
-  // and the LRRT of some samplings has duplicate triangles there (docs/algorithms/mps.md, "Known
-  // limits"). Every run exits 0 exactly when its LRRT passes the checks.
+namespace {
+
+struct LrrtRun {
+  int exit = -1;
+  nlohmann::json report;
+  std::string console;
+};
+
+// `lrvd mps --no-features` of a closed box 1 x 1 x 0.01 at R = 0.05, with its LRRT: both sides
+// of its sheet are sampled, and the LRRT of some samplings at that radius has duplicate triangles
+// there (docs/algorithms/mps.md, "Known limits").
+LrrtRun thin_box_lrrt(int seed, const std::string& extra) {
   const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_lrrt_";
   const std::string mesh = dir + "box.off";
   const SurfaceMesh box = thin_box(0.01);
   write_mesh(mesh, box.positions(), box.triangles());
+  const std::string report = dir + "report.json", console = dir + "console.txt";
+  std::remove(report.c_str());
+  const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + mesh + " --radius 0.05 --no-features --seed " +
+                               std::to_string(seed) + extra + " -o " + dir + "s.xyz --remesh " + dir +
+                               "lrrt.off --report " + report + " > " + console + " 2>&1")
+                                  .c_str());
+  LrrtRun run;
+  run.exit = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream in(report);
+  if (in.good()) run.report = nlohmann::json::parse(in);
+  std::ifstream said(console);
+  run.console.assign(std::istreambuf_iterator<char>(said), std::istreambuf_iterator<char>());
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("lrvd mps --keep-radius says in one line and in its report when its samples give no valid LRRT, and exits 3",
+          "[mps][cli]") {
+  // Every run exits 0 exactly when its LRRT passes the checks.
   int refused = 0;
   for (int seed = 1; seed <= 5; ++seed) {
     INFO("seed " << seed);
-    const std::string report = dir + "report.json", console = dir + "console.txt";
-    std::remove(report.c_str());
-    const int raw = std::system((std::string(LRVD_CLI_PATH) + " mps " + mesh + " --radius 0.05 --no-features --seed " +
-                                 std::to_string(seed) + " -o " + dir + "s.xyz --remesh " + dir + "lrrt.off --report " +
-                                 report + " > " + console + " 2>&1")
-                                    .c_str());
-    REQUIRE(WIFEXITED(raw));
-    std::ifstream in(report);
-    const nlohmann::json j = nlohmann::json::parse(in);
+    const LrrtRun run = thin_box_lrrt(seed, " --keep-radius");
+    const nlohmann::json& j = run.report;
+    REQUIRE(j.is_object());
     REQUIRE(j["maximal"].get<bool>());
     const bool valid = j["verification"]["passed"].get<bool>();
     CHECK(j["remesh"]["valid"].get<bool>() == valid);
-    CHECK(WEXITSTATUS(raw) == (valid ? 0 : 3));
-    std::ifstream said(console);
-    const std::string text((std::istreambuf_iterator<char>(said)), std::istreambuf_iterator<char>());
-    const std::string line = "no valid LRRT from these samples at --radius 0.05 (seed " + std::to_string(seed) + "): its dual fails ";
+    CHECK(j["remesh"]["smaller_disks"]["rounds"].get<int>() == 0);
+    CHECK(run.exit == (valid ? 0 : 3));
+    const std::string line = "no valid LRRT from these samples at --radius 0.05 (seed " + std::to_string(seed) +
+                             " with --keep-radius): its dual fails ";
     if (valid) {
       CHECK(j["remesh"]["refusal"].is_null());
-      CHECK(text.find("no valid LRRT") == std::string::npos);
+      CHECK(run.console.find("no valid LRRT") == std::string::npos);
       continue;
     }
     ++refused;
     const std::string refusal = j["remesh"]["refusal"].get<std::string>();
     CHECK(refusal.rfind(line, 0) == 0);
     CHECK(refusal.find("the features sampled first (without --no-features)") != std::string::npos);
-    CHECK(text.find(refusal + "\n") != std::string::npos);  // the same line on the console
+    CHECK(run.console.find(refusal + "\n") != std::string::npos);  // the same line on the console
   }
   CHECK(refused > 0);  // the case this is about: if no seed shows it, pick others
+}
+
+TEST_CASE("lrvd mps --remesh halves the radius round the LRRT's defects until it passes, the sampling still maximal",
+          "[mps][cli]") {
+  // The seeds whose LRRT fails at the one radius (the test above) pass with smaller disks round
+  // their defects, and say so; the others are left as they were.
+  int mended = 0;
+  for (int seed = 1; seed <= 5; ++seed) {
+    INFO("seed " << seed);
+    const LrrtRun kept = thin_box_lrrt(seed, " --keep-radius");
+    const LrrtRun run = thin_box_lrrt(seed, "");
+    const nlohmann::json& j = run.report;
+    REQUIRE(j.is_object());
+    CHECK(run.exit == 0);
+    CHECK(j["maximal"].get<bool>());
+    CHECK(j["min_distance_ok"].get<bool>());
+    CHECK(j["verification"]["passed"].get<bool>());
+    const int rounds = j["remesh"]["smaller_disks"]["rounds"].get<int>();
+    if (kept.exit == 0) {
+      CHECK(rounds == 0);
+      CHECK(j["samples"] == kept.report["samples"]);
+      continue;
+    }
+    ++mended;
+    CHECK(rounds >= 1);
+    CHECK(j["remesh"]["smaller_disks"]["vertices"].get<int>() > 0);
+    // The smallest radius is the one the rounds went down to: at most half the one asked for.
+    CHECK(j["remesh"]["smaller_disks"]["smallest_radius"].get<double>() <= 0.025 * (1 + 1e-12));
+    CHECK(run.console.find("LRRT: smaller disks where it had defects, ") != std::string::npos);
+  }
+  CHECK(mended > 0);
+}
+
+TEST_CASE("halve_radius_round lowers the radius round the given samples only, within the gradation", "[mps]") {
+  const SurfaceMesh sphere = test::icosphere(4);
+  MpsOptions options;
+  options.radius = 0.1;
+  const MpsResult sampled = maximal_poisson_disk_sampling(sphere, options);
+  std::vector<double> field = sampled_radius_field(sphere, options, sampled);
+  REQUIRE(field.size() == static_cast<std::size_t>(sphere.vertex_count()));
+  for (double r : field) CHECK(r == sampled.radius);
+  const std::vector<double> before = field;
+  const int s = 0;
+  const Vec3 centre = sampled.samples.positions[s];
+  const int lowered = halve_radius_round(sphere, sampled, {s}, options.gradation, field);
+  CHECK(lowered > 0);
+  int counted = 0;
+  for (int v = 0; v < sphere.vertex_count(); ++v) {
+    counted += field[v] < before[v];
+    CHECK(field[v] <= before[v]);
+    const double d = distance(sphere.position(v), centre);
+    // Within kLoweredReach radii: halved; beyond, never below what the gradation lets through.
+    if (d < kLoweredReach * sampled.radii[s]) CHECK(field[v] <= sampled.radii[s] / 2);
+    CHECK(field[v] >= std::min(before[v], sampled.radii[s] / 2));
+    for (const int* u = sphere.vertex_neighbors_begin(v); u != sphere.vertex_neighbors_end(v); ++u)
+      CHECK(field[v] <= field[*u] + options.gradation * distance(sphere.position(v), sphere.position(*u)) * (1 + 1e-12));
+  }
+  CHECK(counted == lowered);
+  // A sampling with that field: the samples' radii follow it, and it is still maximal.
+  options.radius_field = field;
+  const MpsResult again = maximal_poisson_disk_sampling(sphere, options);
+  CHECK(again.radius == Approx(sampled.radius / 2));
+  check_sampling(sphere, again, false);
 }
 
 TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {

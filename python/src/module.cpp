@@ -191,7 +191,7 @@ py::tuple remesh(const py::object& V, const py::object& F, const py::object& n, 
 py::tuple mps(const py::object& V, const py::object& F, double radius, bool adaptive, const py::object& max_radius_ratio,
               const py::object& seed, const std::string& gap_update, const std::string& split_to,
               const py::object& split_factor, bool features, const py::object& feature_angle, bool exact, bool lrrt,
-              const py::object& threads, const std::string& conflict) {
+              const py::object& threads, const std::string& conflict, bool keep_radius) {
   MpsSettings settings;
   settings.radius = radius;
   settings.adaptive = adaptive;
@@ -201,6 +201,8 @@ py::tuple mps(const py::object& V, const py::object& F, double radius, bool adap
   settings.exact = exact;
   settings.features = features;
   settings.conflict = conflict;
+  if (keep_radius && !lrrt) throw InputError("keep_radius applies to lrrt=True");
+  settings.keep_radius = keep_radius;
   if ((settings.max_radius_ratio_given = !max_radius_ratio.is_none())) settings.max_radius_ratio = number(max_radius_ratio, "max_radius_ratio");
   if ((settings.split_factor_given = !split_factor.is_none())) settings.split_factor = number(split_factor, "split_factor");
   if ((settings.feature_angle_given = !feature_angle.is_none())) settings.feature_angle = number(feature_angle, "feature_angle");
@@ -305,7 +307,7 @@ PYBIND11_MODULE(lrvd, m) {
         py::arg("max_radius_ratio") = py::none(), py::arg("seed") = 1, py::arg("gap_update") = "local",
         py::arg("split_to") = "field", py::arg("split_factor") = py::none(), py::arg("features") = true,
         py::arg("feature_angle") = py::none(), py::arg("exact") = false, py::arg("lrrt") = false,
-        py::arg("threads") = py::none(), py::arg("conflict") = "reach",
+        py::arg("threads") = py::none(), py::arg("conflict") = "reach", py::arg("keep_radius") = false,
         "Maximal Poisson-disk sampling: (points, report), with lrrt=True (points, report, V2, F2)");
   m.def("quality", &quality, py::arg("V_ref"), py::arg("F_ref"), py::arg("V"), py::arg("F"),
         py::arg("threads") = py::none(), "Quality and validity of (V, F) against the reference: the report dict");

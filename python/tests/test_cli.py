@@ -95,9 +95,16 @@ def test_mps_maximal_on_a_stress_mesh(cli, tmp_path):
     cli("mps", tmp_path / "s.off", "--radius", 0.05, "-o", tmp_path / "s.xyz", "--report", tmp_path / "m.json")
     assert without_times_and_paths(report) == without_times_and_paths(json.load(open(tmp_path / "m.json")))
     assert np.array_equal(points, np.loadtxt(tmp_path / "s.xyz")[:, :3])
-    points2, report2, V2, F2 = lrvd.mps(V, F, 0.05, lrrt=True)
+    points2, report2, V2, F2 = lrvd.mps(V, F, 0.05, lrrt=True, keep_radius=True)
     assert np.array_equal(points, points2) and report2["remesh"]["vertices"] == len(V2) == len(points)
     assert F2.shape == (report2["remesh"]["triangles"], 3)
+    assert report2["remesh"]["smaller_disks"]["rounds"] == 0
+    # Without keep_radius an LRRT that fails takes smaller disks round its defects.
+    points3, report3, V3, F3 = lrvd.mps(V, F, 0.05, lrrt=True)
+    assert report3["remesh"]["vertices"] == len(V3) == len(points3) and report3["maximal"]
+    assert (report3["remesh"]["smaller_disks"]["rounds"] > 0) == (not report2["remesh"]["valid"])
+    with pytest.raises(ValueError, match="keep_radius applies to lrrt=True"):
+        lrvd.mps(V, F, 0.05, keep_radius=True)
 
 
 def test_mps_samples_the_features_first_by_default(cli, tmp_path):

@@ -14,6 +14,7 @@
 #include "metrics/quality.h"
 #include "mps/mps.h"
 #include "predicates/predicates.h"
+#include "report/lrrt_repair.h"
 #include "report/mps_report.h"
 #include "verification/mps_check.h"
 #include "verification/remesh_check.h"
@@ -52,6 +53,7 @@ std::string features_line(const MpsRun& run) {
 
 int run_mps_command(const MpsCommandOptions& opt) {
   check_mps_settings(opt.settings);
+  if (opt.settings.keep_radius && opt.remesh.empty()) throw InputError("--keep-radius applies to --remesh");
   // The samples are text, 'x y z r^2' per line: not a mesh file.
   check_outputs({{opt.output, "-o", {}, kMeshReadExtensions},
                  {opt.remesh, "--remesh", kMeshWriteExtensions},
@@ -72,6 +74,11 @@ int run_mps_command(const MpsCommandOptions& opt) {
   if (run.lrrt) {
     const DualMesh& dual = run.dual;
     remesh_ok = run.remesh_check.passed;
+    if (run.smaller_disks.rounds > 0)
+      std::printf("LRRT: smaller disks where it had defects, %s of the radius halved round them (down to %.4g on "
+                  "%s), %.3f s\n",
+                  counted(run.smaller_disks.rounds, "round", "rounds").c_str(), run.result.radius / run.result.scale,
+                  counted(run.smaller_disks.vertices, "input vertex", "input vertices").c_str(), run.smaller_disks.time_s);
     std::printf("remesh (LRRT): %s, %s -> %s; verification: %s\n",
                 counted(dual.positions.size(), "vertex", "vertices").c_str(),
                 counted(dual.triangles.size(), "triangle", "triangles").c_str(), opt.remesh.c_str(),
@@ -174,6 +181,10 @@ Action add_mps_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->output, "Samples as 'x y z r^2' lines (.xyz)")->required()->check(path_validator());
   cmd->add_option("--remesh", opt->remesh, "Also write the LRRT of the samples (.off, .obj, .ply) and check it")
       ->check(path_validator());
+  cmd->add_flag("--keep-radius", opt->settings.keep_radius,
+                fmt::format("With --remesh: keep the radius where the LRRT has defects (by default it is halved round "
+                            "them and the surface sampled again, up to {} times, until the LRRT passes its checks)",
+                            kMaxLrrtRounds));
   cmd->add_option("--report", opt->report, "Write a JSON report")->check(path_validator());
   cmd->add_flag("--exact", opt->settings.exact, "Decide every vertex of the maximality check with rational arithmetic");
   return [opt]() { return run_mps_command(*opt); };

@@ -80,6 +80,35 @@ Vec3 dart_in_triangle(const SurfaceMesh& mesh, int t, Random& random, Vec3& bary
 
 }  // namespace
 
+void limit_radius_gradation(const SurfaceMesh& mesh, double gradation, std::vector<double>& r) {
+  const double g = std::max(gradation, 0.0);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int v = 0; v < mesh.vertex_count(); ++v) queue.emplace(r[v], v);
+  while (!queue.empty()) {
+    const auto [rv, v] = queue.top();
+    queue.pop();
+    if (rv > r[v]) continue;
+    for (const int* u = mesh.vertex_neighbors_begin(v); u != mesh.vertex_neighbors_end(v); ++u) {
+      const double cand = rv + g * distance(mesh.position(*u), mesh.position(v));
+      if (cand < r[*u]) {
+        r[*u] = cand;
+        queue.emplace(cand, *u);
+      }
+    }
+  }
+}
+
+double expected_sample_count(const SurfaceMesh& mesh, const std::vector<double>& vertex_radius) {
+  double count = 0;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    double r = 0;
+    for (int v : mesh.triangle(t)) r += vertex_radius[v] / 3;
+    count += mesh.triangle_area(t) / (std::sqrt(3.0) / 2 * r * r);
+  }
+  return count;
+}
+
 double expected_sample_count(const SurfaceMesh& mesh, double radius) {
   return mesh.area() / (std::sqrt(3.0) / 2 * radius * radius);
 }
@@ -104,23 +133,7 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
     const double c = kappa[v] * r_max / f;
     r[v] = std::max(r_min, r_max / std::sqrt(1 + c * c));
   }
-  // Gradation: r(v) <= r(u) + g·|uv| along every edge (Dijkstra from the smallest radii).
-  const double g = std::max(options.gradation, 0.0);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (int v = 0; v < nv; ++v) queue.emplace(r[v], v);
-  while (!queue.empty()) {
-    const auto [rv, v] = queue.top();
-    queue.pop();
-    if (rv > r[v]) continue;
-    for (const int* u = mesh.vertex_neighbors_begin(v); u != mesh.vertex_neighbors_end(v); ++u) {
-      const double cand = rv + g * distance(mesh.position(*u), mesh.position(v));
-      if (cand < r[*u]) {
-        r[*u] = cand;
-        queue.emplace(cand, *u);
-      }
-    }
-  }
+  limit_radius_gradation(mesh, options.gradation, r);
   return r;
 }
 
@@ -160,7 +173,8 @@ void check_options(const MpsOptions& options) {
 class PoissonDiskSampling {
  public:
   PoissonDiskSampling(const SurfaceMesh& mesh, const MpsOptions& options)
-      : input_(mesh), options_(options), local_(options.gap_update == MpsGapUpdate::Local), random_(options.seed) {}
+      : input_(mesh), options_(options), local_(options.gap_update == MpsGapUpdate::Local),
+        variable_(options.adaptive || !options.radius_field.empty()), random_(options.seed) {}
 
   MpsResult run() {
     start_ = Clock::now();
@@ -180,19 +194,29 @@ class PoissonDiskSampling {
   void initialise() {
     const BoundingBox box = input_.bounding_box();
     result_.scale = std::max({box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z});
-    r_min_ = options_.radius * result_.scale;
+    const std::vector<double>& field = options_.radius_field;
+    if (!field.empty() && field.size() != static_cast<std::size_t>(input_.vertex_count()))
+      throw InputError(fmt::format("the radius field has {} values for {} vertices: it needs one per vertex",
+                                   field.size(), input_.vertex_count()));
+    for (double x : field)
+      if (!(x > 0) || !std::isfinite(x))
+        throw InputError(fmt::format("the radius field's values must be positive numbers (got {})", x));
+    r_min_ = field.empty() ? options_.radius * result_.scale : *std::min_element(field.begin(), field.end());
     result_.radius = r_min_;
-    expected_ = expected_sample_count(input_, r_min_);
+    expected_ = field.empty() ? expected_sample_count(input_, r_min_) : expected_sample_count(input_, field);
     if (!(expected_ <= options_.max_expected_samples))
       throw InputError(fmt::format("radius {} is too small for this mesh: about {:.3g} samples would be needed "
                                    "(limit {:.3g}); use a larger radius",
                                    options_.radius, expected_, options_.max_expected_samples));
     std::vector<double> vertex_radius;
     // The field is linear over each input triangle; the refinement carries it to the new vertices.
-    if (options_.adaptive) vertex_radius = adaptive_radius_field(input_, r_min_, options_);
+    if (!field.empty())
+      vertex_radius = field;
+    else if (options_.adaptive)
+      vertex_radius = adaptive_radius_field(input_, r_min_, options_);
     count_features();
     refine(vertex_radius);
-    result_.max_radius = options_.adaptive ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min_;
+    result_.max_radius = variable_ ? *std::max_element(vertex_radius.begin(), vertex_radius.end()) : r_min_;
     sampler_.emplace(result_.mesh, r_min_, std::move(vertex_radius), options_.conflict == MpsConflict::CloseAcrossTurns);
     by_area_.emplace(sampler_->disks().triangle_areas());
     result_.time_s.init = seconds_since(start_);
@@ -221,14 +245,14 @@ class PoissonDiskSampling {
     // prvalue, so the refined mesh would be copied into place rather than moved.
     if (input_.max_edge_length() <= factor * r_min_) {
       result_.mesh = input_;
-    } else if (to_field && options_.adaptive) {
+    } else if (to_field && variable_) {
       // Scaled to the lengths and back: with a power of two for the factor (the default) the radii
       // are exactly the field the refinement carries to the new vertices.
       for (double& x : vertex_radius) x *= factor;
       result_.mesh = refine_to_length_field(input_, vertex_radius, options_.refine_order);
       for (double& x : vertex_radius) x /= factor;
     } else {
-      result_.mesh = refine_long_edges(input_, factor * r_min_, options_.adaptive ? &vertex_radius : nullptr,
+      result_.mesh = refine_long_edges(input_, factor * r_min_, variable_ ? &vertex_radius : nullptr,
                                        options_.refine_order);
     }
   }
@@ -443,8 +467,8 @@ class PoissonDiskSampling {
     // required pieces of this same LRPD are tried again with that condition kept only against
     // the samples facing alike. By the paper's rule, uniform too: the round on the required pieces
     // alone lets certify_required() see them all.
-    if ((options_.adaptive || reach) && gaps.required_pieces() > 0 && !gaps.required_only()) {
-      if (options_.adaptive) {
+    if ((variable_ || reach) && gaps.required_pieces() > 0 && !gaps.required_only()) {
+      if (variable_) {
         progress(fmt::format("{} gap pieces no dart fits: power-cell condition against samples facing alike only",
                              gaps.required_pieces()));
         sampler_->allow_power_cell_exceptions();
@@ -486,6 +510,7 @@ class PoissonDiskSampling {
   const SurfaceMesh& input_;
   const MpsOptions& options_;
   const bool local_;  // MpsGapUpdate::Local
+  const bool variable_;  // the radius varies: adaptive, or a radius field given
   Clock::time_point start_;
   double cpu_start_ = 0;
   MpsResult result_;

@@ -43,7 +43,11 @@ struct MpsOptions {
   bool adaptive = false;                 //!< radius from curvature, never below r_min
   double max_radius_ratio = 2.0;         //!< adaptive: r_max / r_min (flat parts get r_max)
   double curvature_fraction = 0.5;       //!< adaptive: on curved parts r ≈ this fraction of the radius of curvature
-  double gradation = 0.3;                //!< adaptive: Lipschitz bound of r along mesh edges (|Δr| <= g·length)
+  double gradation = 0.3;                //!< adaptive and radius_field: Lipschitz bound of r along mesh edges (|Δr| <= g·length)
+  //! If not empty: the radius at each vertex of the input mesh (absolute), linear over its
+  //! triangles, instead of `radius` and `adaptive` (which still set the scale checks); r_min is its
+  //! smallest value. The LRRT's repair (report/lrrt_repair.h) gives thin parts smaller disks so.
+  std::vector<double> radius_field;
   std::uint64_t seed = 1;                //!< the same seed gives the same samples on every machine
   int max_consecutive_rejections = 300;  //!< dart throwing stops after this many rejections in a row (paper: 300)
   MpsGapUpdate gap_update = MpsGapUpdate::Local;
@@ -137,5 +141,11 @@ std::vector<double> adaptive_radius_field(const SurfaceMesh& mesh, double r_min,
 //! Expected number of samples for a radius (absolute) on this mesh: area / (√3/2 · r²), the
 //! count of a hexagonal packing at spacing r (an upper estimate for MPS).
 double expected_sample_count(const SurfaceMesh& mesh, double radius);
+//! The same for a radius field (absolute, one value per vertex): the sum over the triangles of
+//! their area over √3/2 · r², r the mean of their corners' radii.
+double expected_sample_count(const SurfaceMesh& mesh, const std::vector<double>& vertex_radius);
+//! Limits a radius field so that it changes by at most `gradation` per unit length along the
+//! mesh's edges, by lowering values only (r(v) <= r(u) + g·|uv|, Dijkstra from the smallest).
+void limit_radius_gradation(const SurfaceMesh& mesh, double gradation, std::vector<double>& vertex_radius);
 
 }  // namespace lrvd

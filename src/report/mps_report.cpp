@@ -1,12 +1,15 @@
 // The sampling the `lrvd mps` command and the Python module share (mps_report.h).
 #include "report/mps_report.h"
 
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/timing.h"
 #include "predicates/predicates.h"
+#include "report/lrrt_repair.h"
 #include "voronoi/lrvd.h"
 
 namespace lrvd {
@@ -50,7 +53,8 @@ namespace {
 // radius, with the properties it fails. MPS cannot move its samples to mend the dual as the CVT
 // remesh does (docs/algorithms/mps.md, "Known limits"); another seed, another radius or (after
 // --no-features) the features sampled first is a new sampling.
-std::string lrrt_refusal(const RemeshVerification& check, const MpsSettings& settings) {
+std::string lrrt_refusal(const MpsRun& run, const MpsSettings& settings) {
+  const RemeshVerification& check = run.remesh_check;
   if (check.passed) return "";
   std::string failed;
   const std::pair<const char*, const PropertyResult*> properties[] = {
@@ -60,9 +64,14 @@ std::string lrrt_refusal(const RemeshVerification& check, const MpsSettings& set
       {"no_self_intersection", &check.no_self_intersection}};
   for (const auto& [name, property] : properties)
     if (property->promised && !property->passed) failed += (failed.empty() ? "" : ", ") + std::string(name);
-  return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}): its dual fails {}; written for "
+  const std::string smaller =
+      run.smaller_disks.rounds > 0
+          ? fmt::format(", {} rounds of smaller disks round its defects included (radius down to {:.3g})",
+                        run.smaller_disks.rounds, run.result.radius / run.result.scale)
+          : settings.keep_radius ? " with --keep-radius" : "";
+  return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}{}): its dual fails {}; written for "
                      "inspection, exit status 3 (another seed or radius{} samples anew)",
-                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, failed,
+                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, smaller, failed,
                      settings.features ? "" : ", or the features sampled first (without --no-features),");
 }
 
@@ -162,61 +171,105 @@ void write_mps_report(MpsRun& run, const LoadedMesh& loaded, bool repair_request
 
 }  // namespace
 
+namespace {
+
+// One sampling with `options` and its check on a fresh LRPD (kept in run.lrpd); no report yet.
+MpsRun sample_and_check(const SurfaceMesh& input, const MpsSettings& settings, const MpsOptions& options,
+                        const std::string& mesh_path, const ProgressFn& on_progress) {
+  MpsRun run;
+  run.options = options;
+  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
+  // message names the file, as the loader's do.
+  try {
+    run.result = maximal_poisson_disk_sampling(input, run.options);
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", mesh_path, e.what()));
+  }
+  // The checks start from the samples alone: a new LRPD, new local regions.
+  if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", run.result.samples.size()));
+  MpsVerifyOptions verify_options;
+  verify_options.exact_maximality = settings.exact;
+  verify_options.facing_cut = options.conflict == MpsConflict::CloseAcrossTurns;
+  run.check = verify_mps(run.result.mesh, run.result.samples, verify_options, &run.lrpd);
+  run.maximal = run.check.maximal.passed && run.check.diagram_covers.passed;
+  run.min_distance_ok = run.check.min_distance.passed;
+  return run;
+}
+
+// The LRRT of run's samples (the dual of its LRPD) and its check against the input.
+void remesh_and_check(const SurfaceMesh& input, MpsRun& run) {
+  run.lrrt = true;
+  run.dual = compute_dual(run.lrpd, run.result.mesh, run.result.samples);
+  run.remesh_check = verify_remesh(input, run.dual.positions, run.dual.triangles, run.result.samples.size());
+}
+
+// While the LRRT fails its checks: the radius halved round the samples at its defects, and the
+// sampling and its LRRT again (up to kMaxLrrtRounds); the last sampling is the result.
+void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& settings, const std::string& mesh_path,
+                              const ProgressFn& on_progress, MpsRun& run) {
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
+  std::vector<double> field = sampled_radius_field(input, run.options, run.result);
+  const std::vector<double> initial = field;
+  for (int round = 1; round <= kMaxLrrtRounds && !run.remesh_check.passed; ++round) {
+    const std::vector<int> defects = lrrt_defect_samples(input, run.result, run.lrpd, run.dual);
+    if (defects.empty()) break;
+    MpsOptions options = run.options;
+    if (halve_radius_round(input, run.result, defects, options.gradation, field) == 0) break;
+    if (on_progress)
+      on_progress(fmt::format("the LRRT has defects at {} samples: round {}, the radius halved round them, sampling again",
+                              defects.size(), round));
+    options.radius_field = field;
+    MpsRun again = sample_and_check(input, settings, options, mesh_path, on_progress);
+    remesh_and_check(input, again);
+    again.smaller_disks.rounds = round;
+    run = std::move(again);
+  }
+  run.smaller_disks.vertices = 0;
+  for (std::size_t v = 0; v < field.size(); ++v) run.smaller_disks.vertices += field[v] < initial[v];
+  run.smaller_disks.time_s = seconds_since(start);
+  run.smaller_disks.cpu_s = process_cpu_seconds() - cpu_start;
+}
+
+}  // namespace
+
 MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSettings& settings,
                const std::string& mesh_path, const std::string& output_path, bool lrrt,
                const std::string& remesh_path, const ProgressFn& on_progress,
                const std::function<void(const Samples&)>& on_samples,
                const std::function<void(const DualMesh&)>& on_dual) {
-  MpsRun run;
-  run.options = mps_options(settings, on_progress);
-  const MpsOptions& options = run.options;
   const SurfaceMesh& input = loaded.mesh;
   reset_predicate_stats();
-  // What the sampler refuses is about this mesh (its refinement, its size for the radius): the
-  // message names the file, as the loader's do.
-  try {
-    run.result = maximal_poisson_disk_sampling(input, options);
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: {}", mesh_path, e.what()));
-  }
-  const MpsResult& result = run.result;
-  const Samples& samples = result.samples;
-  if (on_samples) on_samples(samples);
-
-  // The checks start from the samples alone: a new LRPD, new local regions.
-  if (on_progress) on_progress(fmt::format("verifying {} samples on a fresh LRPD", samples.size()));
-  MpsVerifyOptions verify_options;
-  verify_options.exact_maximality = settings.exact;
-  verify_options.facing_cut = options.conflict == MpsConflict::CloseAcrossTurns;
-  Diagram lrpd;
-  run.check = verify_mps(result.mesh, samples, verify_options, &lrpd);
-  const MpsVerification& check = run.check;
-  run.maximal = check.maximal.passed && check.diagram_covers.passed;
-  run.min_distance_ok = check.min_distance.passed;
-
-  write_mps_report(run, loaded, repair_requested, settings, mesh_path, output_path, lrpd);
-  nlohmann::json& report = run.report;
-
-  run.lrrt = lrrt;
+  MpsRun run = sample_and_check(input, settings, mps_options(settings, on_progress), mesh_path, on_progress);
   if (lrrt) {
     if (on_progress) on_progress("remeshing: the LRRT of the samples");
-    run.dual = compute_dual(lrpd, result.mesh, samples);
-    const DualMesh& dual = run.dual;
-    if (on_dual) on_dual(dual);
-    run.remesh_check = verify_remesh(input, dual.positions, dual.triangles, samples.size());
-    // An LRRT without triangles (a sample or two on the whole surface) fails the checks and has
-    // nothing to measure.
-    run.measurable = !dual.triangles.empty();
-    if (run.measurable) run.quality = quality_metrics(input, dual.positions, dual.triangles);
-    report["quality"] = run.measurable ? remesh_quality_json(run.quality, run.remesh_check) : nlohmann::json(nullptr);
-    report["verification"] = run.remesh_check.to_json();
-    run.lrrt_refusal = lrrt_refusal(run.remesh_check, settings);
-    report["remesh"] = {{"path", remesh_path},
-                        {"vertices", dual.positions.size()},
-                        {"triangles", dual.triangles.size()},
-                        {"valid", run.remesh_check.passed},
-                        {"refusal", run.lrrt_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.lrrt_refusal)}};
+    remesh_and_check(input, run);
+    if (!settings.keep_radius) smaller_disks_at_defects(input, settings, mesh_path, on_progress, run);
   }
+  if (on_samples) on_samples(run.result.samples);
+  write_mps_report(run, loaded, repair_requested, settings, mesh_path, output_path, run.lrpd);
+  if (!lrrt) return run;
+
+  nlohmann::json& report = run.report;
+  const DualMesh& dual = run.dual;
+  if (on_dual) on_dual(dual);
+  // An LRRT without triangles (a sample or two on the whole surface) fails the checks and has
+  // nothing to measure.
+  run.measurable = !dual.triangles.empty();
+  if (run.measurable) run.quality = quality_metrics(input, dual.positions, dual.triangles);
+  report["quality"] = run.measurable ? remesh_quality_json(run.quality, run.remesh_check) : nlohmann::json(nullptr);
+  report["verification"] = run.remesh_check.to_json();
+  run.lrrt_refusal = lrrt_refusal(run, settings);
+  report["remesh"] = {{"path", remesh_path},
+                      {"vertices", dual.positions.size()},
+                      {"triangles", dual.triangles.size()},
+                      {"valid", run.remesh_check.passed},
+                      {"refusal", run.lrrt_refusal.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.lrrt_refusal)},
+                      {"smaller_disks", {{"rounds", run.smaller_disks.rounds},
+                                         {"vertices", run.smaller_disks.vertices},
+                                         {"smallest_radius", run.result.radius / run.result.scale},
+                                         {"time_s", run.smaller_disks.time_s},
+                                         {"cpu_s", run.smaller_disks.cpu_s}}}};
   return run;
 }
 

@@ -31,6 +31,9 @@ struct MpsSettings {
   bool features = true;   //!< sample the feature lines first when the mesh has any (--no-features: false)
   double feature_angle = MpsOptions{}.feature_angle;
   bool feature_angle_given = false;
+  //! With the LRRT: keep the radius where the LRRT has defects (by default the radius is halved
+  //! round them and the surface sampled again, up to kMaxLrrtRounds times: report/lrrt_repair.h).
+  bool keep_radius = false;
 };
 
 //! verify_mps (verification/mps_check.h) on an LRPD of the samples computed here with compute_lrvd;
@@ -47,8 +50,17 @@ struct MpsRun {
   MpsResult result;
   MpsVerification check;
   bool maximal = false, min_distance_ok = false;
+  Diagram lrpd;       //!< the samples' LRPD the check computed (the LRRT is its dual)
   bool lrrt = false;  //!< the LRRT was asked for; then:
   DualMesh dual;
+  //! The rounds that halved the radius round the LRRT's defects and sampled again, the input
+  //! vertices whose radius they lowered, and their seconds, wall and CPU (each round's sampling,
+  //! check and LRRT; MpsSettings::keep_radius). `result` and `check` are the last round's.
+  struct {
+    int rounds = 0;
+    int vertices = 0;
+    double time_s = 0, cpu_s = 0;
+  } smaller_disks;
   RemeshVerification remesh_check;
   //! The LRRT failed its checks: one line saying that these samples give no valid LRRT at this
   //! radius and which properties fail; empty when it passed.

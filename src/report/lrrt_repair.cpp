@@ -1,0 +1,61 @@
+// Smaller disks where an LRRT has defects (report/lrrt_repair.h).
+#include "report/lrrt_repair.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "mesh/kd_tree.h"
+#include "remesh/dual_defects.h"
+
+namespace lrvd {
+
+namespace {
+
+struct Positions {
+  const std::vector<Vec3>& points;
+  std::size_t size() const { return points.size(); }
+  const Vec3& operator[](std::size_t i) const { return points[i]; }
+};
+
+}  // namespace
+
+std::vector<double> sampled_radius_field(const SurfaceMesh& input, const MpsOptions& options, const MpsResult& result) {
+  if (!options.radius_field.empty()) return options.radius_field;
+  if (options.adaptive) return adaptive_radius_field(input, result.radius, options);
+  return std::vector<double>(input.vertex_count(), result.radius);
+}
+
+std::vector<int> lrrt_defect_samples(const SurfaceMesh& input, const MpsResult& result, const Diagram& lrpd,
+                                     const DualMesh& dual) {
+  const DualDefects defects = find_dual_defects(dual, lrpd, result.mesh, result.samples, input.is_closed());
+  return defects.where_to_act();
+}
+
+int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const std::vector<int>& samples,
+                       double gradation, std::vector<double>& field) {
+  const std::vector<double> before = field;
+  const KdPoints<Positions> cloud{Positions{input.positions()}};
+  KdTree<Positions> tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  tree.buildIndex();
+  std::vector<std::pair<unsigned, double>> found;
+  for (int s : samples) {
+    const Vec3& p = result.samples.positions[s];
+    const double r = result.radii[s];
+    const double query[3] = {p.x, p.y, p.z};
+    found.clear();
+    tree.radiusSearch(query, kLoweredReach * kLoweredReach * r * r, found, nanoflann::SearchParams(32, 0, false));
+    if (found.empty()) {
+      unsigned nearest[3];
+      double squared[3];
+      const std::size_t k = tree.knnSearch(query, std::min<std::size_t>(3, input.positions().size()), nearest, squared);
+      for (std::size_t i = 0; i < k; ++i) found.emplace_back(nearest[i], squared[i]);
+    }
+    for (const auto& [v, squared] : found) field[v] = std::min(field[v], r / 2);
+  }
+  limit_radius_gradation(input, gradation, field);
+  int lowered = 0;
+  for (std::size_t v = 0; v < field.size(); ++v) lowered += field[v] < before[v];
+  return lowered;
+}
+
+}  // namespace lrvd

@@ -1,0 +1,38 @@
+// Smaller disks where the LRRT of a maximal Poisson-disk sampling has defects: the radius field
+// of a new sampling, lowered round the samples the remesh's defect finder locates (run_mps,
+// report/mps_report.h, runs the rounds).
+#pragma once
+
+#include <vector>
+
+#include "diagram/diagram.h"
+#include "diagram/dual.h"
+#include "mps/mps.h"
+
+namespace lrvd {
+
+//! Rounds of smaller disks an LRRT gets at most (each halves the radius round its defects). On the
+//! stress meshes at r = 0.02 (seed 1), four rounds left the folded sheet and the thin plate
+//! invalid; eight with kLoweredReach 3 mend both (the folded sheet at 0.05 stays invalid).
+constexpr int kMaxLrrtRounds = 8;
+//! A round lowers the radius on the input vertices within this many radii of a defect sample
+//! (at 2, the folded sheet at 0.02 and the thin plate at 0.02 stay invalid after eight rounds).
+constexpr double kLoweredReach = 3;
+
+//! The radius at each vertex of `input` that the sampling `result` used (absolute): its radius
+//! everywhere, the adaptive field, or the field it was given.
+std::vector<double> sampled_radius_field(const SurfaceMesh& input, const MpsOptions& options, const MpsResult& result);
+
+//! The samples at the defects of `dual`, the LRRT of `lrpd` (the samples' LRPD on result.mesh):
+//! those find_dual_defects (remesh/dual_defects.h) would act on.
+std::vector<int> lrrt_defect_samples(const SurfaceMesh& input, const MpsResult& result, const Diagram& lrpd,
+                                     const DualMesh& dual);
+
+//! Lowers `field` (one radius per vertex of `input`) round `samples` of `result`: every vertex
+//! within kLoweredReach·r_s of sample s, or the three nearest if none is, gets at most r_s / 2; then the field
+//! changes by at most `gradation` per unit length (limit_radius_gradation). Returns the number of
+//! vertices whose radius went down.
+int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const std::vector<int>& samples,
+                       double gradation, std::vector<double>& field);
+
+}  // namespace lrvd
