@@ -1127,13 +1127,14 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(run(mesh + " --radius=-0.5 -o " + dir + "bad.xyz") == 2);
   CHECK(run(mesh + " --radius 1e-7 -o " + dir + "bad.xyz") == 2);  // would need ~10^14 samples
   CHECK(run(dir + "missing.off --radius 0.1 -o " + dir + "bad.xyz") == 2);
-  // One disk covers the whole triangle: the LRRT of one sample has no triangles. The remesh fails
-  // its checks (exit 3) and has no quality to measure; the report says so.
+  // One disk covers the whole triangle: the LRRT of one sample has no triangles. With
+  // --keep-radius the remesh fails its checks (exit 3) and has no quality to measure; the report
+  // says so. Without it, smaller disks give the triangle its three vertices.
   const std::string one_triangle = dir + "triangle.off", lone_report = dir + "report_lone.json";
   write_mesh(one_triangle, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 1, 2}});
   std::remove(lone_report.c_str());
-  REQUIRE(run(one_triangle + " --radius 2 -o " + dir + "lone.xyz --remesh " + dir + "lone.off --report " + lone_report) ==
-          3);
+  REQUIRE(run(one_triangle + " --radius 2 -o " + dir + "lone.xyz --remesh " + dir + "lone.off --keep-radius --report " +
+              lone_report) == 3);
   std::ifstream lone_in(lone_report);
   REQUIRE(lone_in.good());
   const nlohmann::json lone = nlohmann::json::parse(lone_in);
@@ -1141,6 +1142,15 @@ TEST_CASE("lrvd mps: exit codes and report keys", "[mps][cli]") {
   CHECK(lone["maximal"].get<bool>());
   CHECK(lone["quality"].is_null());
   CHECK(!lone["verification"]["passed"].get<bool>());
+  std::remove(lone_report.c_str());
+  REQUIRE(run(one_triangle + " --radius 2 -o " + dir + "lone.xyz --remesh " + dir + "lone.off --report " + lone_report) ==
+          0);
+  std::ifstream mended_in(lone_report);
+  const nlohmann::json mended = nlohmann::json::parse(mended_in);
+  CHECK(mended["samples"].get<int>() >= 3);
+  CHECK(mended["remesh"]["smaller_disks"]["rounds"].get<int>() >= 1);
+  CHECK(mended["verification"]["passed"].get<bool>());
+  CHECK(run(one_triangle + " --radius 2 -o " + dir + "lone.xyz --keep-radius") == 2);  // applies to --remesh
 }
 
 namespace {

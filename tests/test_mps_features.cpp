@@ -17,6 +17,7 @@
 
 #include "diagram/dual.h"
 #include "io/mesh_io.h"
+#include "io/mesh_writers.h"
 #include "mps/mps.h"
 #include "report/mps_report.h"
 #include "test_meshes.h"
