@@ -969,6 +969,9 @@ TEST_CASE("lrvd mps --keep-radius says in one line and in its report when its sa
     const std::string refusal = j["remesh"]["refusal"].get<std::string>();
     CHECK(refusal.rfind(line, 0) == 0);
     CHECK(refusal.find("the features sampled first (without --no-features)") != std::string::npos);
+    CHECK(refusal.find(", the first at (") != std::string::npos);  // where to look
+    CHECK(refusal.find("crosses itself") == std::string::npos);  // the box does not
+    CHECK(j["remesh"]["input_crossings"].get<int>() == 0);
     CHECK(run.console.find(refusal + "\n") != std::string::npos);  // the same line on the console
   }
   CHECK(refused > 0);  // the case this is about: if no seed shows it, pick others
@@ -1003,6 +1006,22 @@ TEST_CASE("lrvd mps --remesh halves the radius round the LRRT's defects until it
     CHECK(run.console.find("LRRT: smaller disks where it had defects, ") != std::string::npos);
   }
   CHECK(mended > 0);
+}
+
+TEST_CASE("crossings_within_parts counts a surface's crossings within one component, not between two", "[mps]") {
+  const SurfaceMesh sphere = test::icosphere(2);
+  CHECK(crossings_within_parts(sphere) == 0);
+  // One vertex pushed through the sphere to the far side: its triangles cross the sphere there.
+  std::vector<Vec3> poked = sphere.positions();
+  poked[0] = -1.5 * poked[0];
+  CHECK(crossings_within_parts(SurfaceMesh(poked, sphere.triangles())) > 0);
+  // Two spheres through each other: crossings, but between two components.
+  std::vector<Vec3> two = sphere.positions();
+  std::vector<Triangle> triangles = sphere.triangles();
+  const int n = static_cast<int>(two.size());
+  for (const Vec3& p : sphere.positions()) two.push_back(p + Vec3{1, 0, 0});
+  for (const Triangle& t : sphere.triangles()) triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
+  CHECK(crossings_within_parts(SurfaceMesh(two, triangles)) == 0);
 }
 
 TEST_CASE("halve_radius_round lowers the radius round the given samples only, within the gradation", "[mps]") {

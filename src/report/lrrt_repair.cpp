@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "mesh/kd_tree.h"
+#include "mesh/self_intersections.h"
 #include "remesh/dual_defects.h"
 
 namespace lrvd {
@@ -56,6 +57,15 @@ int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const 
   int lowered = 0;
   for (std::size_t v = 0; v < field.size(); ++v) lowered += field[v] < before[v];
   return lowered;
+}
+
+int crossings_within_parts(const SurfaceMesh& input) {
+  const std::vector<int>& component = input.triangle_components();
+  int count = 0;
+  for (const auto& [s, t] : find_self_intersections(input.positions(), input.triangles(),
+                                                    proper_triangles(input.positions(), input.triangles())))
+    count += component[s] == component[t];
+  return count;
 }
 
 }  // namespace lrvd

@@ -35,4 +35,9 @@ std::vector<int> lrrt_defect_samples(const SurfaceMesh& input, const MpsResult& 
 int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const std::vector<int>& samples,
                        double gradation, std::vector<double>& field);
 
+//! Pairs of triangles of `input` that cross each other within one connected component (exact,
+//! find_self_intersections): a refused LRRT's line names them, since a remesh that must keep the
+//! topology of a surface cutting through itself may have no valid form there.
+int crossings_within_parts(const SurfaceMesh& input);
+
 }  // namespace lrvd

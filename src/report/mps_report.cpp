@@ -69,10 +69,19 @@ std::string lrrt_refusal(const MpsRun& run, const MpsSettings& settings) {
           ? fmt::format(", {} rounds of smaller disks round its defects included (radius down to {:.3g})",
                         run.smaller_disks.rounds, run.result.radius / run.result.scale)
           : settings.keep_radius ? " with --keep-radius" : "";
-  return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}{}): its dual fails {}; written for "
-                     "inspection, exit status 3 (another seed or radius{} samples anew)",
-                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, smaller, failed,
-                     settings.features ? "" : ", or the features sampled first (without --no-features),");
+  std::string where;
+  if (run.first_defect) {
+    const Vec3& p = *run.first_defect;
+    where = fmt::format(", the first at ({:.6g}, {:.6g}, {:.6g})", p.x, p.y, p.z);
+  }
+  const std::string crossing =
+      run.input_crossings > 0
+          ? fmt::format("; the input itself crosses itself ({} pairs of triangles of one part)", run.input_crossings)
+          : "";
+  return fmt::format("no valid LRRT from these samples at --radius {:g}{} (seed {}{}): its dual fails {}{}{}; written "
+                     "for inspection, exit status 3 (another seed or radius{} samples anew)",
+                     settings.radius, settings.adaptive ? " --adaptive" : "", settings.seed, smaller, failed, where,
+                     crossing, settings.features ? "" : ", or the features sampled first (without --no-features),");
 }
 
 // The sampler's options, as the settings name them. \throw InputError on options that do not go together.
@@ -259,6 +268,12 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   if (run.measurable) run.quality = quality_metrics(input, dual.positions, dual.triangles);
   report["quality"] = run.measurable ? remesh_quality_json(run.quality, run.remesh_check) : nlohmann::json(nullptr);
   report["verification"] = run.remesh_check.to_json();
+  if (!run.remesh_check.passed) {
+    // Where the refusal points: the first defect the finder locates, and the input's own crossings.
+    const std::vector<int> defects = lrrt_defect_samples(input, run.result, run.lrpd, dual);
+    if (!defects.empty()) run.first_defect = run.result.samples.positions[defects.front()];
+    run.input_crossings = crossings_within_parts(input);
+  }
   run.lrrt_refusal = lrrt_refusal(run, settings);
   report["remesh"] = {{"path", remesh_path},
                       {"vertices", dual.positions.size()},
@@ -269,7 +284,8 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
                                          {"vertices", run.smaller_disks.vertices},
                                          {"smallest_radius", run.result.radius / run.result.scale},
                                          {"time_s", run.smaller_disks.time_s},
-                                         {"cpu_s", run.smaller_disks.cpu_s}}}};
+                                         {"cpu_s", run.smaller_disks.cpu_s}}},
+                      {"input_crossings", run.remesh_check.passed ? nlohmann::json(nullptr) : nlohmann::json(run.input_crossings)}};
   return run;
 }
 

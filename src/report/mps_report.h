@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -65,6 +66,10 @@ struct MpsRun {
   //! The LRRT failed its checks: one line saying that these samples give no valid LRRT at this
   //! radius and which properties fail; empty when it passed.
   std::string lrrt_refusal;
+  //! When the LRRT failed: the first sample at its defects, if the defect finder locates one, and
+  //! the input's crossing pairs of triangles within one part (crossings_within_parts).
+  std::optional<Vec3> first_defect;
+  int input_crossings = 0;
   bool measurable = false;  //!< the LRRT has triangles
   QualityMetrics quality;
   nlohmann::json report;  //!< complete but for `predicates`, taken when the caller is done
