@@ -14,6 +14,7 @@
 
 #include "common/error.h"
 #include "common/timing.h"
+#include "mesh/closest_point.h"
 #include "mesh/curvature.h"
 #include "mesh/refine.h"
 #include "mps/mps_disks.h"
@@ -263,12 +264,13 @@ class PoissonDiskSampling {
     progress("dart throwing");
     const auto dart_start = Clock::now();
     const SurfaceMesh& m = result_.mesh;
+    place_first_samples();
     if (options_.sample_features && result_.feature_edges > 0) {
       progress(fmt::format("samples on {} feature edges ({} on the boundary, the others' normals more than {:g}° apart) "
                            "and {} corners",
                            result_.feature_edges, result_.boundary_edges, options_.feature_angle,
                            result_.feature_corners));
-      result_.feature_samples = sample_features(m, *sampler_, options_.feature_angle);
+      result_.feature_samples = sample_features(m, *sampler_, options_.feature_angle, options_.feature_exclusions);
     }
     const double sample_cap = 4 * expected_ + 1000;
     for (int rejections = 0; rejections < options_.max_consecutive_rejections && sampler_->disks().size() < sample_cap;) {
@@ -284,6 +286,19 @@ class PoissonDiskSampling {
     sample_missed_components();
     result_.dart_samples = sampler_->disks().size();
     result_.time_s.dart_throwing = seconds_since(dart_start);
+  }
+
+  //! MpsOptions::first_samples, each at its closest point of the refined mesh, through the
+  //! sampler's test.
+  void place_first_samples() {
+    if (options_.first_samples.empty()) return;
+    const ClosestPointIndex index(result_.mesh);
+    int hint = -1;
+    for (const Vec3& p : options_.first_samples) {
+      const ClosestPoint c = index.query(p, hint);
+      hint = c.triangle;
+      result_.first_samples += sampler_->try_insert(c.point, c.triangle, c.barycentric);
+    }
   }
 
   //! Every component needs a sample before the LRPD (a small one may have been missed).

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/refine.h"
@@ -69,6 +70,13 @@ struct MpsOptions {
   //! as with it off. The samples on the features are placed, not thrown: off gives the paper's
   //! uniform darts everywhere.
   bool sample_features = true;
+  //! Points on the surface sampled first, each through the sampler's test like any dart (the
+  //! LRRT's rounds keep the samples away from its defects so), before the features and the darts.
+  std::vector<Vec3> first_samples;
+  //! Balls (centre, absolute radius) in which no sample goes on the feature lines off the
+  //! boundary: darts sample the surface there (the LRRT's rounds put them where feature samples
+  //! were at its defects).
+  std::vector<std::pair<Vec3, double>> feature_exclusions;
   double feature_angle = 60;             //!< degrees, 0 < angle < 180: what counts as a feature line
   int max_gap_rounds = 30;               //!< LRPD evaluations allowed for gap detection before giving up
   double max_expected_samples = 5e6;     //!< refuse radii that would need more samples than this
@@ -95,7 +103,8 @@ struct MpsResult {
   int feature_edges = 0;          //!< edges whose triangles' normals are more than the angle apart, and boundary edges
   int boundary_edges = 0;         //!< of feature_edges: on the boundary
   int feature_corners = 0;        //!< vertices with other than two feature edges, or two that turn by more than the angle
-  int feature_samples = 0;        //!< samples placed on corners and feature edges (MpsOptions::sample_features)
+  int first_samples = 0;          //!< of MpsOptions::first_samples, those placed: the first samples
+  int feature_samples = 0;        //!< samples placed on corners and feature edges (MpsOptions::sample_features), after those
   int dart_samples = 0;           //!< samples placed by the initial dart throwing (feature samples included)
   int gap_samples = 0;            //!< samples placed into gaps
   std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)

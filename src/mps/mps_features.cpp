@@ -71,8 +71,9 @@ namespace {
 //! then along each line from corner to corner.
 class FeatureSampling {
  public:
-  FeatureSampling(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg)
-      : m_(mesh), sampler_(sampler), f_(find_feature_lines(mesh, angle_deg)) {}
+  FeatureSampling(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg,
+                  const std::vector<std::pair<Vec3, double>>& exclusions)
+      : m_(mesh), sampler_(sampler), f_(find_feature_lines(mesh, angle_deg)), exclusions_(exclusions) {}
 
   int run() {
     if (f_.edges.empty()) return 0;
@@ -102,7 +103,12 @@ class FeatureSampling {
     Vec3 bary;
     bary[g.e] = 1 - u;
     bary[(g.e + 1) % 3] = u;
-    return sampler_.try_insert((1 - u) * m_.position(g.a) + u * m_.position(g.b), g.t, bary);
+    const Vec3 p = (1 - u) * m_.position(g.a) + u * m_.position(g.b);
+    // The boundary's samples are never left out: an open mesh's LRRT needs its corners and lines.
+    if (m_.neighbor(g.t, g.e) >= 0)
+      for (const auto& [centre, radius] : exclusions_)
+        if (squared_distance(p, centre) < radius * radius) return false;
+    return sampler_.try_insert(p, g.t, bary);
   }
 
   //! Samples along the line that starts at vertex v with edge k and runs to the next corner (or
@@ -182,6 +188,7 @@ class FeatureSampling {
   const SurfaceMesh& m_;
   Sampler& sampler_;
   const FeatureLines f_;
+  const std::vector<std::pair<Vec3, double>>& exclusions_;  // no feature sample inside these balls
   std::vector<char> used_;                       // per edge: on a line already walked
   std::vector<std::pair<int, bool>> line_;       // edges, and whether each is walked from b to a
   std::vector<double> span_;                     // per edge of line_: its length in radii
@@ -190,8 +197,9 @@ class FeatureSampling {
 
 }  // namespace
 
-int sample_features(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg) {
-  return FeatureSampling(mesh, sampler, angle_deg).run();
+int sample_features(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg,
+                    const std::vector<std::pair<Vec3, double>>& exclusions) {
+  return FeatureSampling(mesh, sampler, angle_deg, exclusions).run();
 }
 
 }  // namespace lrvd::mps_detail

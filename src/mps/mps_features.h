@@ -29,8 +29,9 @@ struct FeatureLines {
 FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg);
 
 //! Samples on the corners and along the feature lines of `mesh` (find_feature_lines), each through
-//! the sampler's own test, so that the minimum distance holds as for any other sample. Returns the
-//! samples placed.
-int sample_features(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg);
+//! the sampler's own test, so that the minimum distance holds as for any other sample; none off the
+//! boundary inside the balls of `exclusions` (MpsOptions::feature_exclusions). Returns the samples placed.
+int sample_features(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg,
+                    const std::vector<std::pair<Vec3, double>>& exclusions = {});
 
 }  // namespace lrvd::mps_detail

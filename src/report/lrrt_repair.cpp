@@ -59,6 +59,35 @@ int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const 
   return lowered;
 }
 
+std::vector<Vec3> samples_away_from(const MpsResult& result, const std::vector<int>& defects, double gradation) {
+  const double reach = kLoweredReach + 0.5 / gradation + 1;
+  std::vector<Vec3> kept;
+  const Samples& samples = result.samples;
+  for (int j = 0; j < samples.size(); ++j) {
+    bool away = true;
+    for (int d : defects) {
+      const double clear = reach * result.radii[d];
+      if (squared_distance(samples.positions[j], samples.positions[d]) <= clear * clear) {
+        away = false;
+        break;
+      }
+    }
+    if (away) kept.push_back(samples.positions[j]);
+  }
+  return kept;
+}
+
+int exclude_feature_samples(const MpsResult& result, const std::vector<int>& samples,
+                            std::vector<std::pair<Vec3, double>>& exclusions) {
+  int added = 0;
+  for (int s : samples)
+    if (s >= result.first_samples && s < result.first_samples + result.feature_samples) {
+      exclusions.emplace_back(result.samples.positions[s], kLoweredReach * result.radii[s]);
+      ++added;
+    }
+  return added;
+}
+
 int crossings_within_parts(const SurfaceMesh& input) {
   const std::vector<int>& component = input.triangle_components();
   int count = 0;

@@ -35,6 +35,21 @@ std::vector<int> lrrt_defect_samples(const SurfaceMesh& input, const MpsResult& 
 int halve_radius_round(const SurfaceMesh& input, const MpsResult& result, const std::vector<int>& samples,
                        double gradation, std::vector<double>& field);
 
+//! The positions of the samples of `result` outside the part of the surface a round changes round
+//! `defects` (farther than (kLoweredReach + 1/(2·gradation) + 1)·r_d from each defect sample d:
+//! the halved radius, its ramp back up at the gradation, and a disk), for the next sampling to
+//! place first (MpsOptions::first_samples): a round then samples again only round its defects, and
+//! the LRRT elsewhere, which passed, stays as it was.
+std::vector<Vec3> samples_away_from(const MpsResult& result, const std::vector<int>& defects, double gradation);
+
+//! Adds to `exclusions` (MpsOptions::feature_exclusions) a ball of kLoweredReach·r_s about each of
+//! `samples` that is a feature sample of `result` (the result.feature_samples after its first
+//! samples): on scanned
+//! meshes whose creases are feature lines (feline: 824 edges at 60°) the LRRT's defects at such
+//! samples stayed through eight halvings of the radius. Returns the balls added.
+int exclude_feature_samples(const MpsResult& result, const std::vector<int>& samples,
+                            std::vector<std::pair<Vec3, double>>& exclusions);
+
 //! Pairs of triangles of `input` that cross each other within one connected component (exact,
 //! find_self_intersections): a refused LRRT's line names them, since a remesh that must keep the
 //! topology of a surface cutting through itself may have no valid form there.

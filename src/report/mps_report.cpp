@@ -224,11 +224,14 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
     const std::vector<int> defects = lrrt_defect_samples(input, run.result, run.lrpd, run.dual);
     if (defects.empty()) break;
     MpsOptions options = run.options;
-    if (halve_radius_round(input, run.result, defects, options.gradation, field) == 0) break;
+    // A feature sample at a defect stays one at any radius (its line is where it is): darts there.
+    const int excluded = exclude_feature_samples(run.result, defects, options.feature_exclusions);
+    if (halve_radius_round(input, run.result, defects, options.gradation, field) == 0 && excluded == 0) break;
     if (on_progress)
       on_progress(fmt::format("the LRRT has defects at {} samples: round {}, the radius halved round them, sampling again",
                               defects.size(), round));
     options.radius_field = field;
+    options.first_samples = samples_away_from(run.result, defects, options.gradation);
     MpsRun again = sample_and_check(input, settings, options, mesh_path, on_progress);
     remesh_and_check(input, again);
     again.smaller_disks.rounds = round;
