@@ -1010,18 +1010,38 @@ TEST_CASE("lrvd mps --remesh halves the radius round the LRRT's defects until it
 
 TEST_CASE("crossings_within_parts counts a surface's crossings within one component, not between two", "[mps]") {
   const SurfaceMesh sphere = test::icosphere(2);
-  CHECK(crossings_within_parts(sphere) == 0);
+  CHECK(crossings_within_parts(sphere).empty());
   // One vertex pushed through the sphere to the far side: its triangles cross the sphere there.
   std::vector<Vec3> poked = sphere.positions();
   poked[0] = -1.5 * poked[0];
-  CHECK(crossings_within_parts(SurfaceMesh(poked, sphere.triangles())) > 0);
+  CHECK(!crossings_within_parts(SurfaceMesh(poked, sphere.triangles())).empty());
+  // away_from_crossings leaves out the samples near the triangles of the pairs it is given (two
+  // triangles of a fine sphere here: it reads where they are, not whether they cross).
+  const SurfaceMesh fine = test::icosphere(4);
+  MpsOptions options;
+  options.radius = 0.02;
+  const MpsResult sampled = maximal_poisson_disk_sampling(fine, options);
+  std::vector<int> all(sampled.samples.size());
+  for (int i = 0; i < sampled.samples.size(); ++i) all[i] = i;
+  const std::vector<std::pair<int, int>> pairs = {{0, 1}};
+  const std::vector<int> away = away_from_crossings(fine, sampled, all, pairs);
+  CHECK(away.size() < all.size());
+  CHECK(away.size() > all.size() / 2);
+  std::vector<char> kept(all.size(), 0);
+  for (int s : away) kept[s] = 1;
+  for (int s : all) {
+    double nearest = 1e300;
+    for (int t : {0, 1})
+      for (int v : fine.triangle(t)) nearest = std::min(nearest, distance(sampled.samples.positions[s], fine.position(v)));
+    if (nearest <= kLoweredReach * sampled.radii[s]) CHECK(!kept[s]);  // a corner within reach: left out
+  }
   // Two spheres through each other: crossings, but between two components.
   std::vector<Vec3> two = sphere.positions();
   std::vector<Triangle> triangles = sphere.triangles();
   const int n = static_cast<int>(two.size());
   for (const Vec3& p : sphere.positions()) two.push_back(p + Vec3{1, 0, 0});
   for (const Triangle& t : sphere.triangles()) triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
-  CHECK(crossings_within_parts(SurfaceMesh(two, triangles)) == 0);
+  CHECK(crossings_within_parts(SurfaceMesh(two, triangles)).empty());
 }
 
 TEST_CASE("halve_radius_round lowers the radius round the given samples only, within the gradation", "[mps]") {

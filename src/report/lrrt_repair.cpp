@@ -88,13 +88,36 @@ int exclude_feature_samples(const MpsResult& result, const std::vector<int>& sam
   return added;
 }
 
-int crossings_within_parts(const SurfaceMesh& input) {
+std::vector<std::pair<int, int>> crossings_within_parts(const SurfaceMesh& input) {
   const std::vector<int>& component = input.triangle_components();
-  int count = 0;
+  std::vector<std::pair<int, int>> within;
   for (const auto& [s, t] : find_self_intersections(input.positions(), input.triangles(),
                                                     proper_triangles(input.positions(), input.triangles())))
-    count += component[s] == component[t];
-  return count;
+    if (component[s] == component[t]) within.emplace_back(s, t);
+  return within;
+}
+
+std::vector<int> away_from_crossings(const SurfaceMesh& input, const MpsResult& result, const std::vector<int>& samples,
+                                     const std::vector<std::pair<int, int>>& crossings) {
+  // Each crossing triangle as a ball: its centroid and the distance to its farthest corner.
+  std::vector<std::pair<Vec3, double>> balls;
+  for (const auto& pair : crossings)
+    for (int t : {pair.first, pair.second}) {
+      const auto& f = input.triangle(t);
+      const Vec3 c = (input.position(f[0]) + input.position(f[1]) + input.position(f[2])) / 3.0;
+      double reach = 0;
+      for (int v : f) reach = std::max(reach, distance(c, input.position(v)));
+      balls.emplace_back(c, reach);
+    }
+  std::vector<int> away;
+  for (int s : samples) {
+    const Vec3& p = result.samples.positions[s];
+    const double margin = kLoweredReach * result.radii[s];
+    bool near = false;
+    for (const auto& [c, reach] : balls) near = near || distance(p, c) <= reach + margin;
+    if (!near) away.push_back(s);
+  }
+  return away;
 }
 
 }  // namespace lrvd

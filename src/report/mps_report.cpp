@@ -215,14 +215,16 @@ void remesh_and_check(const SurfaceMesh& input, MpsRun& run) {
 // While the LRRT fails its checks: the radius halved round the samples at its defects, and the
 // sampling and its LRRT again (up to kMaxLrrtRounds); the last sampling is the result.
 void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& settings, const std::string& mesh_path,
-                              const ProgressFn& on_progress, MpsRun& run) {
+                              const ProgressFn& on_progress, const std::vector<std::pair<int, int>>& crossings,
+                              MpsRun& run) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = process_cpu_seconds();
   std::vector<double> field = sampled_radius_field(input, run.options, run.result);
   const std::vector<double> initial = field;
   for (int round = 1; round <= kMaxLrrtRounds && !run.remesh_check.passed; ++round) {
-    const std::vector<int> defects = lrrt_defect_samples(input, run.result, run.lrpd, run.dual);
-    if (defects.empty()) break;
+    const std::vector<int> defects =
+        away_from_crossings(input, run.result, lrrt_defect_samples(input, run.result, run.lrpd, run.dual), crossings);
+    if (defects.empty()) break;  // none located, or all where the input crosses itself
     MpsOptions options = run.options;
     // A feature sample at a defect stays one at any radius (its line is where it is): darts there.
     const int excluded = exclude_feature_samples(run.result, defects, options.feature_exclusions);
@@ -256,7 +258,11 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
   if (lrrt) {
     if (on_progress) on_progress("remeshing: the LRRT of the samples");
     remesh_and_check(input, run);
-    if (!settings.keep_radius) smaller_disks_at_defects(input, settings, mesh_path, on_progress, run);
+    if (!run.remesh_check.passed) {
+      const std::vector<std::pair<int, int>> crossings = crossings_within_parts(input);
+      if (!settings.keep_radius) smaller_disks_at_defects(input, settings, mesh_path, on_progress, crossings, run);
+      run.input_crossings = static_cast<int>(crossings.size());
+    }
   }
   if (on_samples) on_samples(run.result.samples);
   write_mps_report(run, loaded, repair_requested, settings, mesh_path, output_path, run.lrpd);
@@ -275,7 +281,6 @@ MpsRun run_mps(const LoadedMesh& loaded, bool repair_requested, const MpsSetting
     // Where the refusal points: the first defect the finder locates, and the input's own crossings.
     const std::vector<int> defects = lrrt_defect_samples(input, run.result, run.lrpd, dual);
     if (!defects.empty()) run.first_defect = run.result.samples.positions[defects.front()];
-    run.input_crossings = crossings_within_parts(input);
   }
   run.lrrt_refusal = lrrt_refusal(run, settings);
   report["remesh"] = {{"path", remesh_path},
