@@ -66,8 +66,9 @@ std::string lrrt_refusal(const MpsRun& run, const MpsSettings& settings) {
     if (property->promised && !property->passed) failed += (failed.empty() ? "" : ", ") + std::string(name);
   const std::string smaller =
       run.smaller_disks.rounds > 0
-          ? fmt::format(", {} rounds of smaller disks round its defects included (radius down to {:.3g})",
-                        run.smaller_disks.rounds, run.result.radius / run.result.scale)
+          ? fmt::format(", {} of smaller disks round its defects included (radius down to {:.3g})",
+                        run.smaller_disks.rounds == 1 ? std::string("1 round") : fmt::format("{} rounds", run.smaller_disks.rounds),
+                        run.result.radius / run.result.scale)
           : settings.keep_radius ? " with --keep-radius" : "";
   std::string where;
   if (run.first_defect) {
