@@ -9,8 +9,9 @@ For each model, radius, mode and seed, two fresh processes: `lrvd --threads 1 mp
 [--adaptive] --seed S --remesh OUT --keep-radius` (the LRRT of the one radius) and the same without
 --keep-radius (the default: up to 8 rounds that halve the radius round the LRRT's defects and
 sample again there). Per row (model, radius, mode): the runs whose LRRT passed its checks each way,
-the rounds taken, the smallest radius reached, and the default's whole-process CPU seconds; every
-LRRT still refused is listed under the table with its one-line reason. The models and folders are
+the rounds taken, the smallest radius reached, and the default's whole-process CPU seconds; the
+rows with an LRRT still refused are listed under the table with the seeds and the first one's
+one-line reason. The models and folders are
 bench/mps_table3.py's. The JSON file (--json) keeps every run; the markdown table replaces the one
 between the markers of --results. A benchmark, never a test. Standard library only.
 """
@@ -117,10 +118,12 @@ def table(runs, args):
                      f"{default_valid} of {len(entries)}{'' if maximal else ' (NOT all maximal)'} | "
                      f"{min(rounds)}–{max(rounds)} | {smallest:.3g} | "
                      f"{min(cpu):.1f} / **{statistics.median(cpu):.1f}** / {max(cpu):.1f} |")
-        for e in entries:
-            if not e["default"]["valid"]:
-                refused.append(f"- {model}, r = {radius:g} {mode}, seed {e['seed']}: "
-                               f"{e['default']['refusal'] or 'exit ' + str(e['default']['exit'])}")
+        failed = [e for e in entries if not e["default"]["valid"]]
+        if failed:
+            seeds_failed = ", ".join(str(e["seed"]) for e in failed)
+            first = failed[0]["default"]
+            refused.append(f"- {model}, r = {radius:g} {mode}, seed{'s' if len(failed) > 1 else ''} {seeds_failed}; "
+                           f"seed {failed[0]['seed']}: {first['refusal'] or 'exit ' + str(first['exit'])}")
     keep_total = sum(e["keep"]["valid"] for e in runs)
     default_total = sum(e["default"]["valid"] for e in runs)
     lines += ["", f"In all: {keep_total} of {len(runs)} valid at the one radius, {default_total} of {len(runs)} "
@@ -153,6 +156,7 @@ def main():
     parser.add_argument("--json", default="bench/lrrt_table3.json", help="JSON file of every run")
     parser.add_argument("--results", default="docs/results.md", help="markdown file with the table's markers")
     parser.add_argument("--no-write", action="store_true", help="print the table; write neither file")
+    parser.add_argument("--render-only", action="store_true", help="measure nothing: the table from --json")
     args = parser.parse_args()
     args.radii = [float(x) for x in args.radii.split(",")]
     args.modes = args.modes.split(",")
@@ -161,14 +165,18 @@ def main():
         sys.exit("lrrt_table3: --modes takes uniform and/or adaptive")
     if not (os.path.isfile(args.lrvd) and os.access(args.lrvd, os.X_OK)):
         sys.exit(f"lrrt_table3: {args.lrvd} is not an executable (build the project first)")
-    meshes = mps_table3().find_meshes(args)
-    runs = measure(args, meshes)
+    if args.render_only:
+        with open(args.json) as f:
+            runs = json.load(f)
+    else:
+        runs = measure(args, mps_table3().find_meshes(args))
     text = table(runs, args)
     print(text)
     if args.no_write:
         return
-    with open(args.json, "w") as f:
-        json.dump(runs, f, indent=1)
+    if not args.render_only:
+        with open(args.json, "w") as f:
+            json.dump(runs, f, indent=1)
     write_results(args.results, text)
 
 

@@ -222,6 +222,7 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
   const double cpu_start = process_cpu_seconds();
   std::vector<double> field = sampled_radius_field(input, run.options, run.result);
   const std::vector<double> initial = field;
+  const double first_estimate = expected_sample_count(input, field);
   for (int round = 1; round <= kMaxLrrtRounds && !run.remesh_check.passed; ++round) {
     const std::vector<int> defects =
         away_from_crossings(input, run.result, lrrt_defect_samples(input, run.result, run.lrpd, run.dual), crossings);
@@ -229,7 +230,12 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
     MpsOptions options = run.options;
     // A feature sample at a defect stays one at any radius (its line is where it is): darts there.
     const int excluded = exclude_feature_samples(run.result, defects, options.feature_exclusions);
+    const std::vector<double> before = field;
     if (halve_radius_round(input, run.result, defects, options.gradation, field) == 0 && excluded == 0) break;
+    if (expected_sample_count(input, field) > kMaxLrrtGrowth * first_estimate) {  // the work stays bounded
+      field = before;
+      break;
+    }
     if (on_progress)
       on_progress(fmt::format("the LRRT has defects at {} samples: round {}, the radius halved round them, sampling again",
                               defects.size(), round));
