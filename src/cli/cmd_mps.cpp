@@ -78,7 +78,7 @@ int run_mps_command(const MpsCommandOptions& opt) {
       std::printf("LRRT: smaller disks where it had defects, %s of the radius halved round them (down to %.4g on "
                   "%s), %.3f s\n",
                   counted(run.smaller_disks.rounds, "round", "rounds").c_str(), run.result.radius / run.result.scale,
-                  counted(run.smaller_disks.vertices, "input vertex", "input vertices").c_str(), run.smaller_disks.time_s);
+                  counted(run.smaller_disks.vertices, "vertex", "vertices").c_str(), run.smaller_disks.time_s);
     std::printf("remesh (LRRT): %s, %s -> %s; verification: %s\n",
                 counted(dual.positions.size(), "vertex", "vertices").c_str(),
                 counted(dual.triangles.size(), "triangle", "triangles").c_str(), opt.remesh.c_str(),

@@ -16,17 +16,21 @@ namespace lrvd {
 //! r = 0.005 takes 3 on seed 1 (docs/results.md, "The LRRT on the Table 3 models").
 constexpr int kMaxLrrtRounds = 8;
 //! No round starts whose radius field would take more than this many times the samples of the
-//! first (expected_sample_count of the fields): a radius cut at a vertex of large input triangles
+//! first (expected_sample_count of the fields), plus kLrrtGrowthAllowance: a radius cut at a vertex of large input triangles
 //! spreads over them (ChineseDragon-10kv at r = 0.005, seed 2: 68,624 samples to 249,451 and
 //! 191 CPU s over eight rounds), and the work stays bounded.
 constexpr int kMaxLrrtGrowth = 2;
-//! A round lowers the radius on the input vertices within this many radii of a defect sample. With
+//! ... plus this many, so that a sampling of a few disks (one triangle at a radius of its size)
+//! can take the few more its LRRT needs.
+constexpr double kLrrtGrowthAllowance = 1000;
+//! A round lowers the radius on the vertices within this many radii of a defect sample. With
 //! every sample resampled each round, at 2 the folded sheet and the thin plate at 0.02 stayed
 //! invalid after eight rounds and at 3 they passed.
 constexpr double kLoweredReach = 3;
 
-//! The radius at each vertex of `input` that the sampling `result` used (absolute): its radius
-//! everywhere, the adaptive field, or the field it was given.
+//! The radius at each vertex of `input` (the surface sampled, or a refinement of it) that the
+//! sampling `result` used (absolute): its radius everywhere, the adaptive field, or the field it
+//! was given (which must then be of `input`'s vertices).
 std::vector<double> sampled_radius_field(const SurfaceMesh& input, const MpsOptions& options, const MpsResult& result);
 
 //! The samples at the defects of `dual`, the LRRT of `lrpd` (the samples' LRPD on result.mesh):
@@ -34,7 +38,7 @@ std::vector<double> sampled_radius_field(const SurfaceMesh& input, const MpsOpti
 std::vector<int> lrrt_defect_samples(const SurfaceMesh& input, const MpsResult& result, const Diagram& lrpd,
                                      const DualMesh& dual);
 
-//! Lowers `field` (one radius per vertex of `input`) round `samples` of `result`: every vertex
+//! Lowers `field` (one radius per vertex of `input`, the surface sampled) round `samples` of `result`: every vertex
 //! within kLoweredReach·r_s of sample s, or the three nearest if none is, gets at most r_s / 2; then the field
 //! changes by at most `gradation` per unit length (limit_radius_gradation). Returns the number of
 //! vertices whose radius went down.

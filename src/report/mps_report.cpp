@@ -220,9 +220,13 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
                               MpsRun& run) {
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = process_cpu_seconds();
-  std::vector<double> field = sampled_radius_field(input, run.options, run.result);
+  // The rounds sample the first sampling's refined mesh, the same surface with triangles of about
+  // the radius: a radius lowered at its vertices stays local, where on the input's own large
+  // triangles it would spread over them (a thin box of 12 triangles, the whole box).
+  const SurfaceMesh surface = run.result.mesh;
+  std::vector<double> field = sampled_radius_field(surface, run.options, run.result);
   const std::vector<double> initial = field;
-  const double first_estimate = expected_sample_count(input, field);
+  const double first_estimate = expected_sample_count(surface, field);
   for (int round = 1; round <= kMaxLrrtRounds && !run.remesh_check.passed; ++round) {
     const std::vector<int> defects =
         away_from_crossings(input, run.result, lrrt_defect_samples(input, run.result, run.lrpd, run.dual), crossings);
@@ -231,8 +235,8 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
     // A feature sample at a defect stays one at any radius (its line is where it is): darts there.
     const int excluded = exclude_feature_samples(run.result, defects, options.feature_exclusions);
     const std::vector<double> before = field;
-    if (halve_radius_round(input, run.result, defects, options.gradation, field) == 0 && excluded == 0) break;
-    if (expected_sample_count(input, field) > kMaxLrrtGrowth * first_estimate) {  // the work stays bounded
+    if (halve_radius_round(surface, run.result, defects, options.gradation, field) == 0 && excluded == 0) break;
+    if (expected_sample_count(surface, field) > kMaxLrrtGrowth * first_estimate + kLrrtGrowthAllowance) {
       field = before;
       break;
     }
@@ -241,7 +245,7 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
                               defects.size(), round));
     options.radius_field = field;
     options.first_samples = samples_away_from(run.result, defects, options.gradation);
-    MpsRun again = sample_and_check(input, settings, options, mesh_path, on_progress);
+    MpsRun again = sample_and_check(surface, settings, options, mesh_path, on_progress);
     remesh_and_check(input, again);
     again.smaller_disks.rounds = round;
     run = std::move(again);
