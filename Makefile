@@ -43,7 +43,7 @@ unit: build
 sanitize: setup
 	cmake -S . -B $(SANITIZE_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DLRVD_SANITIZE=ON -DLRVD_BUILD_PYTHON=OFF \
 	  -DLRVD_CGAL_DATA_DIR=$(abspath $(BUILD))/cgal-data $(CMAKE_FLAGS)
-	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target lrvd lrvd_tests
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS) --target lrvd lrvd_tests lrvd_library_example
 	cd $(SANITIZE_BUILD) && export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 && \
 	  $(if $(SANITIZE_TESTS),./lrvd_tests -# '$(SANITIZE_TESTS)',ctest --output-on-failure -j $(JOBS) --timeout 1800)
 
