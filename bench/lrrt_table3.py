@@ -122,8 +122,8 @@ def table(runs, args):
         if failed:
             seeds_failed = ", ".join(str(e["seed"]) for e in failed)
             first = failed[0]["default"]
-            refused.append(f"- {model}, r = {radius:g} {mode}, seed{'s' if len(failed) > 1 else ''} {seeds_failed}; "
-                           f"seed {failed[0]['seed']}: {first['refusal'] or 'exit ' + str(first['exit'])}")
+            which = f"seeds {seeds_failed}; seed {failed[0]['seed']}" if len(failed) > 1 else f"seed {seeds_failed}"
+            refused.append(f"- {model}, r = {radius:g} {mode}, {which}: {first['refusal'] or 'exit ' + str(first['exit'])}")
     keep_total = sum(e["keep"]["valid"] for e in runs)
     default_total = sum(e["default"]["valid"] for e in runs)
     lines += ["", f"In all: {keep_total} of {len(runs)} valid at the one radius, {default_total} of {len(runs)} "

@@ -13,7 +13,7 @@ namespace lrvd {
 
 //! Rounds of smaller disks an LRRT gets at most (each halves the radius round its defects). The
 //! five sheet and tube stress meshes at r = 0.02 and 0.05 (seed 1) need at most 4; feline at
-//! r = 0.005 takes 3 on seed 1 (docs/results.md, "The LRRT on the Table 3 models").
+//! r = 0.005 takes 2-8 on seeds 1-3 (docs/results.md, "The LRRT on the Table 3 models").
 constexpr int kMaxLrrtRounds = 8;
 //! No round starts whose radius field would take more than this many times the samples of the
 //! first (expected_sample_count of the fields), plus kLrrtGrowthAllowance: a radius cut at a vertex of large input triangles
