@@ -1000,6 +1000,9 @@ TEST_CASE("lrvd mps --remesh halves the radius round the LRRT's defects until it
     }
     ++mended;
     CHECK(rounds >= 1);
+    // The feature lines reported are the box's (12 edges), not those of the refinement the rounds sample.
+    CHECK(j["features"]["edges"] == kept.report["features"]["edges"]);
+    CHECK(j["features"]["corners"] == kept.report["features"]["corners"]);
     CHECK(j["remesh"]["smaller_disks"]["vertices"].get<int>() > 0);
     // The smallest radius is the one the rounds went down to: at most half the one asked for.
     CHECK(j["remesh"]["smaller_disks"]["smallest_radius"].get<double>() <= 0.025 * (1 + 1e-12));

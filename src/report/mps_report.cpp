@@ -248,6 +248,11 @@ void smaller_disks_at_defects(const SurfaceMesh& input, const MpsSettings& setti
     MpsRun again = sample_and_check(surface, settings, options, mesh_path, on_progress);
     remesh_and_check(input, again);
     again.smaller_disks.rounds = round;
+    // The feature lines the report names are the user's mesh's, not those of the refinement the
+    // rounds sample (its split edges count again).
+    again.result.feature_edges = run.result.feature_edges;
+    again.result.boundary_edges = run.result.boundary_edges;
+    again.result.feature_corners = run.result.feature_corners;
     run = std::move(again);
   }
   run.smaller_disks.vertices = 0;
