@@ -468,33 +468,41 @@ TEST_CASE("A remesh with the curvature density is valid and puts more vertices a
   CHECK(near_rim(adaptive.dual) > 1.25 * near_rim(uniform.dual));
 }
 
-TEST_CASE("A run ends after give_up_after rounds without a better state, and the next run starts", "[remesh]") {
+TEST_CASE("A run that stalls for switch_after rounds pauses, the next run takes its turn, and the remesh stays valid", "[remesh]") {
   // The thin plate at the committed scale at 100 vertices: its first run is valid at its tenth round
-  // after eight rounds without a better state. A limit of 3 ends that run at its fifth round and
-  // starts the second (samples kept to their sheets); a limit of 12 leaves the remesh as it is with
-  // none (the default).
+  // after eight rounds without a better state. A limit of 3 pauses that run after its fourth round,
+  // the second run (samples kept to their sheets) pauses after its fourth too, and the first resumes
+  // and ends as it does without a limit; a limit of 12 never pauses it.
   const SurfaceMesh input = make_stress_mesh("thin_plate", 0.5);
-  auto remesh = [&](int give_up_after, std::vector<std::string>& lines) {
+  auto remesh = [&](int switch_after, std::vector<std::string>& lines) {
     RemeshOptions options;
-    options.give_up_after = give_up_after;
+    options.switch_after = switch_after;
     options.on_progress = [&](const std::string& line) { lines.push_back(line); };
     return remesh_to(input, 100, 1, options);
   };
-  auto stopped = [](const std::vector<std::string>& lines, int rounds) {
-    const std::string said = fmt::format("no better state in {} rounds, the run stops", rounds);
-    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(said) != std::string::npos; });
+  auto said = [](const std::vector<std::string>& lines, const std::string& text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
   };
   std::vector<std::string> unlimited_lines, lines_at_12, short_lines;
   const RemeshResult unlimited = remesh(0, unlimited_lines);
   REQUIRE(unlimited.path.runs == 1);
   REQUIRE(unlimited.repair_rounds == 10);
-  REQUIRE_FALSE(stopped(unlimited_lines, 8));
-  REQUIRE(RemeshOptions().give_up_after == 0);
+  REQUIRE_FALSE(said(unlimited_lines, "pauses"));
+  REQUIRE(RemeshOptions().switch_after == 0);
   const RemeshResult at_12 = remesh(12, lines_at_12);
   REQUIRE(at_12.dual.positions == unlimited.dual.positions);
   REQUIRE(at_12.dual.triangles == unlimited.dual.triangles);
   const RemeshResult short_runs = remesh(3, short_lines);
-  REQUIRE(stopped(short_lines, 3));
-  REQUIRE(short_runs.path.runs >= 2);
-  REQUIRE(short_runs.dual.positions.size() == 100);
+  INFO(fmt::format("{}", fmt::join(short_lines, "\n")));
+  REQUIRE(said(short_lines, "run 1 pauses after repair round 4: no better state in 3 rounds"));
+  REQUIRE(said(short_lines, "run 2 pauses after repair round 4"));
+  REQUIRE(said(short_lines, "run 1 resumes at repair round 5"));
+  REQUIRE(short_runs.path.runs == 2);
+  REQUIRE_FALSE(short_runs.path.kept_to_sheets);
+  REQUIRE(short_runs.repair_rounds == 14);  // the first run's 10 and the second's 4
+  REQUIRE(short_runs.dual.positions == unlimited.dual.positions);
+  REQUIRE(short_runs.dual.triangles == unlimited.dual.triangles);
+  const RemeshVerification check = verify_remesh(input, short_runs.dual.positions, short_runs.dual.triangles, 100);
+  INFO(check.summary());
+  REQUIRE(check.passed);
 }

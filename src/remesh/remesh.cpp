@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <iterator>
 #include <optional>
 #include <set>
@@ -94,6 +95,8 @@ struct Run {
   int rounds_without_progress = 0;   // since the best state so far
   bool lower_rings = false;          // the third run's caps stalled: their rings are lowered from then on
   bool saw_tip_caps = false;         // some round's dual had a cap on a sharp tip
+  int round = 0;                     // the next repair round, from 0
+  bool stopped = false;              // a round found nothing it could change (repair_round)
 };
 
 // The state remesh_cvt's stages share: the surfaces, the options, what the runs found, and the
@@ -115,10 +118,12 @@ class RemeshDriver {
 
  private:
   RemeshResult runs_from(const Samples& start, DualDefects& defects);
-  RemeshResult run(const Samples& start, bool keep_to_sheets, bool lower_tip_caps, DualDefects& best_defects,
-                   bool& saw_tip_caps);
-  void retry(const Samples& start, bool keep_to_sheets, bool lower_tip_caps, bool& saw_tip_caps, RemeshResult& result,
-             DualDefects& defects);
+  Run start_run(const Samples& start, bool keep_to_sheets, bool lower_tip_caps);
+  void start_next_run(const Samples& start, std::deque<Run>& runs);
+  bool can_go_on(const Run& r) const {
+    return !r.stopped && r.round < options_.repair_rounds && !r.defects.empty() && !r.defects.where_to_act().empty();
+  }
+  RemeshResult end_runs(std::deque<Run>& runs, std::optional<std::size_t> clean, DualDefects& defects);
   void first_cvt(Run& r, const Samples& start);
   void begin_rounds(Run& r);
   bool repair_round(Run& r, int round);
@@ -163,40 +168,96 @@ class RemeshDriver {
   DualDefects kept_defects_;  // of kept_.dual, as the rounds saw it
 };
 
-// The first run from `start`, then the second and third when defects are left.
+// The first run from `start`, then the second and third while defects are left. With
+// RemeshOptions::switch_after, a run that stalls pauses and the next takes its turn; the paused runs
+// go on, in order, to their last round only if no later run ends without defects.
 RemeshResult RemeshDriver::runs_from(const Samples& start, DualDefects& defects) {
   sheets_start_.reset();
-  bool first_saw_tip_caps = false;  // unused: the third run repeats the second, not the first
-  RemeshResult result = run(start, false, false, defects, first_saw_tip_caps);
-  bool saw_tip_caps = false;  // in the second run: the third differs from it only from such a round on
-  // Defects left: the whole run again with every sample kept to its own sheet (the centroid of a
-  // cell wrapping a thin wall lies in the wall or in the gap beside it, and the closest point of the
-  // surface to it is often on the other side: samples drain from one side to the other there).
-  if (!defects.empty() && options_.keep_to_sheets_retry) {
-    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
-                         result.repair_rounds));
-    retry(start, true, false, saw_tip_caps, result, defects);
+  std::deque<Run> runs;  // a deque: a run stays where it is while the next ones start
+  runs.push_back(start_run(start, false, false));
+  const int passes = options_.switch_after > 0 ? 2 : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    const int stall_limit = pass + 1 < passes ? options_.switch_after : 0;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      Run& r = runs[k];
+      if (pass > 0 && can_go_on(r))
+        progress(fmt::format("run {} resumes at repair round {}: no later run ended without defects", k + 1,
+                             r.round + 1));
+      while (can_go_on(r) && !(stall_limit > 0 && r.rounds_without_progress >= stall_limit)) {
+        if (!repair_round(r, r.round)) r.stopped = true;
+        ++r.round;
+      }
+      if (r.best_defects.empty()) return end_runs(runs, k, defects);
+      if (can_go_on(r))
+        progress(fmt::format("run {} pauses after repair round {}: no better state in {} rounds", k + 1, r.round,
+                             r.rounds_without_progress));
+      if (k + 1 == runs.size()) start_next_run(start, runs);
+    }
   }
-  // Defects left, and caps on sharp tips among them at some round: a third run that lowers the
-  // density on those caps.
-  if (!defects.empty() && saw_tip_caps && options_.keep_to_sheets_retry && options_.tip_caps_retry) {
-    progress(fmt::format("defects left after {} rounds, caps on sharp tips among them: the second run again with "
-                         "a lower density on those caps",
-                         result.repair_rounds));
-    bool ignored = false;
-    retry(start, true, true, ignored, result, defects);
-  }
-  return result;
+  return end_runs(runs, std::nullopt, defects);
 }
 
-// Runs the whole loop again and keeps it if it ends with fewer defects; the counters cover every run.
-void RemeshDriver::retry(const Samples& start, bool keep_to_sheets, bool lower_tip_caps, bool& saw_tip_caps,
-                         RemeshResult& result, DualDefects& defects) {
-  DualDefects again_defects;
-  RemeshResult again = run(start, keep_to_sheets, lower_tip_caps, again_defects, saw_tip_caps);
-  again.path.kept_to_sheets = keep_to_sheets;
-  again.path.tip_caps_lowered = lower_tip_caps;
-  keep_if_fewer(std::move(again), std::move(again_defects), result, defects);
+// The run's first CVT and the bookkeeping its rounds start from.
+Run RemeshDriver::start_run(const Samples& start, bool keep_to_sheets, bool lower_tip_caps) {
+  ++runs_;
+  Run r;
+  r.keep_to_sheets = keep_to_sheets;
+  r.lower_tip_caps = lower_tip_caps;
+  first_cvt(r, start);
+  begin_rounds(r);
+  return r;
+}
+
+// After the last run started has ended or paused with defects: the second run (samples kept to their
+// sheets: the centroid of a cell wrapping a thin wall lies in the wall or in the gap beside it, and
+// the closest point of the surface to it is often on the other side, so samples drain from one side
+// to the other there), or the third (the second again, with a lower density on the caps of sharp
+// tips, once some round of the second met such caps), if one is left to start.
+void RemeshDriver::start_next_run(const Samples& start, std::deque<Run>& runs) {
+  if (!options_.keep_to_sheets_retry) return;
+  const Run& last = runs.back();
+  if (runs.size() == 1) {
+    progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
+                         last.result.repair_rounds));
+    runs.push_back(start_run(start, true, false));
+    return;
+  }
+  if (runs.size() == 2 && last.saw_tip_caps && options_.tip_caps_retry) {
+    progress(fmt::format("defects left after {} rounds of the second run, caps on sharp tips among them: the second "
+                         "run again with a lower density on those caps",
+                         last.result.repair_rounds));
+    runs.push_back(start_run(start, true, true));
+  }
+}
+
+// The runs' result: the run that ended without defects (`clean`), or else the one with the fewest
+// defects, the earlier run on a tie; the counters of work done cover every run.
+RemeshResult RemeshDriver::end_runs(std::deque<Run>& runs, std::optional<std::size_t> clean, DualDefects& defects) {
+  RemeshResult result;
+  bool first = true;
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    if (clean && k != *clean) continue;
+    Run& r = runs[k];
+    DualDefects run_defects = r.best_defects;
+    RemeshResult again = end_run(r);
+    again.path.kept_to_sheets = r.keep_to_sheets;
+    again.path.tip_caps_lowered = r.lower_tip_caps;
+    if (first) {
+      result = std::move(again);
+      defects = std::move(run_defects);
+      first = false;
+    } else {
+      keep_if_fewer(std::move(again), std::move(run_defects), result, defects);
+    }
+  }
+  if (clean)  // the other runs' work, which end_run did not count
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      if (k != *clean) {
+        result.repair_rounds += runs[k].result.repair_rounds;
+        result.total_iterations += runs[k].result.total_iterations;
+        result.diagram_evaluations += runs[k].result.diagram_evaluations;
+      }
+  return result;
 }
 
 // Defects left on a component that holds no more samples than its topology needs, or one more (a
@@ -218,32 +279,6 @@ void RemeshDriver::reallocation_retry() {
   again.path.samples_reallocated = added;
   keep_if_fewer(std::move(again), std::move(again_defects), kept_, kept_defects_);
   kept_.path.reallocation_tried = added;
-}
-
-// One run from `start`: its first CVT, its repair rounds, and the polish and easing of the state it
-// keeps. `saw_tip_caps` is set when some round's dual had a cap on a sharp tip.
-RemeshResult RemeshDriver::run(const Samples& start, bool keep_to_sheets, bool lower_tip_caps,
-                               DualDefects& best_defects, bool& saw_tip_caps) {
-  ++runs_;
-  Run r;
-  r.keep_to_sheets = keep_to_sheets;
-  r.lower_tip_caps = lower_tip_caps;
-  first_cvt(r, start);
-  begin_rounds(r);
-  // Rounds end when nothing is left to repair, or when no cell is known to act on (a wrong Euler
-  // characteristic that no defect finder locates).
-  for (int round = 0; round < options_.repair_rounds && !r.defects.empty() && !r.defects.where_to_act().empty();
-       ++round) {
-    if (options_.give_up_after > 0 && r.rounds_without_progress >= options_.give_up_after) {
-      progress(fmt::format("repair round {}: no better state in {} rounds, the run stops", round + 1,
-                           r.rounds_without_progress));
-      break;
-    }
-    if (!repair_round(r, round)) break;
-  }
-  saw_tip_caps = saw_tip_caps || r.saw_tip_caps;
-  best_defects = r.best_defects;
-  return end_run(r);
 }
 
 // The run's first state: the first CVT of `start`, its dual and the dual's defects, settled. The
@@ -379,7 +414,7 @@ void RemeshDriver::optimise_round(Run& r, const std::vector<int>& raised, const 
   result.untangle = {};
   settle(result, r.defects);
   const bool better = r.defects.fewer_than(r.best_defects);
-  // How long the run went without a better state before this one (RemeshOptions::give_up_after).
+  // How long the run went without a better state before this one (RemeshOptions::switch_after).
   progress(fmt::format("repair round {}: {} iterations, energy {:.6g}{}; the dual has {}", round + 1,
                        result.cvt.iterations, result.cvt.energy,
                        better && r.rounds_without_progress > 0

@@ -22,12 +22,12 @@ struct RemeshOptions {
   int repair_rounds = 24;          //!< rounds of "move a sample to a defect, optimise again"
   int repair_iterations = 30;      //!< CVT iterations after each density raise
   double repair_factor = 2;        //!< each round multiplies the density around defects by this
-  //! A run ends after this many repair rounds in a row without a state with fewer defects than its
-  //! best (0: only at repair_rounds); the next run, if any, starts then. 12 saves a tenth of feline
-  //! 200's time with the same output, but a run that ends valid went 10 rounds so (CGAL's diplodocus
-  //! at 200), and with 12 two test sheets (a neck at 20 vertices, a small handle at 40) end invalid:
-  //! not the default (docs/results.md).
-  int give_up_after = 0;
+  //! A run that goes this many repair rounds in a row without a state with fewer defects than its
+  //! best pauses, and the next run (samples kept to their sheets, then tip caps lowered) takes its
+  //! turn; the paused runs go on to their last round, in order, only when no later run ends without
+  //! defects (0: each run goes to its last round before the next starts). Every run can still take
+  //! all its rounds, so a remesh the runs in turn would mend is mended either way.
+  int switch_after = 0;
   //! What a repair round re-optimises (remesh/local_repair.h): every sample (Whole), or after the
   //! first rounds the samples within a few cell rings of the cells it acts on, on the part of the
   //! mesh round them (Local: 2.3-4.4 times less CPU on the folded sheet at 100 and 300, but worse
