@@ -488,7 +488,6 @@ TEST_CASE("A run that stalls for switch_after rounds pauses, the next run takes 
   REQUIRE(unlimited.path.runs == 1);
   REQUIRE(unlimited.repair_rounds == 10);
   REQUIRE_FALSE(said(unlimited_lines, "pauses"));
-  REQUIRE(RemeshOptions().switch_after == 0);
   const RemeshResult at_12 = remesh(12, lines_at_12);
   REQUIRE(at_12.dual.positions == unlimited.dual.positions);
   REQUIRE(at_12.dual.triangles == unlimited.dual.triangles);

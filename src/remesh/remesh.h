@@ -26,8 +26,10 @@ struct RemeshOptions {
   //! best pauses, and the next run (samples kept to their sheets, then tip caps lowered) takes its
   //! turn; the paused runs go on to their last round, in order, only when no later run ends without
   //! defects (0: each run goes to its last round before the next starts). Every run can still take
-  //! all its rounds, so a remesh the runs in turn would mend is mended either way.
-  int switch_after = 0;
+  //! all its rounds, so a remesh the runs in turn would mend is mended either way. 6 halves feline
+  //! 200's and Happy Buddha 300's rounds with the same output, and costs rounds where a paused run
+  //! was about to end valid (the thin plate at 50 and 100): docs/results.md.
+  int switch_after = 6;
   //! What a repair round re-optimises (remesh/local_repair.h): every sample (Whole), or after the
   //! first rounds the samples within a few cell rings of the cells it acts on, on the part of the
   //! mesh round them (Local: 2.3-4.4 times less CPU on the folded sheet at 100 and 300, but worse

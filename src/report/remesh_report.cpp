@@ -1,7 +1,6 @@
 // The remesh the `lrvd remesh` command and the Python module share (remesh_report.h).
 #include "report/remesh_report.h"
 
-#include <cstdlib>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -103,7 +102,6 @@ RemeshOptions remesh_options(const RemeshSettings& settings, const ProgressFn& o
   if (settings.priority == "shape") remesh.relax.rounds = kShapePriorityRounds;
   remesh.repair = settings.repair_scope == "local" ? RepairScope::Local : RepairScope::Whole;
   remesh.on_progress = on_progress;
-  if (const char* k = std::getenv("LRVD_SWITCH_AFTER")) remesh.switch_after = std::atoi(k);  // EXPERIMENT
   return remesh;
 }
 
