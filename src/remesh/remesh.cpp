@@ -93,6 +93,7 @@ struct Run {
   DualDefects best_defects;
   std::vector<double> best_density;  // the density `best` was optimised for
   int rounds_without_progress = 0;   // since the best state so far
+  int rounds_behind = 0;             // since a state with fewer defects than any run's best (switch_after)
   bool lower_rings = false;          // the third run's caps stalled: their rings are lowered from then on
   bool saw_tip_caps = false;         // some round's dual had a cap on a sharp tip
   int round = 0;                     // the next repair round, from 0
@@ -119,7 +120,7 @@ class RemeshDriver {
  private:
   RemeshResult runs_from(const Samples& start, DualDefects& defects);
   Run start_run(const Samples& start, bool keep_to_sheets, bool lower_tip_caps);
-  void start_next_run(const Samples& start, std::deque<Run>& runs);
+  bool start_next_run(const Samples& start, std::deque<Run>& runs);
   bool can_go_on(const Run& r) const {
     return !r.stopped && r.round < options_.repair_rounds && !r.defects.empty() && !r.defects.where_to_act().empty();
   }
@@ -175,6 +176,14 @@ RemeshResult RemeshDriver::runs_from(const Samples& start, DualDefects& defects)
   sheets_start_.reset();
   std::deque<Run> runs;  // a deque: a run stays where it is while the next ones start
   runs.push_back(start_run(start, false, false));
+  // The fewest defects any run has reached: a run pauses when it goes switch_after rounds without
+  // beating them (for the first run, its own best; a later run must overtake the paused ones).
+  DualDefects fewest = runs.back().defects;
+  auto overtakes = [&fewest](Run& r) {
+    if (!r.defects.fewer_than(fewest)) return false;
+    fewest = r.defects;
+    return true;
+  };
   const int passes = options_.switch_after > 0 ? 2 : 1;
   for (int pass = 0; pass < passes; ++pass) {
     const int stall_limit = pass + 1 < passes ? options_.switch_after : 0;
@@ -183,15 +192,16 @@ RemeshResult RemeshDriver::runs_from(const Samples& start, DualDefects& defects)
       if (pass > 0 && can_go_on(r))
         progress(fmt::format("run {} resumes at repair round {}: no later run ended without defects", k + 1,
                              r.round + 1));
-      while (can_go_on(r) && !(stall_limit > 0 && r.rounds_without_progress >= stall_limit)) {
+      while (can_go_on(r) && !(stall_limit > 0 && r.rounds_behind >= stall_limit)) {
         if (!repair_round(r, r.round)) r.stopped = true;
         ++r.round;
+        r.rounds_behind = overtakes(r) ? 0 : r.rounds_behind + 1;
       }
       if (r.best_defects.empty()) return end_runs(runs, k, defects);
       if (can_go_on(r))
-        progress(fmt::format("run {} pauses after repair round {}: no better state in {} rounds", k + 1, r.round,
-                             r.rounds_without_progress));
-      if (k + 1 == runs.size()) start_next_run(start, runs);
+        progress(fmt::format("run {} pauses after repair round {}: {} rounds without fewer defects than any run's best",
+                             k + 1, r.round, r.rounds_behind));
+      if (k + 1 == runs.size() && start_next_run(start, runs)) overtakes(runs.back());
     }
   }
   return end_runs(runs, std::nullopt, defects);
@@ -212,22 +222,24 @@ Run RemeshDriver::start_run(const Samples& start, bool keep_to_sheets, bool lowe
 // sheets: the centroid of a cell wrapping a thin wall lies in the wall or in the gap beside it, and
 // the closest point of the surface to it is often on the other side, so samples drain from one side
 // to the other there), or the third (the second again, with a lower density on the caps of sharp
-// tips, once some round of the second met such caps), if one is left to start.
-void RemeshDriver::start_next_run(const Samples& start, std::deque<Run>& runs) {
-  if (!options_.keep_to_sheets_retry) return;
+// tips, once some round of the second met such caps). False when no run is left to start.
+bool RemeshDriver::start_next_run(const Samples& start, std::deque<Run>& runs) {
+  if (!options_.keep_to_sheets_retry) return false;
   const Run& last = runs.back();
   if (runs.size() == 1) {
     progress(fmt::format("defects left after {} rounds: the run again with every sample kept to its own sheet",
                          last.result.repair_rounds));
     runs.push_back(start_run(start, true, false));
-    return;
+    return true;
   }
   if (runs.size() == 2 && last.saw_tip_caps && options_.tip_caps_retry) {
     progress(fmt::format("defects left after {} rounds of the second run, caps on sharp tips among them: the second "
                          "run again with a lower density on those caps",
                          last.result.repair_rounds));
     runs.push_back(start_run(start, true, true));
+    return true;
   }
+  return false;
 }
 
 // The runs' result: the run that ended without defects (`clean`), or else the one with the fewest
