@@ -9,6 +9,7 @@
 
 #include <boost/container/small_vector.hpp>
 
+#include "common/huge_pages.h"
 #include "diagram/clip.h"
 #include "voronoi/region_growing.h"
 
@@ -88,7 +89,10 @@ struct LrvdWorkspace {
   std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
+    if (static_cast<int>(state.size()) < triangle_count) {  // reset by assign_triangles()
+      reserve_huge(state, triangle_count);  // a large mesh's records: 144 bytes a triangle
+      state.resize(triangle_count);
+    }
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
