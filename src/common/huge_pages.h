@@ -12,8 +12,9 @@
 
 namespace lrvd {
 
-//! Arrays smaller than this are left to the allocator's pages: a huge page must lie whole inside.
-constexpr std::size_t kHugePageArrayBytes = std::size_t(4) << 20;
+//! Arrays smaller than this are left to the allocator's pages: a huge page must lie whole inside
+//! (one from 2 to 4 MiB holds one or none, as it lies).
+constexpr std::size_t kHugePageArrayBytes = std::size_t(2) << 20;
 
 //! Asks the kernel to back the whole 2 MiB pages of [data, data + bytes) with transparent huge
 //! pages from their first touch. With THP in "madvise" mode (the default of many distributions)

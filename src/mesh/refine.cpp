@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/huge_pages.h"
 #include "mesh/spatial_order.h"
 
 namespace lrvd {
@@ -162,15 +163,15 @@ void EdgeSplitter::reserve_for_expected_size() {
   }
   const double expected_triangles = std::min({1.1 * area_estimate(), 5e8, max_triangles_});
   const double expected_vertices = mesh_.vertex_count() + 0.5 * (expected_triangles - mesh_.triangle_count());
-  positions_.reserve(static_cast<size_t>(expected_vertices));
+  reserve_huge(positions_, static_cast<size_t>(expected_vertices));
   positions_ = mesh_.positions();
-  triangles_.reserve(static_cast<size_t>(expected_triangles));
+  reserve_huge(triangles_, static_cast<size_t>(expected_triangles));
   triangles_ = mesh_.triangles();
   if (vertex_values_) vertex_values_->reserve(static_cast<size_t>(expected_vertices));
-  edges_.reserve(static_cast<size_t>(2.0 * expected_triangles));
-  edge_of_triangle_.reserve(static_cast<size_t>(expected_triangles));
+  reserve_huge(edges_, static_cast<size_t>(2.0 * expected_triangles));
+  reserve_huge(edge_of_triangle_, static_cast<size_t>(expected_triangles));
   edge_of_triangle_.resize(triangles_.size());
-  origin_.reserve(static_cast<size_t>(expected_triangles));
+  reserve_huge(origin_, static_cast<size_t>(expected_triangles));
   origin_.resize(triangles_.size());
   std::iota(origin_.begin(), origin_.end(), 0);
   std::vector<LongEdge> waiting;
