@@ -275,18 +275,9 @@ class PoissonDiskSampling {
     const double sample_cap = 4 * expected_ + 1000;
     for (int rejections = 0; rejections < options_.max_consecutive_rejections && sampler_->disks().size() < sample_cap;) {
       const int t = by_area_->pick(random_);
-      ++result_.darts;
-      // A dart on a triangle that a disk covers whole is refused wherever it lies: its point is
-      // not computed (late in the throwing most darts land there). Its two numbers are drawn all
-      // the same, so the darts that follow are the ones they would be.
-      if (sampler_->disks().fully_covered(t)) {
-        random_.uniform();
-        random_.uniform();
-        ++rejections;
-        continue;
-      }
       Vec3 bary;
       const Vec3 p = dart_in_triangle(m, t, random_, bary);
+      ++result_.darts;
       if (sampler_->try_insert(p, t, bary))
         rejections = 0;
       else
