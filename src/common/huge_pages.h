@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <new>
 #include <vector>
 
 #if defined(__linux__)
@@ -34,6 +36,58 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
 #endif
 }
 
+//! An allocator for the large arrays internal to a computation (std::vector<T, HugePageAllocator<T>>):
+//! storage of kHugePageArrayBytes or more is mapped on its own, 2 MiB-aligned and advised to huge
+//! pages, so that all of it takes huge pages (with std::allocator the unaligned ends of such an
+//! array, up to 2 MiB each, fault page by page); smaller storage comes from std::allocator. Linux
+//! only; elsewhere std::allocator throughout.
+template <class T>
+struct HugePageAllocator {
+  using value_type = T;
+  HugePageAllocator() = default;
+  template <class U>
+  HugePageAllocator(const HugePageAllocator<U>&) {}  // NOLINT: rebinding, as allocators do
+
+  T* allocate(std::size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
+      const std::size_t bytes = mapped_bytes(n);
+      // Mapped a huge page longer than needed; the unaligned head and the rest of the tail go back.
+      void* mapped = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (mapped == MAP_FAILED) throw std::bad_alloc();
+      const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(mapped);
+      const std::uintptr_t aligned = (start + kHuge - 1) & ~(kHuge - 1);
+      if (aligned > start) munmap(mapped, aligned - start);
+      if (start + kHuge > aligned) munmap(reinterpret_cast<void*>(aligned + bytes), start + kHuge - aligned);
+      madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
+      return reinterpret_cast<T*>(aligned);
+    }
+#endif
+    return std::allocator<T>().allocate(n);
+  }
+  void deallocate(T* p, std::size_t n) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
+      munmap(p, mapped_bytes(n));
+      return;
+    }
+#endif
+    std::allocator<T>().deallocate(p, n);
+  }
+  template <class U>
+  bool operator==(const HugePageAllocator<U>&) const { return true; }
+  template <class U>
+  bool operator!=(const HugePageAllocator<U>&) const { return false; }
+
+ private:
+  static constexpr std::size_t kHuge = std::size_t(2) << 20;
+  static std::size_t mapped_bytes(std::size_t n) { return (n * sizeof(T) + kHuge - 1) / kHuge * kHuge; }
+};
+
+//! A vector whose large storage lies on huge pages of its own (HugePageAllocator).
+template <class T>
+using HugePageVector = std::vector<T, HugePageAllocator<T>>;
+
 //! v.reserve(n), the new storage advised to huge pages (advise_huge_pages) before anything
 //! touches it.
 template <class T, class A>
@@ -41,16 +95,6 @@ void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   if (n <= v.capacity()) return;
   v.reserve(n);
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
-}
-
-//! v.assign(n, value) into storage advised to huge pages when it has to grow.
-template <class T, class A>
-void assign_huge(std::vector<T, A>& v, std::size_t n, const T& value) {
-  if (n > v.capacity()) {
-    std::vector<T, A>().swap(v);  // not copied: the old values go anyway
-    reserve_huge(v, n);
-  }
-  v.assign(n, value);
 }
 
 }  // namespace lrvd

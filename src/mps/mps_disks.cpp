@@ -9,7 +9,6 @@
 #include <queue>
 #include <utility>
 
-#include "common/huge_pages.h"
 #include "mesh/closest_point.h"
 #include "predicates/ball_triangle.h"
 #include "predicates/exact.h"
@@ -77,17 +76,14 @@ DiskIndex::DiskIndex(const SurfaceMesh& mesh, bool facing_cut)
       center_head_(mesh.triangle_count(), -1),
       vertex_stamp_(mesh.vertex_count(), 0),
       vertex_inside_(mesh.vertex_count(), 0),
+      triangles_info_(mesh.triangle_count()),
+      normals_(mesh.triangle_count()),
       areas_(mesh.triangle_count()) {
-  // The records region growing reads, on huge pages: they are read all over (advise_huge_pages).
-  reserve_huge(triangles_info_, mesh.triangle_count());
-  triangles_info_.resize(mesh.triangle_count());
-  reserve_huge(normals_, mesh.triangle_count());
-  normals_.resize(mesh.triangle_count());
   // A finished sampling lists each triangle in about 3-5 disks (edges split to twice the radius:
   // 4.2-5.2 on the Table 3 models at r = 0.005 and adaptive r_min = 0.004, 2.9-4.2 at r = 0.02):
   // reserved at once, as growing the list would copy it into fresh memory. Room never used is
   // never touched.
-  reserve_huge(links_, 6 * static_cast<size_t>(mesh.triangle_count()));
+  links_.reserve(6 * static_cast<size_t>(mesh.triangle_count()));
   for (int t = 0; t < mesh.triangle_count(); ++t) {
     const Triangle& tri = mesh.triangle(t);
     const Vec3 &a = mesh.position(tri[0]), &b = mesh.position(tri[1]), &d = mesh.position(tri[2]);

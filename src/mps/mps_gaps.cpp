@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/huge_pages.h"
 #include "mps/mps_gap_geometry.h"
 #include "mps/mps_gaps.h"
 #include "mps/mps_lrpd_part.h"
@@ -67,8 +66,8 @@ void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const
   // covers (mps.cpp), and the pieces have fewer corners in all (Gargoyle, r = 0.005: 1.2M against
   // 2.0M); unused room is never touched. The pieces, likewise, are fewer than the polygons
   // (dragon_100k, adaptive r_min = 0.004: 101k against 300k).
-  reserve_huge(points_, lrpd.vertices.size());
-  reserve_huge(pieces_, lrpd.polygons.size());
+  points_.reserve(lrpd.vertices.size());
+  pieces_.reserve(lrpd.polygons.size());
   std::vector<Vec3> polygon;
   for (const CellPolygon& cp : lrpd.polygons) {
     const int t = triangle_of ? (*triangle_of)[cp.triangle] : cp.triangle;

@@ -491,7 +491,7 @@ class LrvdBuilder {
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  std::vector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
+  HugePageVector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels

@@ -80,7 +80,7 @@ struct TrianglePolygons {
 // Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
 // diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
 struct LrvdWorkspace {
-  std::vector<TrianglePolygons> state;
+  HugePageVector<TrianglePolygons> state;  // a large mesh's records: 144 bytes a triangle
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
@@ -89,10 +89,7 @@ struct LrvdWorkspace {
   std::vector<unsigned char> along;
 
   void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) {  // reset by assign_triangles()
-      reserve_huge(state, triangle_count);  // a large mesh's records: 144 bytes a triangle
-      state.resize(triangle_count);
-    }
+    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
