@@ -14,7 +14,7 @@ FUZZ_SECONDS ?= 60
 # and their verification, the MPS, the metrics and the pictures (under the sanitizers about a
 # quarter of the suite's time: the remesh tests, three quarters of it, run the same predicates
 # and diagrams many times over), and 60 s of each fuzz target.
-CI_SANITIZE_TESTS ?= [\#test_hostile_inputs],[\#test_mesh_io],[\#test_samples],[\#test_predicates],[\#test_symbolic_vertex],[\#test_lrvd],[\#test_verification],[\#test_surface_mesh],[\#test_mps],[\#test_mps_features],[\#test_quality],[\#test_remesh_check],[\#test_render]
+CI_SANITIZE_TESTS ?= [\#test_hostile_inputs],[\#test_mesh_io],[\#test_samples],[\#test_predicates],[\#test_ball_triangle],[\#test_symbolic_vertex],[\#test_lrvd],[\#test_verification],[\#test_surface_mesh],[\#test_mps],[\#test_mps_features],[\#test_quality],[\#test_remesh_check],[\#test_render]
 CI_FUZZ_SECONDS ?= 60
 
 .PHONY: all setup configure build test unit sanitize fuzz demo bench images install clean

@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/huge_pages.h"
 #include "mesh/spatial_order.h"
 
 namespace lrvd {
@@ -132,14 +133,14 @@ class EdgeSplitter {
   const bool values_are_lengths_;
   const double max_triangles_;
   double per_length_squared_ = 0;  // area / length², summed over the triangles
-  std::vector<Vec3> positions_;
-  std::vector<Triangle> triangles_;
+  HugePageVector<Vec3> positions_;
+  HugePageVector<Triangle> triangles_;
   // The edges: 1.5 a triangle at the end, and one more for each split. `edge_of_triangle_[t][e]`
   // is the record of edge e of t (corners e and e + 1).
-  std::vector<EdgeRecord> edges_;
-  std::vector<std::array<int, 3>> edge_of_triangle_;
+  HugePageVector<EdgeRecord> edges_;
+  HugePageVector<std::array<int, 3>> edge_of_triangle_;
   int live_edges_ = 0;
-  std::vector<int> origin_;  // the input triangle each triangle is a piece of
+  HugePageVector<int> origin_;  // the input triangle each triangle is a piece of
   std::priority_queue<LongEdge> queue_;
 };
 
@@ -163,9 +164,9 @@ void EdgeSplitter::reserve_for_expected_size() {
   const double expected_triangles = std::min({1.1 * area_estimate(), 5e8, max_triangles_});
   const double expected_vertices = mesh_.vertex_count() + 0.5 * (expected_triangles - mesh_.triangle_count());
   positions_.reserve(static_cast<size_t>(expected_vertices));
-  positions_ = mesh_.positions();
+  positions_.assign(mesh_.positions().begin(), mesh_.positions().end());
   triangles_.reserve(static_cast<size_t>(expected_triangles));
-  triangles_ = mesh_.triangles();
+  triangles_.assign(mesh_.triangles().begin(), mesh_.triangles().end());
   if (vertex_values_) vertex_values_->reserve(static_cast<size_t>(expected_vertices));
   edges_.reserve(static_cast<size_t>(2.0 * expected_triangles));
   edge_of_triangle_.reserve(static_cast<size_t>(expected_triangles));

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/huge_pages.h"
 #include "mesh/surface_mesh.h"
 #include "predicates/vec3.h"
 #include "samples/samples.h"
@@ -147,15 +148,15 @@ class DiskIndex {
   std::vector<int> triangles_;
   std::vector<Link> center_links_;
   std::vector<int> covered_head_, partial_head_, center_head_;  // per triangle
-  std::vector<Link> links_;
+  HugePageVector<Link> links_;
   std::uint32_t stamp_value_ = 0;  // of the current growth (TriangleInfo::stamp)
   std::vector<std::uint32_t> vertex_stamp_;  // per vertex: last insertion that tested it
   std::vector<char> vertex_inside_;          // per vertex: inside that insertion's ball
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_, seeds_;
   std::vector<double> threshold_key_;  // per triangle, reach_threshold(): the best key found (this stamp)
-  std::vector<TriangleInfo> triangles_info_;  // per triangle
-  std::vector<Vec3> normals_;                 // per triangle, unit, in doubles
+  HugePageVector<TriangleInfo> triangles_info_;  // per triangle
+  HugePageVector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
 };
 

@@ -21,17 +21,22 @@ constexpr double kFeatureSlide = 0.5, kFeatureSlideStep = 0.05;  // in radii
 
 }  // namespace
 
-FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg) {
+FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg, const Vec3* normals) {
   const double cos_limit = std::cos(angle_deg * M_PI / 180.0);
   FeatureLines f;
   // As the sampler's DiskIndex computes them: a triangle without area has a NaN normal, and its
   // edges are features (no comparison with NaN holds).
-  std::vector<Vec3> normal(mesh.triangle_count());
-  for (int t = 0; t < mesh.triangle_count(); ++t) {
-    const Triangle& tri = mesh.triangle(t);
-    const Vec3 n = cross(mesh.position(tri[1]) - mesh.position(tri[0]), mesh.position(tri[2]) - mesh.position(tri[0]));
-    normal[t] = n / norm(n);
+  std::vector<Vec3> computed;
+  if (!normals) {
+    computed.resize(mesh.triangle_count());
+    for (int t = 0; t < mesh.triangle_count(); ++t) {
+      const Triangle& tri = mesh.triangle(t);
+      const Vec3 n = cross(mesh.position(tri[1]) - mesh.position(tri[0]), mesh.position(tri[2]) - mesh.position(tri[0]));
+      computed[t] = n / norm(n);
+    }
+    normals = computed.data();
   }
+  const Vec3* normal = normals;
   f.at_vertex.assign(mesh.vertex_count(), {});
   for (int t = 0; t < mesh.triangle_count(); ++t)
     for (int e = 0; e < 3; ++e) {
@@ -73,7 +78,10 @@ class FeatureSampling {
  public:
   FeatureSampling(const SurfaceMesh& mesh, Sampler& sampler, double angle_deg,
                   const std::vector<std::pair<Vec3, double>>& exclusions)
-      : m_(mesh), sampler_(sampler), f_(find_feature_lines(mesh, angle_deg)), exclusions_(exclusions) {}
+      : m_(mesh),
+        sampler_(sampler),
+        f_(find_feature_lines(mesh, angle_deg, &sampler.disks().normal(0))),
+        exclusions_(exclusions) {}
 
   int run() {
     if (f_.edges.empty()) return 0;

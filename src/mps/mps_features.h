@@ -25,8 +25,10 @@ struct FeatureLines {
   std::vector<std::pair<double, int>> corners; //!< (minus the cosine of the turn of its two edges, vertex), sharpest first
 };
 
-//! The feature lines and corners of `mesh` at `angle_deg` degrees. \pre 0 < angle_deg < 180.
-FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg);
+//! The feature lines and corners of `mesh` at `angle_deg` degrees. `normals`, if given: the unit
+//! normal of each triangle as DiskIndex computes it (else computed here, alike).
+//! \pre 0 < angle_deg < 180.
+FeatureLines find_feature_lines(const SurfaceMesh& mesh, double angle_deg, const Vec3* normals = nullptr);
 
 //! Samples on the corners and along the feature lines of `mesh` (find_feature_lines), each through
 //! the sampler's own test, so that the minimum distance holds as for any other sample; none off the

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/huge_pages.h"
 #include "diagram/diagram.h"
 #include "mesh/surface_mesh.h"
 #include "mps/mps_disks.h"
@@ -143,8 +144,8 @@ class GapSet {
   const DiskIndex& disks_;
   bool local_;
   bool required_only_ = false;
-  std::vector<Piece> pieces_;
-  std::vector<Vec3> points_;
+  HugePageVector<Piece> pieces_;
+  HugePageVector<Vec3> points_;
   std::vector<int> head_;       // per triangle: first piece, -1 if none
   std::vector<double> fenwick_;  // over pieces_, capacity fenwick_.size()
   double total_ = 0;

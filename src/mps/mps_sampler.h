@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "mps/mps_disks.h"
@@ -14,31 +13,73 @@
 namespace lrvd::mps_detail {
 
 //! Sample centres in a hash grid of cells as wide as the largest radius: near() gives every
-//! centre within that radius of a point (and some farther).
+//! centre within that radius of a point (and some farther), cell by cell, each cell's in the order
+//! inserted. Open addressing (linear probing, at most half full) over the occupied cells, each a
+//! list threaded through the samples: near() looks up 27 cells for every adaptive insertion.
 class CentreGrid {
  public:
-  void reset(double cell) { cell_ = cell; cells_.clear(); }
+  void reset(double cell) {
+    cell_ = cell;
+    slots_.assign(cell > 0 ? 1024 : 0, Slot{});
+    occupied_ = 0;
+    next_.clear();
+  }
+  //! Adds sample i, i being one more than the last sample added.
   void insert(const Vec3& p, int i) {
-    if (cell_ > 0) cells_[key(coordinate(p.x), coordinate(p.y), coordinate(p.z))].push_back(i);
+    if (!(cell_ > 0)) return;
+    if (2 * (occupied_ + 1) > slots_.size()) grow();
+    next_.resize(std::max<std::size_t>(next_.size(), i + 1), -1);
+    const std::uint64_t k = key(coordinate(p.x), coordinate(p.y), coordinate(p.z));
+    Slot& s = slots_[find(k)];
+    if (s.key == kEmpty) {
+      s.key = k;
+      s.head = i;
+      ++occupied_;
+    } else {
+      next_[s.tail] = i;
+    }
+    s.tail = i;
   }
   void near(const Vec3& p, std::vector<int>& out) const {
+    if (slots_.empty()) return;
     const std::int64_t x = coordinate(p.x), y = coordinate(p.y), z = coordinate(p.z);
     for (std::int64_t a = x - 1; a <= x + 1; ++a)
       for (std::int64_t b = y - 1; b <= y + 1; ++b)
         for (std::int64_t c = z - 1; c <= z + 1; ++c) {
-          const auto it = cells_.find(key(a, b, c));
-          if (it != cells_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+          const Slot& s = slots_[find(key(a, b, c))];
+          if (s.key == kEmpty) continue;
+          for (int i = s.head; i >= 0; i = next_[i]) out.push_back(i);
         }
   }
 
  private:
+  // A key packs three 21-bit coordinates into 63 bits: no key has the top bit.
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    int head = -1, tail = -1;  // first and last sample of the cell; next_ links them
+  };
   std::int64_t coordinate(double v) const { return static_cast<std::int64_t>(std::floor(v / cell_)); }
   static std::uint64_t key(std::int64_t a, std::int64_t b, std::int64_t c) {
     return (static_cast<std::uint64_t>(a & 0x1fffff) << 42) | (static_cast<std::uint64_t>(b & 0x1fffff) << 21) |
            static_cast<std::uint64_t>(c & 0x1fffff);
   }
+  //! The index of the slot holding `key`, or of the empty one where it would go.
+  std::size_t find(std::uint64_t key) const {
+    const std::size_t mask = slots_.size() - 1;
+    for (std::size_t h = (key * 0x9e3779b97f4a7c15ull) >> 20 & mask;; h = (h + 1) & mask)
+      if (slots_[h].key == key || slots_[h].key == kEmpty) return h;
+  }
+  void grow() {
+    std::vector<Slot> old(2 * slots_.size());
+    old.swap(slots_);
+    for (const Slot& s : old)
+      if (s.key != kEmpty) slots_[find(s.key)] = s;
+  }
   double cell_ = 0;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  std::vector<Slot> slots_;  // a power of two of them
+  std::size_t occupied_ = 0;
+  std::vector<int> next_;    // per sample: the next sample of its cell, -1 at the end
 };
 
 //! The dart test and the insertion (paper §4.2, second change). Two samples are *local* to each

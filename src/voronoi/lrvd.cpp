@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
+#include "common/huge_pages.h"
 #include "diagram/clip.h"
 #include "mesh/surface_mesh.h"
 #include "voronoi/lrvd_workspace.h"
@@ -447,8 +448,8 @@ class LrvdBuilder {
     }
     d.polygons.clear();
     d.vertices.clear();
-    d.polygons.reserve(polygons);
-    d.vertices.reserve(vertices);
+    reserve_huge(d.polygons, polygons);
+    reserve_huge(d.vertices, vertices);
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
@@ -490,7 +491,7 @@ class LrvdBuilder {
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  std::vector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
+  HugePageVector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels

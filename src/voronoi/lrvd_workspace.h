@@ -9,6 +9,7 @@
 
 #include <boost/container/small_vector.hpp>
 
+#include "common/huge_pages.h"
 #include "diagram/clip.h"
 #include "voronoi/region_growing.h"
 
@@ -79,7 +80,7 @@ struct TrianglePolygons {
 // Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
 // diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
 struct LrvdWorkspace {
-  std::vector<TrianglePolygons> state;
+  HugePageVector<TrianglePolygons> state;  // a large mesh's records: 144 bytes a triangle
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
