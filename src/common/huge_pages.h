@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <new>
 #include <vector>
@@ -37,8 +38,8 @@ inline void advise_huge_pages(const void* data, std::size_t bytes) {
 }
 
 //! An allocator for the large arrays internal to a computation (std::vector<T, HugePageAllocator<T>>):
-//! storage of kHugePageArrayBytes or more is mapped on its own, 2 MiB-aligned and advised to huge
-//! pages, so that all of it takes huge pages (with std::allocator the unaligned ends of such an
+//! storage of kHugePageArrayBytes or more comes 2 MiB-aligned (aligned_alloc) in whole huge pages
+//! and is advised to huge pages, so that all of it takes them (with std::allocator the unaligned ends of such an
 //! array, up to 2 MiB each, fault page by page); smaller storage comes from std::allocator. Linux
 //! only; elsewhere std::allocator throughout.
 template <class T>
@@ -51,16 +52,12 @@ struct HugePageAllocator {
   T* allocate(std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
-      const std::size_t bytes = mapped_bytes(n);
-      // Mapped a huge page longer than needed; the unaligned head and the rest of the tail go back.
-      void* mapped = mmap(nullptr, bytes + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-      if (mapped == MAP_FAILED) throw std::bad_alloc();
-      const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(mapped);
-      const std::uintptr_t aligned = (start + kHuge - 1) & ~(kHuge - 1);
-      if (aligned > start) munmap(mapped, aligned - start);
-      if (start + kHuge > aligned) munmap(reinterpret_cast<void*>(aligned + bytes), start + kHuge - aligned);
-      madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);
-      return reinterpret_cast<T*>(aligned);
+      // From the allocator, not mmap itself: the leak checker scans what malloc hands out, and a
+      // workspace kept for the next diagram holds pointers to the per-triangle lists in here.
+      void* storage = std::aligned_alloc(kHuge, mapped_bytes(n));
+      if (!storage) throw std::bad_alloc();
+      madvise(storage, mapped_bytes(n), MADV_HUGEPAGE);
+      return static_cast<T*>(storage);
     }
 #endif
     return std::allocator<T>().allocate(n);
@@ -68,7 +65,7 @@ struct HugePageAllocator {
   void deallocate(T* p, std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
-      munmap(p, mapped_bytes(n));
+      std::free(p);
       return;
     }
 #endif
