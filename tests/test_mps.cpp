@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -923,7 +924,8 @@ struct LrrtRun {
 // of its sheet are sampled, and the LRRT of some samplings at that radius has duplicate triangles
 // there (docs/algorithms/mps.md, "Known limits").
 LrrtRun thin_box_lrrt(int seed, const std::string& extra) {
-  const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_lrrt_";
+  // Files of this process's own: ctest runs the test cases that call this side by side.
+  const std::string dir = std::string(LRVD_BINARY_DIR) + "/test_mps_lrrt_" + std::to_string(getpid()) + "_";
   const std::string mesh = dir + "box.off";
   const SurfaceMesh box = thin_box(0.01);
   write_mesh(mesh, box.positions(), box.triangles());
@@ -939,6 +941,7 @@ LrrtRun thin_box_lrrt(int seed, const std::string& extra) {
   if (in.good()) run.report = nlohmann::json::parse(in);
   std::ifstream said(console);
   run.console.assign(std::istreambuf_iterator<char>(said), std::istreambuf_iterator<char>());
+  for (const std::string& file : {mesh, report, console, dir + "s.xyz", dir + "lrrt.off"}) std::remove(file.c_str());
   return run;
 }
 

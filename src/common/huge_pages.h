@@ -27,7 +27,7 @@ constexpr std::size_t kHugePageArrayBytes = std::size_t(2) << 20;
 inline void advise_huge_pages(const void* data, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   if (bytes < kHugePageArrayBytes) return;
-  constexpr std::uintptr_t huge = std::uintptr_t(2) << 20;
+  constexpr std::uintptr_t huge = kHugePageArrayBytes;
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + huge - 1) & ~(huge - 1);
   const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(huge - 1);
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
@@ -51,12 +51,12 @@ struct HugePageAllocator {
 
   T* allocate(std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
+    if (large(n)) {
       // From the allocator, not mmap itself: the leak checker scans what malloc hands out, and a
       // workspace kept for the next diagram holds pointers to the per-triangle lists in here.
-      void* storage = std::aligned_alloc(kHuge, mapped_bytes(n));
+      void* storage = std::aligned_alloc(kHugePageArrayBytes, whole_pages_bytes(n));
       if (!storage) throw std::bad_alloc();
-      madvise(storage, mapped_bytes(n), MADV_HUGEPAGE);
+      madvise(storage, whole_pages_bytes(n), MADV_HUGEPAGE);
       return static_cast<T*>(storage);
     }
 #endif
@@ -64,7 +64,7 @@ struct HugePageAllocator {
   }
   void deallocate(T* p, std::size_t n) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T)) {
+    if (large(n)) {
       std::free(p);
       return;
     }
@@ -77,8 +77,14 @@ struct HugePageAllocator {
   bool operator!=(const HugePageAllocator<U>&) const { return false; }
 
  private:
-  static constexpr std::size_t kHuge = std::size_t(2) << 20;
-  static std::size_t mapped_bytes(std::size_t n) { return (n * sizeof(T) + kHuge - 1) / kHuge * kHuge; }
+  //! Storage of n values that goes on huge pages of its own (and whose size does not overflow).
+  static bool large(std::size_t n) {
+    return n * sizeof(T) >= kHugePageArrayBytes && n <= static_cast<std::size_t>(-1) / 2 / sizeof(T);
+  }
+  //! n values' bytes rounded up to whole huge pages.
+  static std::size_t whole_pages_bytes(std::size_t n) {
+    return (n * sizeof(T) + kHugePageArrayBytes - 1) / kHugePageArrayBytes * kHugePageArrayBytes;
+  }
 };
 
 //! A vector whose large storage lies on huge pages of its own (HugePageAllocator).
