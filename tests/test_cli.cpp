@@ -560,6 +560,18 @@ TEST_CASE("lrvd remesh exits 3 and still writes the output when the remesh fails
   REQUIRE(r.out.find("repair: ") != std::string::npos);
   REQUIRE(r.out.find(left["summary"].get<std::string>()) != std::string::npos);
   REQUIRE(r.out.find("more vertices") != std::string::npos);  // what to try next
+  // The narrowest part a ring of cells wraps: a finger, whose section is 0.1 x 0.2, so no loop
+  // round it is shorter than 0.6; the cells' boundaries zigzag round it within a cell's width
+  // (about 0.2 at 100 vertices). Three cells round it at a uniform density need more than 100.
+  const json& rings = left["rings"];
+  REQUIRE(rings["count"].get<int>() > 0);
+  const double around = rings["narrowest"]["around_pct"].get<double>() / 100 * box.diagonal();
+  CHECK(around >= 0.6);
+  CHECK(around < 0.8);
+  const long long needed = rings["narrowest"]["uniform_vertices"].get<long long>();
+  CHECK(needed > 100);
+  REQUIRE(r.out.find(fmt::format("a uniform density fits three cells round it from about {} vertices (100 given)",
+                                 needed)) != std::string::npos);
   // And how to see where: the command it names draws the failed remesh with its defects coloured.
   const std::string picture = kOut + "comb_100_defects.png";
   const std::string see = "see where: lrvd render " + out + " --color defects -o " + picture + "\n";

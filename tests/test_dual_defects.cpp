@@ -93,6 +93,17 @@ TEST_CASE("A ring cell round the narrowing part below a tip cap is named with th
   CHECK(defects.tip_cap_rings == std::vector<int>{1});
   CHECK(std::find(defects.cell_topology.begin(), defects.cell_topology.end(), 1) != defects.cell_topology.end());
   CHECK_FALSE(defects.euler_ok);
+  // The ring is measured by its shorter loop, the one round the cap: the cap's and the ring's
+  // samples (heights 9.5 and 8) put it between heights 8 and 9.5, where the cone's 12-sided
+  // section is 0.31 to 1.24 round (a loop round the axis there is no shorter than the section at its
+  // top; the one round the base of the ring, near height 6.5, would be about 2.2).
+  REQUIRE(defects.rings.size() == 1);
+  CHECK(defects.rings[0].cell == 1);
+  CHECK(defects.rings[0].other == -1);
+  const double side = 2 * std::sin(M_PI / 12);  // of the 12-gon of radius 1
+  INFO("around " << defects.rings[0].around);
+  CHECK(defects.rings[0].around > 12 * side * (10 - 9.5) / 10);
+  CHECK(defects.rings[0].around < 12 * side * (10 - 8.0) / 10);
 }
 
 TEST_CASE("Two cells that meet across a neck narrower than them are where to act: two squares joined by a neck", "[cvt][remesh]") {

@@ -44,7 +44,9 @@ struct RemeshCommandOptions {
 
 // Where the repair gave up, on the input surface, and what to try: a thin part or a handle too
 // small for the cells.
-void print_repair_advice(const RemeshResult& remeshed, const ClosedOverHoles& holes) {
+void print_repair_advice(const RemeshRun& run) {
+  const RemeshResult& remeshed = run.result;
+  const ClosedOverHoles& holes = run.holes;
   const DualDefects& left = remeshed.defects;
   const int first = left.where_to_act().empty() ? -1 : left.where_to_act().front();
   std::string where;
@@ -62,6 +64,17 @@ void print_repair_advice(const RemeshResult& remeshed, const ClosedOverHoles& ho
     // CGAL's couplingdown (genus 9) fails at 200 vertices with seeds 1-3 and is valid at 500.
     std::printf("repair: there the surface is thinner, or a handle narrower, than the cells can follow; more "
                 "vertices (smaller cells) may mend it\n");
+  if (const NarrowPart& narrow = run.narrow; narrow.vertex >= 0) {
+    const Vec3& p = remeshed.cvt.samples.positions[narrow.vertex];
+    const long long given = static_cast<long long>(remeshed.cvt.samples.size());
+    const std::string cells = narrow.other < 0 ? fmt::format("the cell of vertex {} wraps", narrow.vertex)
+                                               : fmt::format("the cells of vertices {} and {} wrap", narrow.vertex,
+                                                             narrow.other);
+    std::printf("repair: %s a part about %.3g round (%.3g %% of the bounding-box diagonal) at (%.6g, %.6g, %.6g): a "
+                "uniform density fits three cells round it from about %lld vertices (%lld given)\n",
+                cells.c_str(), narrow.around, 100 * narrow.around / run.diagonal, p.x, p.y, p.z,
+                narrow.uniform_vertices, given);
+  }
 }
 
 // Holes of the input too small for the cells: how many, and the --fill-holes that closes them.
@@ -126,7 +139,7 @@ int run_remesh_command(const RemeshCommandOptions& opt) {
   print_quality(run.measurable ? &run.quality : nullptr, false);
   std::printf("verification: %s%s\n", check.passed ? "passed" : "FAILED", inherited_note(check).c_str());
   if (!check.passed) std::fputs(check.summary().c_str(), stdout);
-  if (!check.passed && !remeshed.defects.empty()) print_repair_advice(remeshed, run.holes);
+  if (!check.passed && !remeshed.defects.empty()) print_repair_advice(run);
   if (!check.passed && run.holes.count > 0) print_hole_advice(run.holes, run.diagonal);
   print_defects_picture_command(check, dual, opt.output);
   return check.passed ? kOk : kCheckFailed;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <string>
@@ -34,11 +35,12 @@ class CellTopology {
       : diagram_(diagram), mesh_(mesh), cells_(diagram.sample_count), faces_(cells_, 0), inner_sides_(cells_, 0),
         outer_edges_(cells_, 0), unknown_edge_(cells_, 0) {}
 
-  void add_defects(std::set<int>& defect, std::vector<std::pair<int, int>>& strips) {
+  void add_defects(std::set<int>& defect, std::vector<std::pair<int, int>>& strips, std::vector<RingCell>& rings) {
     read_polygon_edges();
     add_cells_not_disks(defect);
     group_pieces_by_key();
     add_split_boundaries(defect, strips);
+    measure_rings(rings);
   }
 
  private:
@@ -46,10 +48,12 @@ class CellTopology {
   struct Piece {
     Key key;
     SymbolicVertex u, w;
+    int other;  // the cell across, or -2 on the mesh boundary
   };
   struct Link {
     Key key;
     int u, w;
+    int other;
     bool operator<(const Link& o) const { return key < o.key; }
   };
 
@@ -89,9 +93,9 @@ class CellTopology {
           continue;
         }
         ++outer_edges_[poly.cell];
-        pieces_.push_back({{poly.cell, 0}, u, w});
+        pieces_.push_back({{poly.cell, 0}, u, w, other});
         if (other >= 0 && poly.cell < other) {
-          pieces_.push_back({{poly.cell, other + 1}, u, w});
+          pieces_.push_back({{poly.cell, other + 1}, u, w, other});
           for (const SymbolicVertex* q : {&u, &w})
             for (int e = 0; e < 3; ++e)
               if (q->type == SymbolicVertex::Type::B && mesh_.neighbor(poly.triangle, e) < 0 &&
@@ -125,7 +129,7 @@ class CellTopology {
     std::vector<int> next(first_of_cell_.begin(), first_of_cell_.end() - 1);
     for (const Piece& p : pieces_) {
       const int u = id_of(p.u);
-      links_[next[p.key.first]++] = {p.key, u, id_of(p.w)};
+      links_[next[p.key.first]++] = {p.key, u, id_of(p.w), p.other};
     }
     kind_.assign(ids_.size(), 0);
     for (const auto& [q, id] : ids_)
@@ -136,8 +140,8 @@ class CellTopology {
   }
 
   // Connected components per key, with a union-find over the key's vertices: a cell's boundary or
-  // a pair's arc in more than one piece is a defect; a pair's one arc from the mesh boundary to the
-  // mesh boundary through no triple point is a strip.
+  // a pair's arc in more than one piece is a defect (a ring, measured by measure_rings); a pair's
+  // one arc from the mesh boundary to the mesh boundary through no triple point is a strip.
   void add_split_boundaries(std::set<int>& defect, std::vector<std::pair<int, int>>& strips) {
     std::vector<int> parent(ids_.size(), -1);  // -1: not in the current key's forest
     std::vector<int> touched;
@@ -162,6 +166,7 @@ class CellTopology {
       if (components > 1) {
         defect.insert(links_[first].key.first);
         if (links_[first].key.second > 0) defect.insert(links_[first].key.second - 1);
+        rings_.push_back(links_[first].key);
       } else if (links_[first].key.second > 0 && boundary_end && !triple) {
         strips.push_back({links_[first].key.first, links_[first].key.second - 1});
       }
@@ -169,6 +174,57 @@ class CellTopology {
       touched.clear();
       first = last;
     }
+  }
+
+  // How far round each ring of rings_ goes: the shortest loop of its boundary that meets another
+  // cell (a cell's own boundary; for a pair sharing two arcs, the two cells' boundaries but those
+  // arcs), from the vertices' double positions. Each loop of a ring round a tube goes round it, so
+  // the shortest is the closest to the tube's girth (and no shorter); a loop wholly on the mesh
+  // boundary is a hole inside the cell, not a part.
+  void measure_rings(std::vector<RingCell>& rings) {
+    if (rings_.empty()) return;
+    std::vector<SymbolicVertex> vertex_of(ids_.size());
+    for (const auto& [q, id] : ids_) vertex_of[id] = q;
+    const SymbolicContext ctx = diagram_.context(mesh_);
+    std::vector<const Link*> loop_links;
+    for (const Key& ring : rings_) {
+      loop_links.clear();
+      const int a = ring.first, b = ring.second - 1;  // b = -1: a cell alone
+      for (const int c : {a, b}) {
+        if (c < 0) continue;
+        for (int k = first_of_cell_[c]; k < first_of_cell_[c + 1] && links_[k].key.second == 0; ++k)
+          if (links_[k].other != (c == a ? b : a)) loop_links.push_back(&links_[k]);
+      }
+      const double around = shortest_loop(loop_links, vertex_of, ctx);
+      if (around > 0) rings.push_back({a, b, around});
+    }
+  }
+
+  static double shortest_loop(const std::vector<const Link*>& links, const std::vector<SymbolicVertex>& vertex_of,
+                             const SymbolicContext& ctx) {
+    std::unordered_map<int, int> parent;
+    auto root = [&](int x) {
+      auto it = parent.try_emplace(x, x).first;
+      while (it->second != x) {
+        x = it->second;
+        it = parent.find(x);
+      }
+      return x;
+    };
+    for (const Link* l : links) {
+      const int ra = root(l->u), rb = root(l->w);
+      if (ra != rb) parent[ra] = rb;
+    }
+    std::unordered_map<int, std::pair<double, bool>> loops;  // root -> (length, meets a cell)
+    for (const Link* l : links) {
+      auto& [length, meets] = loops[root(l->u)];
+      length += norm(position(vertex_of[l->u], ctx) - position(vertex_of[l->w], ctx));
+      meets = meets || l->other >= 0;
+    }
+    double shortest = 0;
+    for (const auto& [r, loop] : loops)
+      if (loop.second && (shortest == 0 || loop.first < shortest)) shortest = loop.first;
+    return shortest;
   }
 
   const Diagram& diagram_;
@@ -183,11 +239,12 @@ class CellTopology {
   std::vector<int> first_of_cell_;
   std::vector<Link> links_;
   std::vector<char> kind_;
+  std::vector<Key> rings_;  // cells whose boundary, and pairs whose shared arcs, come in pieces
 };
 
 void add_cell_topology_defects(const Diagram& diagram, const SurfaceMesh& mesh, std::set<int>& defect,
-                               std::vector<std::pair<int, int>>& strips) {
-  CellTopology(diagram, mesh).add_defects(defect, strips);
+                               std::vector<std::pair<int, int>>& strips, std::vector<RingCell>& rings) {
+  CellTopology(diagram, mesh).add_defects(defect, strips, rings);
 }
 
 // Vertices whose triangles form more than one fan (two triangles around v are in one fan when a
@@ -376,7 +433,8 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   add_pinched_vertices(dual, defect);
   std::set<int> hints;
   std::vector<std::pair<int, int>> strips;
-  add_cell_topology_defects(diagram, mesh, hints, strips);
+  std::vector<RingCell> rings;
+  add_cell_topology_defects(diagram, mesh, hints, strips, rings);
   std::vector<int> closed_over;
   if (!input_closed) add_closed_over_holes(diagram, mesh, hints, closed_over);
   // The dual's Euler characteristic against the mesh's: a manifold dual can still have lost a
@@ -421,6 +479,7 @@ DualDefects find_dual_defects(const DualMesh& dual, const Diagram& diagram, cons
   tip_cap_rings.erase(std::unique(tip_cap_rings.begin(), tip_cap_rings.end()), tip_cap_rings.end());
   out.tip_cap_rings = std::move(tip_cap_rings);
   out.closed_over_loops = std::move(closed_over);
+  out.rings = std::move(rings);
   out.euler_ok = euler_ok;
   out.crossing_pairs = pairs;
   return out;

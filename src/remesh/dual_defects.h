@@ -15,6 +15,16 @@
 
 namespace lrvd {
 
+//! A ring of cells round a part of the surface (a tube, a handle) that the cells are too large to
+//! go round: one cell whose boundary is more than one loop, or two cells sharing two arcs.
+struct RingCell {
+  int cell = -1;
+  int other = -1;  //!< the second cell of a pair sharing two arcs; -1 for a cell alone
+  //! The length of the ring's longest boundary loop that meets other cells, from double positions:
+  //! about how far round the part it wraps is (a figure for messages, deciding nothing).
+  double around = 0;
+};
+
 //! Edges of a dual that are not shared by exactly two triangles (one, on a closed input), triangles
 //! repeated on the same three vertices or given by two triple points (merged), samples in no
 //! triangle, and triangles that intersect each other (but for the crossings the input has too:
@@ -50,6 +60,8 @@ struct DualDefects {
   //! Boundary loops of the mesh (indices into SurfaceMesh::boundary_loops) that fewer than three
   //! cells meet: holes the dual closes over (their cells are in `cell_topology`).
   std::vector<int> closed_over_loops;
+  //! The rings among the cells in `cell_topology`, with how far round they go.
+  std::vector<RingCell> rings;
   bool euler_ok = true;            //!< the dual's V - E + F equals the mesh's Euler characteristic
   //! find_self_intersections of the dual's proper triangles, all of them (for the fitting)
   std::vector<std::pair<int, int>> crossing_pairs;

@@ -16,6 +16,16 @@
 
 namespace lrvd {
 
+NarrowPart narrowest_ring(const DualDefects& defects, double area) {
+  NarrowPart narrow;
+  for (const RingCell& ring : defects.rings)
+    if (narrow.vertex < 0 || ring.around < narrow.around) narrow = {ring.cell, ring.other, ring.around, 0};
+  if (narrow.vertex >= 0 && narrow.around > 0)
+    narrow.uniform_vertices = static_cast<long long>(
+        std::ceil(std::min(6 * std::sqrt(3.0) * area / (narrow.around * narrow.around), 1e15)));
+  return narrow;
+}
+
 namespace {
 
 // What the repair left (RemeshResult::defects), by kind: the count and the first few samples, each
@@ -191,6 +201,16 @@ void write_remesh_report(RemeshRun& run, const Input& input, const RemeshSetting
     if (holes.fillable > 0) report["defects_left"]["closed_over_holes"]["fill_holes"] = holes.fraction;
   }
   auto percent = [diagonal](double length) { return 100.0 * length / diagonal; };
+  const NarrowPart& narrow = run.narrow = narrowest_ring(remeshed.defects, input.loaded.mesh.area());
+  report["defects_left"]["rings"] = {{"count", remeshed.defects.rings.size()}};
+  if (narrow.vertex >= 0) {
+    const Vec3& p = result.samples.positions[narrow.vertex];
+    report["defects_left"]["rings"]["narrowest"] = {{"vertex", narrow.vertex},
+                                                    {"other_vertex", narrow.other},
+                                                    {"position", {p.x, p.y, p.z}},
+                                                    {"around_pct", percent(narrow.around)},
+                                                    {"uniform_vertices", narrow.uniform_vertices}};
+  }
   report["fit"] = {{"enabled", remesh.fit},
                    {"moved", remeshed.fit.moved},
                    {"reverted", remeshed.fit.reverted},

@@ -38,6 +38,19 @@ struct ClosedOverHoles {
   int others = 0;    //!< other holes it fills
 };
 
+//! The narrowest part a cell of the kept dual wraps (DualDefects::rings): that cell's sample, how
+//! far round the part is, and how many vertices a uniform density needs to fit three cells round
+//! it (hexagonal cells a third of the way round each: 6√3 · area / around², the input's area).
+struct NarrowPart {
+  int vertex = -1;  //!< -1: no cell is a ring
+  int other = -1;   //!< the second cell of a pair sharing two arcs
+  double around = 0;
+  long long uniform_vertices = 0;
+};
+
+//! The narrowest of `defects.rings`; `area` is the input surface's.
+NarrowPart narrowest_ring(const DualDefects& defects, double area);
+
 struct RemeshRun {
   RemeshOptions options;
   RemeshResult result;
@@ -45,6 +58,7 @@ struct RemeshRun {
   bool measurable = false;  //!< the dual has triangles
   QualityMetrics quality;
   ClosedOverHoles holes;
+  NarrowPart narrow;
   double diagonal = 0;  //!< of the input's bounding box
   nlohmann::json report;
 };
