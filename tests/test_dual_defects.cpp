@@ -155,3 +155,57 @@ TEST_CASE("A cell with a handle inside it is where to act: a sheet with a small 
     REQUIRE(r.check.genus == 1);
   }
 }
+
+TEST_CASE("A ring of cells round a thin tube is measured by how far round the tube it goes", "[cvt][remesh]") {
+  // A torus of radii 1 and 0.05 (tube 0.314 round) with ten samples along its core circle: every
+  // cell is about 0.6 long and wraps the tube. No loop round the tube is shorter than its section
+  // (the 24-gon at a ring of vertices; between two rings, where the chords of the 120-gon cut
+  // inside, about cos(π/120) of it), and a cell's boundary, a bisector's cut through the tube, is
+  // not much longer.
+  const double r = 0.05;
+  const int sides = 24;
+  const SurfaceMesh torus = test::torus(1, r, 120, sides);
+  std::vector<Vec3> points;
+  for (int i = 0; i < 10; ++i) {
+    const double u = 2 * M_PI * (i + 0.3) / 10;
+    points.push_back({(1 + r) * std::cos(u), (1 + r) * std::sin(u), 0});
+  }
+  const Samples samples = locate_points(torus, points);
+  const Diagram diagram = compute_lrvd(torus, samples);
+  const DualMesh dual = compute_dual(diagram, torus, samples);
+  const DualDefects defects = find_dual_defects(dual, diagram, torus, samples, true);
+  REQUIRE(defects.rings.size() == 10);
+  const double section = sides * 2 * r * std::sin(M_PI / sides);
+  for (const RingCell& ring : defects.rings) {
+    INFO("cell " << ring.cell << " around " << ring.around);
+    CHECK(ring.other == -1);
+    CHECK(ring.around >= section * std::cos(M_PI / 120));
+    CHECK(ring.around < 1.5 * section);
+  }
+}
+
+TEST_CASE("A cell round a hole of an open mesh is not a ring round a part", "[cvt][remesh]") {
+  // A unit square of 20 x 20 quads with the quad [0.5, 0.55]² left out, and five samples, one at
+  // (0.45, 0.45) whose cell holds the hole: that cell's boundary is two loops, but one is the hole
+  // (closed_over_holes tells of it), so no ring is named.
+  const int n = 20;
+  std::vector<Vec3> positions;
+  std::vector<Triangle> triangles;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) positions.push_back({double(i) / n, double(j) / n, 0});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      if (i == n / 2 && j == n / 2) continue;
+      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      triangles.push_back({a, b, d});
+      triangles.push_back({a, d, c});
+    }
+  const SurfaceMesh sheet(positions, triangles);
+  const Samples samples = locate_points(sheet, {{0.2, 0.2, 0}, {0.8, 0.2, 0}, {0.2, 0.8, 0}, {0.8, 0.8, 0}, {0.45, 0.45, 0}});
+  const Diagram diagram = compute_lrvd(sheet, samples);
+  const DualMesh dual = compute_dual(diagram, sheet, samples);
+  const DualDefects defects = find_dual_defects(dual, diagram, sheet, samples, false);
+  CHECK(std::find(defects.cell_topology.begin(), defects.cell_topology.end(), 4) != defects.cell_topology.end());
+  CHECK(defects.closed_over_loops.size() == 1);
+  CHECK(defects.rings.empty());
+}

@@ -71,7 +71,8 @@ void print_repair_advice(const RemeshRun& run) {
                                                : fmt::format("the cells of vertices {} and {} wrap", narrow.vertex,
                                                              narrow.other);
     std::printf("repair: %s a part about %.3g round (%.3g %% of the bounding-box diagonal) at (%.6g, %.6g, %.6g): a "
-                "uniform density fits three cells round it from about %lld vertices (%lld given)\n",
+                "uniform density fits three cells round it from about %lld vertices (%lld given); the repair, "
+                "denser there, may need fewer\n",
                 cells.c_str(), narrow.around, 100 * narrow.around / run.diagonal, p.x, p.y, p.z,
                 narrow.uniform_vertices, given);
   }

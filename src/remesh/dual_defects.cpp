@@ -179,8 +179,8 @@ class CellTopology {
   // How far round each ring of rings_ goes: the shortest loop of its boundary that meets another
   // cell (a cell's own boundary; for a pair sharing two arcs, the two cells' boundaries but those
   // arcs), from the vertices' double positions. Each loop of a ring round a tube goes round it, so
-  // the shortest is the closest to the tube's girth (and no shorter); a loop wholly on the mesh
-  // boundary is a hole inside the cell, not a part.
+  // the shortest is the closest to the tube's girth (and no shorter). A ring with fewer than two
+  // such loops holds a hole (a loop wholly on the mesh boundary), not a part: it is left out.
   void measure_rings(std::vector<RingCell>& rings) {
     if (rings_.empty()) return;
     std::vector<SymbolicVertex> vertex_of(ids_.size());
@@ -200,8 +200,9 @@ class CellTopology {
     }
   }
 
+  // The shortest loop of `links` that meets another cell; 0 when fewer than two loops do.
   static double shortest_loop(const std::vector<const Link*>& links, const std::vector<SymbolicVertex>& vertex_of,
-                             const SymbolicContext& ctx) {
+                              const SymbolicContext& ctx) {
     std::unordered_map<int, int> parent;
     auto root = [&](int x) {
       auto it = parent.try_emplace(x, x).first;
@@ -222,9 +223,13 @@ class CellTopology {
       meets = meets || l->other >= 0;
     }
     double shortest = 0;
+    int meeting = 0;
     for (const auto& [r, loop] : loops)
-      if (loop.second && (shortest == 0 || loop.first < shortest)) shortest = loop.first;
-    return shortest;
+      if (loop.second) {
+        ++meeting;
+        if (shortest == 0 || loop.first < shortest) shortest = loop.first;
+      }
+    return meeting >= 2 ? shortest : 0;
   }
 
   const Diagram& diagram_;

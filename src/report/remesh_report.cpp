@@ -20,9 +20,10 @@ NarrowPart narrowest_ring(const DualDefects& defects, double area) {
   NarrowPart narrow;
   for (const RingCell& ring : defects.rings)
     if (narrow.vertex < 0 || ring.around < narrow.around) narrow = {ring.cell, ring.other, ring.around, 0};
-  if (narrow.vertex >= 0 && narrow.around > 0)
-    narrow.uniform_vertices = static_cast<long long>(
-        std::ceil(std::min(6 * std::sqrt(3.0) * area / (narrow.around * narrow.around), 1e15)));
+  if (narrow.vertex >= 0) {
+    const double hexagon = std::sqrt(3.0) / 18 * narrow.around * narrow.around;
+    narrow.uniform_vertices = static_cast<long long>(std::ceil(std::min(area / hexagon, 1e15)));
+  }
   return narrow;
 }
 

@@ -38,11 +38,12 @@ struct ClosedOverHoles {
   int others = 0;    //!< other holes it fills
 };
 
-//! The narrowest part a cell of the kept dual wraps (DualDefects::rings): that cell's sample, how
-//! far round the part is, and how many vertices a uniform density needs to fit three cells round
-//! it (hexagonal cells a third of the way round each: 6√3 · area / around², the input's area).
+//! The narrowest part a ring of cells in the kept dual wraps (DualDefects::rings): the ring's
+//! sample(s), how far round the part is, and how many vertices a uniform density needs to fit three
+//! cells round it: the input's area over hexagons of area √3/18 · around² (a third of the way round
+//! across).
 struct NarrowPart {
-  int vertex = -1;  //!< -1: no cell is a ring
+  int vertex = -1;  //!< -1: no ring
   int other = -1;   //!< the second cell of a pair sharing two arcs
   double around = 0;
   long long uniform_vertices = 0;
