@@ -189,17 +189,11 @@ TEST_CASE("A cell round a hole of an open mesh is not a ring round a part", "[cv
   // (0.45, 0.45) whose cell holds the hole: that cell's boundary is two loops, but one is the hole
   // (closed_over_holes tells of it), so no ring is named.
   const int n = 20;
-  std::vector<Vec3> positions;
-  std::vector<Triangle> triangles;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) positions.push_back({double(i) / n, double(j) / n, 0});
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      if (i == n / 2 && j == n / 2) continue;
-      const int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-      triangles.push_back({a, b, d});
-      triangles.push_back({a, d, c});
-    }
+  const SurfaceMesh grid = test::grid(n, n);
+  std::vector<Triangle> triangles = grid.triangles();
+  const int quad = n / 2 * n + n / 2;  // grid() splits quad (i, j) into triangles 2 (j n + i) and the next
+  triangles.erase(triangles.begin() + 2 * quad, triangles.begin() + 2 * quad + 2);
+  const std::vector<Vec3>& positions = grid.positions();
   const SurfaceMesh sheet(positions, triangles);
   const Samples samples = locate_points(sheet, {{0.2, 0.2, 0}, {0.8, 0.2, 0}, {0.2, 0.8, 0}, {0.8, 0.8, 0}, {0.45, 0.45, 0}});
   const Diagram diagram = compute_lrvd(sheet, samples);
