@@ -81,7 +81,7 @@ class Untangler {
   bool move_groups(const Pairs& pairs);
   bool flip_crossing_edges();
   bool try_moves(const std::vector<int>& group, const std::vector<Vec3>& displacements);
-  int local_crossings(const std::vector<int>& moved_triangles, const std::vector<int>& near) const;
+  int local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near) const;
   int crossings_of(const std::vector<int>& ts);
   bool flip(int g, int e);
 
@@ -268,12 +268,19 @@ bool Untangler::try_moves(const std::vector<int>& group, const std::vector<Vec3>
       if (!moving_[t]) moving_[t] = 1, moved_triangles.push_back(t);
   }
   if (moved_triangles.empty() || group_reach <= 0) return false;
-  Box around = box_[moved_triangles[0]];
-  for (int t : moved_triangles) around.add(box_[t].lo), around.add(box_[t].hi);
-  around = around.grown(2 * group_reach);
-  std::vector<int> near;
-  for (int t = 0; t < nt_; ++t)
-    if (proper_[t] && box_[t].overlaps(around)) near.push_back(t);
+  // Every vertex stays within its reach of where it started, so within twice the reach of where
+  // it is: the triangles each moved one can meet in any trial, once (pairs of two moved
+  // triangles from the one of larger index).
+  std::vector<std::vector<int>> near(moved_triangles.size());
+  for (size_t i = 0; i < moved_triangles.size(); ++i) {
+    const int s = moved_triangles[i];
+    if (!proper_[s]) continue;
+    const Box around = box_[s].grown(2 * group_reach);
+    for (int t = 0; t < nt_; ++t) {
+      if (t == s || !proper_[t] || (moving_[t] && t < s) || !counted(s, t)) continue;
+      if (moving_[t] || box_[t].overlaps(around)) near[i].push_back(t);
+    }
+  }
   const int current = local_crossings(moved_triangles, near);
   bool improved = false;
   if (current > 0) {
@@ -307,16 +314,15 @@ bool Untangler::try_moves(const std::vector<int>& group, const std::vector<Vec3>
   return improved;
 }
 
-// Crossing pairs with a moved triangle among `near` (pairs of two moved triangles once).
-int Untangler::local_crossings(const std::vector<int>& moved_triangles, const std::vector<int>& near) const {
+// Crossing pairs of each moved triangle with the triangles try_moves listed for it.
+int Untangler::local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near) const {
   int count = 0;
-  for (int s : moved_triangles) {
-    if (!proper_[s]) continue;
+  for (size_t i = 0; i < moved_triangles.size(); ++i) {
+    if (near[i].empty()) continue;
+    const int s = moved_triangles[i];
     const Box bs = box_of(p_, tris_[s]);
-    for (int t : near) {
-      if (t == s || !counted(s, t) || (moving_[t] && t < s) || !bs.overlaps(box_of(p_, tris_[t]))) continue;
-      count += triangles_cross(p_, tris_[s], tris_[t]);
-    }
+    for (int t : near[i])
+      if (bs.overlaps(moving_[t] ? box_of(p_, tris_[t]) : box_[t])) count += triangles_cross(p_, tris_[s], tris_[t]);
   }
   return count;
 }
