@@ -2,6 +2,7 @@
 #include "remesh/untangle.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -81,7 +82,8 @@ class Untangler {
   bool move_groups(const Pairs& pairs);
   bool flip_crossing_edges();
   bool try_moves(const std::vector<int>& group, const std::vector<Vec3>& displacements);
-  int local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near) const;
+  int local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near,
+                      int limit = std::numeric_limits<int>::max()) const;
   int crossings_of(const std::vector<int>& ts);
   bool flip(int g, int e);
 
@@ -286,10 +288,16 @@ bool Untangler::try_moves(const std::vector<int>& group, const std::vector<Vec3>
   if (current > 0) {
     std::vector<Vec3> from;
     for (int v : group) from.push_back(p_[v]);
+    // Shortest first (in their order among equals): a later trial wins only with fewer crossings,
+    // so counting stops at the best so far, and the trials at the first that leaves none.
+    std::vector<std::pair<double, int>> by_length;
+    for (size_t k = 0; k < displacements.size(); ++k) by_length.push_back({norm(displacements[k]), static_cast<int>(k)});
+    std::stable_sort(by_length.begin(), by_length.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     int best = current;
     Vec3 best_displacement{0, 0, 0};
-    double best_move = 0;
-    for (const Vec3& d : displacements) {
+    for (const auto& [length, index] : by_length) {
+      const Vec3& d = displacements[index];
       bool ok = true;
       for (size_t k = 0; k < group.size() && ok; ++k) {
         p_[group[k]] = from[k] + d;
@@ -297,12 +305,11 @@ bool Untangler::try_moves(const std::vector<int>& group, const std::vector<Vec3>
       }
       for (size_t k = 0; k < group.size() && ok; ++k) ok = acceptable(group[k]);
       if (ok) {
-        const int count = local_crossings(moved_triangles, near);
-        const double move = norm(d);
-        if (count < best || (count == best && best < current && move < best_move))
-          best = count, best_displacement = d, best_move = move;
+        const int count = local_crossings(moved_triangles, near, best);
+        if (count < best) best = count, best_displacement = d;
       }
       for (size_t k = 0; k < group.size(); ++k) p_[group[k]] = from[k];
+      if (best == 0) break;
     }
     if (best < current) {
       for (size_t k = 0; k < group.size(); ++k) p_[group[k]] = from[k] + best_displacement;
@@ -314,15 +321,18 @@ bool Untangler::try_moves(const std::vector<int>& group, const std::vector<Vec3>
   return improved;
 }
 
-// Crossing pairs of each moved triangle with the triangles try_moves listed for it.
-int Untangler::local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near) const {
+// Crossing pairs of each moved triangle with the triangles try_moves listed for it; the count
+// stops at `limit`.
+int Untangler::local_crossings(const std::vector<int>& moved_triangles, const std::vector<std::vector<int>>& near,
+                               int limit) const {
   int count = 0;
   for (size_t i = 0; i < moved_triangles.size(); ++i) {
     if (near[i].empty()) continue;
     const int s = moved_triangles[i];
     const Box bs = box_of(p_, tris_[s]);
     for (int t : near[i])
-      if (bs.overlaps(moving_[t] ? box_of(p_, tris_[t]) : box_[t])) count += triangles_cross(p_, tris_[s], tris_[t]);
+      if (bs.overlaps(moving_[t] ? box_of(p_, tris_[t]) : box_[t]) && triangles_cross(p_, tris_[s], tris_[t]))
+        if (++count >= limit) return count;
   }
   return count;
 }
