@@ -20,7 +20,7 @@ namespace lrvd {
 struct RingCell {
   int cell = -1;
   int other = -1;  //!< the second cell of a pair sharing two arcs; -1 for a cell alone
-  //! The length of the ring's longest boundary loop that meets other cells, from double positions:
+  //! The length of the ring's shortest boundary loop that meets other cells, from double positions:
   //! about how far round the part it wraps is (a figure for messages, deciding nothing).
   double around = 0;
 };
