@@ -142,19 +142,24 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
 }
 
 template <class F>
-bool DiskIndex::search(const Vec3& p, int t, double w, bool region, F&& f) {
+bool DiskIndex::search(const Vec3& p, const int* from, int count, double w, bool region, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
     for (TriangleInfo& info : triangles_info_) info.stamp = 0;
     stamp_value_ = 1;
   }
-  // Breadth-first over the triangles the ball meets. With the facing cut, a region (region:
-  // true) grows only through those facing like t, and f sees only those; the paper's rule
-  // (no cut) and met() take every one.
+  // Breadth-first over the triangles the ball meets, from those p lies on. With the facing cut, a
+  // region (region: true) grows only through those facing like the first, and f sees only those;
+  // the paper's rule (no cut) and met() take every one.
   const bool cut = facing_cut_;
-  queue_.assign(1, t);
-  triangles_info_[t].stamp = stamp_value_;
-  if (f(t)) return true;
-  const Vec3 facing = normals_[t];
+  queue_.clear();
+  for (int k = 0; k < count; ++k) {
+    const int t = from[k];
+    if (triangles_info_[t].stamp == stamp_value_) continue;
+    triangles_info_[t].stamp = stamp_value_;
+    queue_.push_back(t);
+    if (f(t)) return true;
+  }
+  const Vec3 facing = normals_[from[0]];
   const double r = std::sqrt(w);
   for (size_t k = 0; k < queue_.size(); ++k) {
     const int s = queue_[k];
@@ -173,9 +178,11 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool region, F&& f) {
   return false;
 }
 
-const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
+const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) { return grow(p, &t, 1, w); }
+
+const std::vector<int>& DiskIndex::grow(const Vec3& p, const int* from, int count, double w) {
   region_.clear();
-  search(p, t, w, true, [&](int n) {
+  search(p, from, count, w, true, [&](int n) {
     region_.push_back(n);
     return false;
   });
@@ -183,12 +190,12 @@ const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
 }
 
 const std::vector<int>& DiskIndex::met(const Vec3& p, int t, double w) {
-  search(p, t, w, false, [](int) { return false; });
+  search(p, &t, 1, w, false, [](int) { return false; });
   return queue_;
 }
 
 bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
-  return search(p, t, w, true, [&](int n) { return n == target; });
+  return search(p, &t, 1, w, true, [&](int n) { return n == target; });
 }
 
 bool DiskIndex::sample_reaches(int i, double w, int target) {

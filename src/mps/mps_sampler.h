@@ -191,10 +191,16 @@ class Sampler {
 
   //! region_ = the local region of (p, w): grown from each triangle p lies on (seeds_: one, or on
   //! an edge or a corner every triangle there), so that on a sharp edge or corner the darts on
-  //! every face around keep their distance.
+  //! every face around keep their distance. Without the facing cut a triangle's membership does
+  //! not depend on the triangle grown from: one growth from all of them gives the union.
   void region_of(const Vec3& p, double w) {
+    if (seeds_.size() == 1 || !disks_.facing_cut()) {
+      region_ = disks_.grow(p, seeds_.data(), static_cast<int>(seeds_.size()), w);
+      if (seeds_.size() == 1) return;
+      std::sort(region_.begin(), region_.end());
+      return;
+    }
     region_ = disks_.grow(p, seeds_[0], w);
-    if (seeds_.size() == 1) return;
     for (size_t k = 1; k < seeds_.size(); ++k) {
       const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
       region_.insert(region_.end(), more.begin(), more.end());
