@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
-#include <queue>
 #include <utility>
 
 #include "mesh/closest_point.h"
@@ -214,19 +214,23 @@ double DiskIndex::reach_threshold(const Vec3& p, const std::vector<int>& from, c
     stamp_value_ = 1;
   }
   threshold_key_.resize(triangles_info_.size());
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  // A binary heap in a kept vector (std::priority_queue's operations, without its allocation).
+  std::vector<std::pair<double, int>>& heap = threshold_heap_;
+  const std::greater<std::pair<double, int>> later;
+  heap.clear();
   auto offer = [&](int t, double key) {
     TriangleInfo& info = triangles_info_[t];
     if (info.stamp == stamp_value_ && threshold_key_[t] <= key) return;
     info.stamp = stamp_value_;
     threshold_key_[t] = key;
-    heap.emplace(key, t);
+    heap.emplace_back(key, t);
+    std::push_heap(heap.begin(), heap.end(), later);
   };
   for (int t : from) offer(t, 0);  // p lies on them: every region holds them
   while (!heap.empty()) {
-    const auto [key, t] = heap.top();
-    heap.pop();
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [key, t] = heap.back();
+    heap.pop_back();
     if (key > threshold_key_[t]) continue;
     if (std::find(to.begin(), to.end(), t) != to.end()) return key;
     for (int e = 0; e < 3; ++e) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/huge_pages.h"
@@ -158,6 +159,7 @@ class DiskIndex {
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_, seeds_;
   std::vector<double> threshold_key_;  // per triangle, reach_threshold(): the best key found (this stamp)
+  std::vector<std::pair<double, int>> threshold_heap_;  // reach_threshold(): (key, triangle), least on top
   HugePageVector<TriangleInfo> triangles_info_;  // per triangle
   HugePageVector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle
