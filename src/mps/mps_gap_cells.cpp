@@ -47,10 +47,14 @@ void GapSet::extract_from_disks(const std::vector<Site>& sites) {
       begin = poly.end;
       const int count = static_cast<int>(vertices.size());
       if (place_polygon(vertices.data(), count, sites[poly.cell], ctx, polygon)) continue;  // in its own disk
+      // Not split by the other disks reaching t (add_split): the polygon lies in the cell's power
+      // cell among them, where a point outside the cell's disk is outside every one of them.
       ++uncovered_polygons_;
+      const size_t first = pieces_.size();
       required_ = true;
-      required_pieces_ += add_split(polygon, t, poly.cell);
+      add_outside(polygon, t, poly.cell);
       required_ = false;
+      for (size_t p = first; p < pieces_.size(); ++p) required_pieces_ += pieces_[p].alive;
     }
   }
   rebuild();
