@@ -2,6 +2,7 @@
 // of the disks reaching each triangle (exact clipping, diagram/clip.h) instead of an LRPD: with
 // local updates that LRPD's cells only cut the gaps into pieces.
 #include <algorithm>
+#include <cstddef>
 
 #include "diagram/clip.h"
 #include "mps/mps_gaps.h"
@@ -17,6 +18,12 @@ void GapSet::extract_from_disks(const std::vector<Site>& sites) {
   std::vector<SymbolicVertex> wide, vertices;
   std::vector<Vec3> polygon;
   std::vector<int> labels;
+  // Room for the pieces at once, as extract() makes it (unused room is never touched): dragon_100k
+  // adaptive has 56k pieces on 74k open triangles, with 4 to 8 corners each.
+  std::size_t open = 0;
+  for (int t = 0; t < mesh_.triangle_count(); ++t) open += !disks_.fully_covered(t);
+  pieces_.reserve(2 * open);
+  points_.reserve(16 * open);
   for (int t = 0; t < mesh_.triangle_count(); ++t) {
     if (disks_.fully_covered(t)) continue;
     const Triangle& tri = mesh_.triangle(t);
