@@ -314,9 +314,12 @@ TEST_CASE("LRPD cells with stray pieces in each other's own triangle stay confor
   // (the cell let back in and pinned there) 3 edges did not conform. Seed 37: a cell taken out of a
   // triangle kept a polygon reaching that triangle's edge from the neighbour, which nothing
   // re-examined; edge (2264, 2327) did not conform until removals re-checked the neighbours. Since
-  // stray pieces near each other are removed in separate rounds, seed 37 needs no pin.
+  // stray pieces near each other are removed in separate rounds, seed 37 needs no pin. Those cases
+  // were found on the samples of the sampler's first gap round computed on an LRPD; on today's
+  // samples seed 10 still pins 2 labels (of seeds 1-80 only 10, 19 and 56 pin any) and seed 37
+  // forbids 33.
   const SurfaceMesh dragon = cgal_mesh("ChineseDragon-10kv.off");
-  for (const auto& [seed, count] : {std::pair{10, 17303}, std::pair{37, 17375}}) {
+  for (const auto& [seed, count] : {std::pair{10, 17306}, std::pair{37, 17373}}) {
     MpsOptions options;
     options.radius = 0.01;
     options.seed = seed;

@@ -1,6 +1,7 @@
 // Maximal Poisson-disk sampling (paper §4.2): initialisation (radius field, edge splitting to
 // twice the radius or, as the paper does, to r_min; area table), dart throwing with
-// triangle-based conflict checks, then gap detection with the LRPD and darts into the gaps until
+// triangle-based conflict checks, then gap detection (with local updates first on the power
+// diagrams of the disks reaching each triangle, then with the LRPD) and darts into the gaps until
 // none is left. The conflict rule is in docs/algorithms/mps.md.
 #include "mps/mps.h"
 
@@ -330,6 +331,7 @@ class PoissonDiskSampling {
     const auto gap_start = Clock::now();
     gaps_.emplace(result_.mesh, sampler_->disks(), local_, 1e-15 * r_min_ * r_min_);
     lrpd_options_.weighted = true;
+    lrpd_options_.restore_connectivity = true;
     shapeless_.assign(result_.mesh.triangle_count(), 0);
     lrpd_options_.shapeless = &shapeless_;
     for (int round = 0; round < options_.max_gap_rounds; ++round)
@@ -348,12 +350,22 @@ class PoissonDiskSampling {
   }
 
   //! One round: an LRPD (unless the last round's still holds), its gap pieces, darts into them and
-  //! at the dust of dropped pieces. Returns true when the sampling is done.
+  //! at the dust of dropped pieces. Returns true when the sampling is done. With local updates the
+  //! first round's pieces only show where the gaps are: the darts then close them in disks reaching
+  //! their triangles, which is coverage whatever cell a spot is in. Those pieces come from the
+  //! power diagrams of the disks reaching each triangle, with no LRPD (GapSet::extract_from_disks);
+  //! only a round that places no sample decides through the cells themselves (remote claims:
+  //! spots in the ball of their cell), as verify_mps does on the connected LRPD, and only on an
+  //! LRPD whose cells are connected.
   bool gap_round(int round) {
-    if (stale_) compute_gap_lrpd(round);
-    stale_ = true;
     GapSet& gaps = *gaps_;
-    gaps.extract(lrpd_, focus_.empty() ? nullptr : &focus_);
+    if (local_ && round == 0) {
+      extract_first_gaps();
+    } else {
+      if (stale_) compute_gap_lrpd(round);
+      gaps.extract(lrpd_, focus_.empty() ? nullptr : &focus_);
+    }
+    stale_ = true;
     if (round == 0) result_.gap_pieces = gaps.alive();
     // No piece left: every spot of the surface is in the ball of its LRPD cell or in a disk
     // reaching its triangle — also where the LRPD's cells alone do not show it (a polygon outside
@@ -382,13 +394,19 @@ class PoissonDiskSampling {
     return sampler_->disks().size() == before && decide_without_progress();
   }
 
-  //! The LRPD of the current samples, of the whole mesh or of the part around the open triangles.
-  //! With local updates the first LRPD only shows where the gaps are: the darts then close them
-  //! in disks reaching their triangles, which is coverage whatever cell a spot is in, so that LRPD
-  //! is computed without the connectivity restoration (on dragon_100k one or two rounds of it, each
-  //! a pass over the whole mesh). Only a round that places no sample decides through the cells
-  //! themselves (remote claims: spots in the ball of their cell), as verify_mps does on the
-  //! connected LRPD; such a decision is made only on an LRPD whose cells are connected.
+  //! With local updates, the first round's pieces: from the power diagrams of the disks reaching
+  //! each triangle no disk covers.
+  void extract_first_gaps() {
+    const DiskIndex& disks = sampler_->disks();
+    progress(fmt::format("gap detection: power diagrams of the disks reaching each triangle, {} samples", disks.size()));
+    std::vector<Site> sites(disks.size());
+    for (int i = 0; i < disks.size(); ++i) sites[i] = Site{disks.center(i), disks.weight(i), i};
+    gaps_->extract_from_disks(sites);
+    connected_cells_ = false;  // no cells: a round without progress computes the LRPD
+  }
+
+  //! The LRPD of the current samples (with the connectivity restoration), of the whole mesh or of
+  //! the part around the open triangles.
   void compute_gap_lrpd(int round) {
     const SurfaceMesh& m = result_.mesh;
     DiskIndex& disks = sampler_->disks();
@@ -403,10 +421,9 @@ class PoissonDiskSampling {
       // round with local updates only in the open ones: the other triangles' polygons need
       // their cells, not their shapes. A covered triangle stays covered.
       for (int t = 0; t < m.triangle_count(); ++t) shapeless_[t] = disks.fully_covered(t) || (!focus_.empty() && !focus_[t]);
-      lrpd_options_.restore_connectivity = !(local_ && round == 0);
       lrpd_.diagram = compute_lrvd(m, disks.samples(), lrpd_options_);
     }
-    connected_cells_ = lrpd_options_.restore_connectivity || lrpd_.on_part;
+    connected_cells_ = true;
     ++result_.lrpd_evaluations;
   }
 

@@ -110,7 +110,7 @@ struct MpsResult {
   std::int64_t darts = 0;         //!< darts thrown in both stages (accepted or not)
   int lrpd_evaluations = 0;       //!< LRPDs computed to find gaps
   int part_lrpd_triangles = 0;    //!< triangles of those computed on a part of the mesh (later rounds)
-  int gap_pieces = 0;             //!< gap pieces the first LRPD showed
+  int gap_pieces = 0;             //!< gap pieces the first round showed
   int dropped_gap_pieces = 0;     //!< pieces dropped as rounding noise: uncovered area below 1e-15·r² or 1e-13 of their polygon
   //! Gap pieces split by a sample whose centre their darts' regions reach (the paper's rule read
   //! from the dart's side), as by a disk reaching them.

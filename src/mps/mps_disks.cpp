@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
-#include <queue>
 #include <utility>
 
 #include "mesh/closest_point.h"
@@ -142,19 +142,24 @@ bool DiskIndex::in_some_disk(const Vec3& p, int t) const {
 }
 
 template <class F>
-bool DiskIndex::search(const Vec3& p, int t, double w, bool region, F&& f) {
+bool DiskIndex::search(const Vec3& p, const int* from, int count, double w, bool region, F&& f) {
   if (++stamp_value_ == 0) {  // wrapped: forget every old visit
     for (TriangleInfo& info : triangles_info_) info.stamp = 0;
     stamp_value_ = 1;
   }
-  // Breadth-first over the triangles the ball meets. With the facing cut, a region (region:
-  // true) grows only through those facing like t, and f sees only those; the paper's rule
-  // (no cut) and met() take every one.
+  // Breadth-first over the triangles the ball meets, from those p lies on. With the facing cut, a
+  // region (region: true) grows only through those facing like the first, and f sees only those;
+  // the paper's rule (no cut) and met() take every one.
   const bool cut = facing_cut_;
-  queue_.assign(1, t);
-  triangles_info_[t].stamp = stamp_value_;
-  if (f(t)) return true;
-  const Vec3 facing = normals_[t];
+  queue_.clear();
+  for (int k = 0; k < count; ++k) {
+    const int t = from[k];
+    if (triangles_info_[t].stamp == stamp_value_) continue;
+    triangles_info_[t].stamp = stamp_value_;
+    queue_.push_back(t);
+    if (f(t)) return true;
+  }
+  const Vec3 facing = normals_[from[0]];
   const double r = std::sqrt(w);
   for (size_t k = 0; k < queue_.size(); ++k) {
     const int s = queue_[k];
@@ -173,9 +178,11 @@ bool DiskIndex::search(const Vec3& p, int t, double w, bool region, F&& f) {
   return false;
 }
 
-const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
+const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) { return grow(p, &t, 1, w); }
+
+const std::vector<int>& DiskIndex::grow(const Vec3& p, const int* from, int count, double w) {
   region_.clear();
-  search(p, t, w, true, [&](int n) {
+  search(p, from, count, w, true, [&](int n) {
     region_.push_back(n);
     return false;
   });
@@ -183,12 +190,12 @@ const std::vector<int>& DiskIndex::grow(const Vec3& p, int t, double w) {
 }
 
 const std::vector<int>& DiskIndex::met(const Vec3& p, int t, double w) {
-  search(p, t, w, false, [](int) { return false; });
+  search(p, &t, 1, w, false, [](int) { return false; });
   return queue_;
 }
 
 bool DiskIndex::reaches(const Vec3& p, int t, double w, int target) {
-  return search(p, t, w, true, [&](int n) { return n == target; });
+  return search(p, &t, 1, w, true, [&](int n) { return n == target; });
 }
 
 bool DiskIndex::sample_reaches(int i, double w, int target) {
@@ -207,19 +214,23 @@ double DiskIndex::reach_threshold(const Vec3& p, const std::vector<int>& from, c
     stamp_value_ = 1;
   }
   threshold_key_.resize(triangles_info_.size());
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  // A binary heap in a kept vector (std::priority_queue's operations, without its allocation).
+  std::vector<std::pair<double, int>>& heap = threshold_heap_;
+  const std::greater<std::pair<double, int>> later;
+  heap.clear();
   auto offer = [&](int t, double key) {
     TriangleInfo& info = triangles_info_[t];
     if (info.stamp == stamp_value_ && threshold_key_[t] <= key) return;
     info.stamp = stamp_value_;
     threshold_key_[t] = key;
-    heap.emplace(key, t);
+    heap.emplace_back(key, t);
+    std::push_heap(heap.begin(), heap.end(), later);
   };
   for (int t : from) offer(t, 0);  // p lies on them: every region holds them
   while (!heap.empty()) {
-    const auto [key, t] = heap.top();
-    heap.pop();
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const auto [key, t] = heap.back();
+    heap.pop_back();
     if (key > threshold_key_[t]) continue;
     if (std::find(to.begin(), to.end(), t) != to.end()) return key;
     for (int e = 0; e < 3; ++e) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/huge_pages.h"
@@ -63,6 +64,9 @@ class DiskIndex {
 
   //! The local region of the ball (p, w) around a point of triangle t. Valid until the next call.
   const std::vector<int>& grow(const Vec3& p, int t, double w);
+  //! Without the facing cut: the union of the local regions of (p, w) around each of the `count`
+  //! triangles `from` (those p lies on), in one growth from all of them. Valid until the next call.
+  const std::vector<int>& grow(const Vec3& p, const int* from, int count, double w);
   //! Every triangle the ball (p, w) meets, edge-connected to t through such triangles whichever
   //! way they face. Valid until the next call.
   const std::vector<int>& met(const Vec3& p, int t, double w);
@@ -132,7 +136,7 @@ class DiskIndex {
     return dot(normals_[s], facing) > kFacingCosine;
   }
   template <class F>
-  bool search(const Vec3& p, int t, double w, bool region, F&& f);
+  bool search(const Vec3& p, const int* from, int count, double w, bool region, F&& f);
   //! The ball (p, w), r = √w, meets triangle t (triangle_squared_distance < w), balls far from t's
   //! bounding sphere rejected at once.
   bool meets(int t, const Vec3& p, double w, double r) const;
@@ -155,6 +159,7 @@ class DiskIndex {
   std::uint32_t vertex_stamp_value_ = 0;
   std::vector<int> region_, queue_, seeds_;
   std::vector<double> threshold_key_;  // per triangle, reach_threshold(): the best key found (this stamp)
+  std::vector<std::pair<double, int>> threshold_heap_;  // reach_threshold(): (key, triangle), least on top
   HugePageVector<TriangleInfo> triangles_info_;  // per triangle
   HugePageVector<Vec3> normals_;                 // per triangle, unit, in doubles
   std::vector<double> areas_;                 // per triangle

@@ -36,6 +36,36 @@ void GapSet::clear() {
   dead_since_rebuild_ = 0;
 }
 
+void GapSet::begin_extract() {
+  clear();
+  open_.clear();
+  uncovered_polygons_ = 0;
+  remote_claims_ = 0;
+  given_up_ = 0;
+  required_pieces_ = 0;
+  deferred_.clear();
+  deferred_points_.clear();
+  given_up_pieces_.clear();
+  given_up_points_.clear();
+  extract_disks_ = disks_.size();
+}
+
+bool GapSet::place_polygon(const SymbolicVertex* q, int count, const Site& site, const SymbolicContext& ctx,
+                           std::vector<Vec3>& polygon) {
+  polygon.resize(count);
+  bool covered = true;  // by the site's ball: all corners inside (the ball ∩ plane is convex)
+  for (int k = 0; k < count; ++k) {
+    polygon[k] = position(q[k], ctx);
+    if (!covered) continue;
+    const double d = squared_distance(polygon[k], site.p) - site.w;
+    if (std::abs(d) <= kVertexMargin * site.w)
+      covered = CGAL::sign(exact_power_distance(exact_position(q[k], ctx), site)) != CGAL::POSITIVE;
+    else
+      covered = d < 0;
+  }
+  return covered;
+}
+
 void GapSet::extract(const Diagram& lrpd, const std::vector<char>* focus) {
   extract(lrpd, mesh_, nullptr, nullptr, focus);
 }
@@ -49,17 +79,7 @@ void GapSet::extract(const GapLrpd& lrpd, const std::vector<char>* focus) {
 
 void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const std::vector<int>* triangle_of,
                      const std::vector<int>* sample_of, const std::vector<char>* focus) {
-  clear();
-  open_.clear();
-  uncovered_polygons_ = 0;
-  remote_claims_ = 0;
-  given_up_ = 0;
-  required_pieces_ = 0;
-  deferred_.clear();
-  deferred_points_.clear();
-  given_up_pieces_.clear();
-  given_up_points_.clear();
-  extract_disks_ = disks_.size();
+  begin_extract();
   const SymbolicContext ctx = lrpd.context(diagram_mesh);
   // Room for the pieces' corners at once: on a large mesh, growing into fresh memory step by step
   // costs more than the pieces themselves. The LRPD lists vertices only on the triangles no disk
@@ -75,19 +95,7 @@ void GapSet::extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const
     if (focus && !(*focus)[t]) continue;
     // A disk reaching t covers all of it: nothing here is a gap, whichever cell the polygon is of.
     if (disks_.fully_covered(t)) continue;
-    const Site& site = lrpd.sites[cp.cell];
-    polygon.resize(cp.vertex_count);
-    bool covered = true;  // by the cell's own ball: all corners inside (the ball ∩ plane is convex)
-    for (int k = 0; k < cp.vertex_count; ++k) {
-      const SymbolicVertex& q = lrpd.polygon_vertices(cp)[k];
-      polygon[k] = position(q, ctx);
-      if (!covered) continue;
-      const double d = squared_distance(polygon[k], site.p) - site.w;
-      if (std::abs(d) <= kVertexMargin * site.w)
-        covered = CGAL::sign(exact_power_distance(exact_position(q, ctx), site)) != CGAL::POSITIVE;
-      else
-        covered = d < 0;
-    }
+    const bool covered = place_polygon(lrpd.polygon_vertices(cp), cp.vertex_count, lrpd.sites[cp.cell], ctx, polygon);
     bool own = false;  // the cell's disk reaches t (t is in its local region)
     disks_.for_each_disk(t, [&](int j) { own |= j == i; });
     if (covered && own) continue;  // inside the cell's own disk

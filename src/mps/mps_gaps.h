@@ -39,6 +39,14 @@ class GapSet {
   //! The same with an LRPD of the whole mesh or of a part of it (compute_lrpd_around), read only
   //! in the part's triangles.
   void extract(const GapLrpd& lrpd, const std::vector<char>* focus = nullptr);
+  //! With local updates, in place of the first extract() (an LRPD computed without the connectivity
+  //! restoration): the pieces from the power diagram of the disks reaching each triangle that no
+  //! disk covers. On triangle t the part of each such disk's power cell outside that disk lies
+  //! in no disk reaching t (its power distance is the least, and not negative); the whole triangle
+  //! where no disk reaches it. So the pieces' gaps are the spots no disk reaching their triangle
+  //! covers, as that extract() gives them, only cut differently; and no LRPD is computed.
+  //! `sites`: of every sample, weighted (make_sites). The pieces of a cell are required.
+  void extract_from_disks(const std::vector<Site>& sites);
   //! Of the last extract(), in the triangles no single disk covers: polygons their ball does not
   //! cover (the LRPD's gaps), and polygons covered by a remote ball.
   int uncovered_polygons() const { return uncovered_polygons_; }
@@ -110,6 +118,12 @@ class GapSet {
   };
 
   void clear();
+  //! Empties the pieces and the counts of the last extract().
+  void begin_extract();
+  //! `polygon` = the positions of the `count` vertices q; returns whether the ball of `site` holds
+  //! them all (exactly where a vertex lies near its rim).
+  static bool place_polygon(const SymbolicVertex* q, int count, const Site& site, const SymbolicContext& ctx,
+                            std::vector<Vec3>& polygon);
   //! extract() from a diagram of `diagram_mesh`, its triangles and cells mapped to the mesh's
   //! triangles and samples (null: the same).
   void extract(const Diagram& lrpd, const SurfaceMesh& diagram_mesh, const std::vector<int>* triangle_of,

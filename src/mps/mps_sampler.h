@@ -40,8 +40,11 @@ class CentreGrid {
     }
     s.tail = i;
   }
-  void near(const Vec3& p, std::vector<int>& out) const {
-    if (slots_.empty()) return;
+  //! Returns whether `out` surely holds every centre closer to p than the cell width (times
+  //! 1 + 1e-13): false when p lies so close to a cell's side that rounding may have put a centre
+  //! that near two cells away.
+  bool near(const Vec3& p, std::vector<int>& out) const {
+    if (slots_.empty()) return false;
     const std::int64_t x = coordinate(p.x), y = coordinate(p.y), z = coordinate(p.z);
     for (std::int64_t a = x - 1; a <= x + 1; ++a)
       for (std::int64_t b = y - 1; b <= y + 1; ++b)
@@ -50,6 +53,7 @@ class CentreGrid {
           if (s.key == kEmpty) continue;
           for (int i = s.head; i >= 0; i = next_[i]) out.push_back(i);
         }
+    return inside_cell(p.x) && inside_cell(p.y) && inside_cell(p.z);
   }
 
  private:
@@ -60,6 +64,12 @@ class CentreGrid {
     int head = -1, tail = -1;  // first and last sample of the cell; next_ links them
   };
   std::int64_t coordinate(double v) const { return static_cast<std::int64_t>(std::floor(v / cell_)); }
+  //! v / cell_ lies far enough inside its unit interval that a coordinate within 1 + 1e-13 cells
+  //! of it, each quotient rounded (relative error 2^-53), falls in the interval or a neighbour.
+  bool inside_cell(double v) const {
+    const double a = v / cell_, f = a - std::floor(a), margin = 1e-12 + 1e-15 * std::abs(a);
+    return f >= margin && f <= 1 - margin;
+  }
   static std::uint64_t key(std::int64_t a, std::int64_t b, std::int64_t c) {
     return (static_cast<std::uint64_t>(a & 0x1fffff) << 42) | (static_cast<std::uint64_t>(b & 0x1fffff) << 21) |
            static_cast<std::uint64_t>(c & 0x1fffff);
@@ -152,20 +162,23 @@ class Sampler {
       disks_.insert(p, t, bary, w, region_);
       return true;
     }
-    // Adaptive: the samples around p, in every triangle a ball somewhat larger than r(p) meets
-    // (edge-connected to t, so to every triangle p lies on).
-    met_ = disks_.met(p, t, kScan * kScan * w);
+    // Adaptive: the samples around p. When none of those within the largest radius constrains
+    // p (most accepted darts), it takes its full radius; otherwise admit_met() decides.
     cut_below_reach_ = false;
-    double hi = 0;
-    const Admission admitted = admit(p, w, Against::All, hi);
-    if (admitted == Admission::Rejected) return false;
-    if (admitted == Admission::NoRadius) {
-      if (!allow_exceptions_) return false;
-      if (admit(p, w, Against::Facing, hi) != Admission::Radius && admit(p, w, Against::Local, hi) != Admission::Radius)
-        return false;
-      ++power_cell_exceptions_;
+    near_.clear();
+    const bool all_near = grid_.near(p, near_);
+    double hi = w;
+    if (!all_near || !none_constrains(p, w)) {
+      const Admission admitted = admit_met(p, t, w, hi);
+      if (admitted == Admission::Rejected) return false;
+      if (admitted == Admission::NoRadius) {
+        if (!allow_exceptions_) return false;
+        if (admit(p, w, Against::Facing, hi) != Admission::Radius && admit(p, w, Against::Local, hi) != Admission::Radius)
+          return false;
+        ++power_cell_exceptions_;
+      }
+      if (refused_by_others(p, hi)) return false;
     }
-    if (refused_by_others(p, hi)) return false;
     if (hi < w) ++clamped_;
     below_reach_ += cut_below_reach_;
     region_of(p, hi);
@@ -178,10 +191,16 @@ class Sampler {
 
   //! region_ = the local region of (p, w): grown from each triangle p lies on (seeds_: one, or on
   //! an edge or a corner every triangle there), so that on a sharp edge or corner the darts on
-  //! every face around keep their distance.
+  //! every face around keep their distance. Without the facing cut a triangle's membership does
+  //! not depend on the triangle grown from: one growth from all of them gives the union.
   void region_of(const Vec3& p, double w) {
+    if (seeds_.size() == 1 || !disks_.facing_cut()) {
+      region_ = disks_.grow(p, seeds_.data(), static_cast<int>(seeds_.size()), w);
+      if (seeds_.size() == 1) return;
+      std::sort(region_.begin(), region_.end());
+      return;
+    }
     region_ = disks_.grow(p, seeds_[0], w);
-    if (seeds_.size() == 1) return;
     for (size_t k = 1; k < seeds_.size(); ++k) {
       const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
       region_.insert(region_.end(), more.begin(), more.end());
@@ -235,8 +254,10 @@ class Sampler {
     const double wj = disks_.weight(j), cap = std::max(hi, wj);
     targets_.clear();
     mesh_.triangles_at(disks_.triangle(j), disks_.barycentric(j), targets_);
-    double b = std::min(disks_.reach_threshold(p, seeds_, targets_, cap),
-                        disks_.reach_threshold(disks_.center(j), targets_, seeds_, cap));
+    // The threshold from x_j's side only when p's side leaves one above the distance (1 in 200
+    // calls on dragon_100k): else b <= apart either way.
+    double b = disks_.reach_threshold(p, seeds_, targets_, cap);
+    if (b > apart) b = std::min(b, disks_.reach_threshold(disks_.center(j), targets_, seeds_, cap));
     for (int attempt = 0; attempt < 3 && b > apart; ++attempt, b *= 1 - 1e-12)
       if (!local_to_dart(p, j, s, std::max(b, wj))) {
         cut_below_reach_ = true;
@@ -249,11 +270,10 @@ class Sampler {
   //! 1.5·r(p)): x_j within max(r_p, r_j) of p whose region reaches p's triangle from its side (an
   //! asymmetric notch) or whose radius is far above p's (across a sheet). Local at r_j and closer
   //! than r_j: rejected; local at max(r_p, r_j) and closer than r_p: p's radius cut below the
-  //! distance (again until no sample cuts it). Every centre within the largest radius is looked at.
+  //! distance (again until no sample cuts it). Every centre within the largest radius is looked at
+  //! (near_, filled by try_insert()).
   bool refused_by_others(const Vec3& p, double& hi) {
     if (disks_.facing_cut()) return false;
-    near_.clear();
-    grid_.near(p, near_);
     for (bool cut = true; cut;) {
       cut = false;
       for (int j : near_) {
@@ -274,6 +294,27 @@ class Sampler {
   }
 
   enum class Admission { Radius, NoRadius, Rejected };
+  //! admit(p, w, All) over the samples in every triangle a ball somewhat larger than r(p) meets
+  //! (edge-connected to t, so to every triangle p lies on).
+  Admission admit_met(const Vec3& p, int t, double w, double& hi) {
+    met_ = disks_.met(p, t, kScan * kScan * w);
+    return admit(p, w, Against::All, hi);
+  }
+  //! No sample of near_ would reject p, cut its weight w or leave it no radius in admit_reach()
+  //! (Against::All): each test there, made here in the same arithmetic, fails. A sample on which
+  //! one of them holds lies closer than max(r_p, r_j), so when near_ holds every centre within
+  //! the largest radius, admit_met() would find p admitted at w whichever of them it met, and
+  //! refused_by_others() would find no centre closer than max(w, w_j): the growth at 1.5·r(p),
+  //! most of an accepted dart's cost, is then left out.
+  bool none_constrains(const Vec3& p, double w) const {
+    for (int j : near_) {
+      const Vec3& x = disks_.center(j);
+      const double d2 = squared_distance(x, p), wj = disks_.weight(j);
+      if ((d2 + wj) * (1 - 1e-14) < w || (wj - d2) * (1 + 1e-14) > w) return false;
+      if (inside_disk(p, x, wj) || inside_disk(x, p, w)) return false;
+    }
+    return true;
+  }
   //! The samples around p whose power cells p's radius must keep apart from its own.
   enum class Against { All, Facing, Local };
   //! Adaptive: the largest weight `hi` ≤ w that p (on the triangles seeds_) may take against the
