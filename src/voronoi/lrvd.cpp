@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
@@ -37,7 +38,7 @@ constexpr int kPrefetchDistance = 4;
 class LrvdBuilder {
  public:
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
-      : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
+      : mesh_(mesh), samples_(samples), options_(options), state_(work.state), whole_(work.whole), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
         home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
     work.reset(mesh.triangle_count());
@@ -71,15 +72,23 @@ class LrvdBuilder {
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
-    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+    const int nt = mesh_.triangle_count();
+    for (int t = 0; t < nt; ++t) {
       // The corners' labels, sorted and distinct, as add_label() would leave them.
-      TrianglePolygons& st = state_[t];
-      st.reset();
       const Triangle& tri = mesh_.triangle(t);
       int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
       if (a > b) std::swap(a, b);
       if (b > c) std::swap(b, c);
       if (a > b) std::swap(a, b);
+      if (a == c) {  // one cell: whole, and its one clipping is the whole triangle
+        whole_[t] = a;
+        clipped_[t] = 1;
+        ++stats_.clipped_triangles;
+        continue;
+      }
+      whole_[t] = -1;
+      TrianglePolygons& st = state_[t];
+      st.reset();
       int distinct[3] = {a, 0, 0}, n = 1;
       if (b != a) distinct[n++] = b;
       if (c != b) distinct[n++] = c;
@@ -90,7 +99,35 @@ class LrvdBuilder {
       home_[i] = samples_.triangles[i];
       add_label(home_[i], i);
     }
-    for (int t = 0; t < mesh_.triangle_count(); ++t) activate(t);
+    // Every triangle is queued, in order: propagate() sweeps them first.
+    queued_.assign(nt, 1);
+    sweep_next_ = 0;
+  }
+
+  // t's candidates, whether t is whole or not.
+  LabelRange labels_of(int t) const {
+    if (whole_[t] >= 0) return {&whole_[t], &whole_[t] + 1};
+    const auto& labels = state_[t].labels;
+    return {labels.data(), labels.data() + labels.size()};
+  }
+  bool forbids(int t, int k) const { return whole_[t] < 0 && state_[t].forbids(k); }
+  bool pins(int t, int k) const { return whole_[t] < 0 && state_[t].pins(k); }
+  // Calls visit(polygon) for each of t's polygons, whether t is whole or not.
+  template <class Visit>
+  void for_each_polygon(int t, Visit&& visit) const {
+    if (whole_[t] >= 0) return visit(TrianglePolygon{whole_[t], 0, 7, 7});
+    for (const TrianglePolygon& poly : state_[t].polygons) visit(poly);
+  }
+
+  // Writes whole triangle t's record, as clip() would have left it, before anything changes it.
+  void materialize(int t) {
+    const int k = whole_[t];
+    if (k < 0) return;
+    TrianglePolygons& st = state_[t];
+    st.reset();
+    st.labels.assign(&whole_[t], &whole_[t] + 1);
+    st.polygons.assign(1, TrianglePolygon{k, 0, 7, 7});
+    whole_[t] = -1;
   }
 
   void activate(int t) {
@@ -160,6 +197,7 @@ class LrvdBuilder {
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
   // triangles outgrow the caches, and the passes over them would wait on each.
   void prefetch_polygons(int t) const {
+    if (whole_[t] >= 0) return;
     const TrianglePolygons& st = state_[t];
     __builtin_prefetch(st.polygons.data());
     __builtin_prefetch(st.verts.data());
@@ -168,19 +206,23 @@ class LrvdBuilder {
   // Labels change only through these two, which mark the triangle's polygons out of date (and
   // note that labels can disappear, which ends the shortcut in propagate()).
   bool add_label(int t, int k) {
+    if (whole_[t] == k) return false;
+    materialize(t);
     if (!insert_sorted(state_[t].labels, k)) return false;
     clipped_[t] = 0;
     return true;
   }
   bool remove_label(int t, int k) {
-    if (!erase_sorted(state_[t].labels, k)) return false;
+    if (!contains(labels_of(t), k)) return false;
+    materialize(t);
+    erase_sorted(state_[t].labels, k);
     clipped_[t] = 0;
     labels_removed_ = true;
     // A neighbour's polygon of k may reach the edge to t: it has to see k gone (forbidden) here,
     // else that edge is split differently from both sides.
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
-      if (across >= 0 && contains(state_[across].labels, k)) activate(across);
+      if (across >= 0 && contains(labels_of(across), k)) activate(across);
     }
     return true;
   }
@@ -192,8 +234,12 @@ class LrvdBuilder {
   // whichever triangles are clipped ahead.
   void clip_queued_in_parallel() {
     pending_.clear();
-    for (int t : queue_)
+    auto consider = [&](int t) {
       if (!clipped_[t] && (state_[t].labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
+    };
+    for (int t = sweep_next_; t < mesh_.triangle_count(); ++t)
+      if (whole_[t] < 0) consider(t);
+    for (int t : queue_) consider(t);
     if (static_cast<int>(pending_.size()) < kParallelClips) return;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t w = range.begin(); w != range.end(); ++w) clip(pending_[w]);
@@ -206,13 +252,13 @@ class LrvdBuilder {
   // affine along the edge, so the points form an interval). It only decides where t is clipped
   // first, never what its polygons are, so no exact predicate is needed.
   bool may_gain_labels(int t) const {
-    const auto& labels = state_[t].labels;
+    const LabelRange labels = labels_of(t);
     const Triangle& tri = mesh_.triangle(t);
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
       if (across < 0) continue;
       const Vec3 &u = mesh_.position(tri[e]), &v = mesh_.position(tri[e == 2 ? 0 : e + 1]);
-      const auto& other = state_[across].labels;
+      const LabelRange other = labels_of(across);
       for (int k : other) {
         if (std::find(labels.begin(), labels.end(), k) != labels.end()) continue;
         const double dku = power_distance(u, k), dkv = power_distance(v, k);
@@ -241,45 +287,60 @@ class LrvdBuilder {
   // candidate of the triangle across that edge, so both sides split the edge alike.
   void propagate() {
     clip_queued_in_parallel();
+    // The first sweep over every triangle passes nothing on from a whole triangle: the triangles
+    // across hold its cell, that of its edges' end points, and no label has been taken away yet.
+    const int nt = mesh_.triangle_count();
+    for (; sweep_next_ < nt; ++sweep_next_) {
+      const int t = sweep_next_;
+      queued_[t] = 0;
+      if (whole_[t] >= 0) continue;
+      if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
+      pass_on(t);
+    }
     while (!queue_.empty()) {
       const int t = queue_.front();
       queue_.pop_front();
       queued_[t] = 0;
       if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
-      if (!clipped_[t]) {
-        clip(t);
-        ++stats_.clipped_triangles;
-      }
-      const TrianglePolygons& st = state_[t];
-      const Triangle& tri = mesh_.triangle(t);
-      conflicts_.clear();
-      for (const TrianglePolygon& poly : st.polygons) {
-        const int k = poly.cell;
-        for (int e = 0; e < 3; ++e) {
-          const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(poly.reach & (1u << e))) continue;
-          // The triangle across holds the labels of the edge's end points from the start, and
-          // keeps them until a label is first taken away.
-          if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
-          if (contains(state_[across].labels, k)) continue;
-          if (state_[across].forbids(k)) {
-            conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
-            continue;
-          }
-          add_label(across, k);
-          activate(across);
-        }
-      }
-      for (int k : conflicts_) {
-        if (!removable(t, k)) {
-          stuck_.push_back(t);
+      pass_on(t);
+    }
+  }
+
+  // Clips t if its polygons are out of date, and adds each cell whose polygon reaches an edge of
+  // t to the triangle across (or takes it out of t where it was cut off across).
+  void pass_on(int t) {
+    if (!clipped_[t]) {
+      clip(t);
+      ++stats_.clipped_triangles;
+    }
+    const Triangle& tri = mesh_.triangle(t);
+    conflicts_.clear();
+    for_each_polygon(t, [&](const TrianglePolygon& poly) {
+      const int k = poly.cell;
+      for (int e = 0; e < 3; ++e) {
+        const int across = mesh_.neighbor(t, e);
+        if (across < 0 || !(poly.reach & (1u << e))) continue;
+        // The triangle across holds the labels of the edge's end points from the start, and
+        // keeps them until a label is first taken away.
+        if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
+        if (contains(labels_of(across), k)) continue;
+        if (forbids(across, k)) {
+          conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
           continue;
         }
-        if (remove_label(t, k)) {
-          insert_sorted(state_[t].extra().forbidden, k);
-          ++stats_.forbidden_labels;
-          activate(t);
-        }
+        add_label(across, k);
+        activate(across);
+      }
+    });
+    for (int k : conflicts_) {
+      if (!removable(t, k)) {
+        stuck_.push_back(t);
+        continue;
+      }
+      if (remove_label(t, k)) {
+        insert_sorted(state_[t].extra().forbidden, k);
+        ++stats_.forbidden_labels;
+        activate(t);
       }
     }
   }
@@ -287,7 +348,7 @@ class LrvdBuilder {
   // Whether cell k may be taken out of triangle t: not from its sample's triangle, not from a
   // triangle it was pinned to, and not from a triangle's last label.
   bool removable(int t, int k) const {
-    return t != home_[k] && !state_[t].pins(k) && state_[t].labels.size() > 1;
+    return t != home_[k] && !pins(t, k) && labels_of(t).size() > 1;
   }
 
   // After propagate(): a conflict left in a triangle t that cannot drop its cell k (k's own
@@ -305,18 +366,16 @@ class LrvdBuilder {
     // from the other cell of a mutual pair, whose conflict then goes away.
     int best_k = -1, best_t = -1;
     for (int t : stuck_) {
-      const TrianglePolygons& st = state_[t];
-      for (const TrianglePolygon& poly : st.polygons) {
+      for_each_polygon(t, [&](const TrianglePolygon& poly) {
         const int k = poly.cell;
-        if (removable(t, k)) continue;
+        if (removable(t, k)) return;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0 || !(poly.reach & (1u << e))) continue;
-          const TrianglePolygons& sa = state_[across];
-          if (contains(sa.labels, k) || !sa.forbids(k)) continue;
+          if (contains(labels_of(across), k) || !forbids(across, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
         }
-      }
+      });
     }
     if (best_k < 0) {
       stuck_.clear();
@@ -340,6 +399,7 @@ class LrvdBuilder {
   // (settle_stuck_conflicts) can leave both in two pieces for good. Taken one at a time, the
   // first one's removal lets the second grow onto its own stray piece, which then joins it.
   bool forbid_stray_pieces(const Diagram& diagram) {
+    if (every_cell_in_one_piece(diagram)) return false;
     const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
@@ -370,6 +430,7 @@ class LrvdBuilder {
       bool removed = false;
       for (size_t a = begin; a < end; ++a) {
         const int t = stray[a].second;
+        materialize(t);
         TrianglePolygons& st = state_[t];
         if (st.pins(k)) {
           // A piece let back in that became stray since (a third cell's piece came back between
@@ -401,6 +462,59 @@ class LrvdBuilder {
     return changed;
   }
 
+  // Whether every cell of d is in one piece, by the joins cell_components makes (its union-find,
+  // with the polygons of whole triangles known from whole_ instead of read from the diagram).
+  // The pieces of all cells are their polygons (but those of zero area) less the joins that
+  // merged two sets, and each cell with a polygon has at least one: all are in one piece when
+  // the pieces number the cells that have a polygon.
+  bool every_cell_in_one_piece(const Diagram& d) {
+    const int* offsets = d.triangle_offsets.data();
+    const CellPolygon* polygons = d.polygons.data();
+    std::vector<int>& parent = piece_parent_;
+    parent.resize(d.polygons.size());
+    std::iota(parent.begin(), parent.end(), 0);
+    auto find_root = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    std::int64_t pieces = 0;
+    auto join = [&](int p, int r) {
+      const int a = find_root(p), b = find_root(r);
+      if (a == b) return;
+      parent[std::max(a, b)] = std::min(a, b);
+      --pieces;
+    };
+    // The polygon of cell k in triangle `across` that a polygon of k along their edge joins, or -1.
+    auto partner = [&](int across, int k) {
+      if (whole_[across] >= 0) return whole_[across] == k ? offsets[across] : -1;
+      for (int r = offsets[across]; r < offsets[across + 1]; ++r)
+        if (polygons[r].cell == k) return along_[r] & kZeroAreaInTheLimit ? -1 : r;
+      return -1;
+    };
+    cell_present_.assign(samples_.size(), 0);
+    int cells = 0;
+    auto count_piece = [&](int k) {
+      ++pieces;
+      if (!cell_present_[k]) cell_present_[k] = 1, ++cells;
+    };
+    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      unsigned upper = 0;  // the edges to a triangle of larger index, so each shared edge once
+      for (int e = 0; e < 3; ++e)
+        if (mesh_.neighbor(t, e) > t) upper |= 1u << e;
+      for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
+        const unsigned along = whole_[t] >= 0 ? 7 : along_[p];
+        if (along & kZeroAreaInTheLimit) continue;
+        const int k = whole_[t] >= 0 ? whole_[t] : polygons[p].cell;
+        count_piece(k);
+        for (unsigned edges = along & upper; edges; edges &= edges - 1) {
+          const int r = partner(mesh_.neighbor(t, __builtin_ctz(edges)), k);
+          if (r >= 0) join(p, r);
+        }
+      }
+    }
+    return pieces == cells;
+  }
+
   // A triangle left without candidates takes those of its neighbours (minus its forbidden ones),
   // spreading inward from the rest of the surface.
   void refill(std::vector<int> pending) {
@@ -411,7 +525,7 @@ class LrvdBuilder {
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
-          for (int k : state_[across].labels)
+          for (int k : labels_of(across))
             if (!st.forbids(k)) add_label(t, k);
         }
         if (st.labels.empty()) still.push_back(t);
@@ -440,6 +554,11 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
+      if (whole_[t] >= 0) {
+        polygons += 1;
+        if (!shapeless(t)) vertices += 3;
+        continue;
+      }
       const TrianglePolygons& st = state_[t];
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
@@ -453,8 +572,12 @@ class LrvdBuilder {
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
-      const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
+      if (whole_[t] >= 0) {
+        flatten_whole(d, t, tri);
+        continue;
+      }
+      const TrianglePolygons& st = state_[t];
       if (shapeless(t)) {
         for (const TrianglePolygon& poly : st.polygons) {
           along_.push_back(poly.along);
@@ -486,12 +609,27 @@ class LrvdBuilder {
     }
   }
 
+  // flatten() of a whole triangle: one polygon, the triangle's corners.
+  void flatten_whole(Diagram& d, int t, const Triangle& tri) {
+    along_.push_back(7);
+    const int at = static_cast<int>(d.vertices.size());
+    if (shapeless(t)) {
+      d.polygons.push_back({t, whole_[t], at, 0});
+    } else {
+      d.vertices.resize(at + 3);
+      for (int c = 0; c < 3; ++c) d.vertices[at + c].v[0] = tri[c];
+      d.polygons.push_back({t, whole_[t], at, 3});
+    }
+    d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
+  }
+
   const SurfaceMesh& mesh_;
   const Samples& samples_;
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
   HugePageVector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
+  std::vector<int>& whole_;  // per triangle: its cell while whole (lrvd_workspace.h), else -1
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels
@@ -500,7 +638,10 @@ class LrvdBuilder {
   std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
   detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
-  std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
+  std::vector<char> near_removal_;
+  std::vector<int> piece_parent_;  // every_cell_in_one_piece(): the union-find over the polygons
+  std::vector<char> cell_present_;  // every_cell_in_one_piece(): per cell, whether it has a piece  // forbid_stray_pieces(): near a stray piece removed this round
+  int sweep_next_ = 0;  // propagate()'s first sweep: the triangles from here on are queued
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };

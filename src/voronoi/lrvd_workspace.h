@@ -77,10 +77,26 @@ struct TrianglePolygons {
   }
 };
 
+// A triangle's candidate list as a range: its record's list, or its whole cell alone.
+struct LabelRange {
+  const int* first;
+  const int* last;
+  const int* begin() const { return first; }
+  const int* end() const { return last; }
+  size_t size() const { return static_cast<size_t>(last - first); }
+};
+
 // Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
 // diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
+//
+// A triangle whose three corners went to one cell k, and whose candidates nothing has changed
+// since, is `whole` (whole[t] = k): its candidates are {k}, its polygon is the whole triangle, and
+// its record in `state` is not read or written until something changes it (materialize). With
+// few samples on a large mesh (a CVT's diagrams at a few hundred vertices) most triangles are
+// whole, and the passes over the triangles skip them.
 struct LrvdWorkspace {
   HugePageVector<TrianglePolygons> state;  // a large mesh's records: 144 bytes a triangle
+  std::vector<int> whole;  // per triangle: its cell when whole, else -1 (its record holds the truth)
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
@@ -90,6 +106,7 @@ struct LrvdWorkspace {
 
   void reset(int triangle_count) {
     if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
+    whole.resize(triangle_count);  // filled by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
