@@ -40,7 +40,8 @@ class LrvdBuilder {
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
       : mesh_(mesh), samples_(samples), options_(options), state_(work.state), whole_(work.whole), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along),
+        piece_parent_(work.piece_parent), cell_present_(work.cell_present) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
@@ -86,9 +87,7 @@ class LrvdBuilder {
         ++stats_.clipped_triangles;
         continue;
       }
-      whole_[t] = -1;
-      TrianglePolygons& st = state_[t];
-      st.reset();
+      TrianglePolygons& st = new_record(t);
       int distinct[3] = {a, 0, 0}, n = 1;
       if (b != a) distinct[n++] = b;
       if (c != b) distinct[n++] = c;
@@ -107,27 +106,37 @@ class LrvdBuilder {
   // t's candidates, whether t is whole or not.
   LabelRange labels_of(int t) const {
     if (whole_[t] >= 0) return {&whole_[t], &whole_[t] + 1};
-    const auto& labels = state_[t].labels;
+    const auto& labels = record(t).labels;
     return {labels.data(), labels.data() + labels.size()};
   }
-  bool forbids(int t, int k) const { return whole_[t] < 0 && state_[t].forbids(k); }
-  bool pins(int t, int k) const { return whole_[t] < 0 && state_[t].pins(k); }
+  bool forbids(int t, int k) const { return whole_[t] < 0 && record(t).forbids(k); }
+  bool pins(int t, int k) const { return whole_[t] < 0 && record(t).pins(k); }
   // Calls visit(polygon) for each of t's polygons, whether t is whole or not.
   template <class Visit>
   void for_each_polygon(int t, Visit&& visit) const {
     if (whole_[t] >= 0) return visit(TrianglePolygon{whole_[t], 0, 7, 7});
-    for (const TrianglePolygon& poly : state_[t].polygons) visit(poly);
+    for (const TrianglePolygon& poly : record(t).polygons) visit(poly);
+  }
+
+  // The record of triangle t, which is not whole.
+  TrianglePolygons& record(int t) const { return state_[-1 - whole_[t]]; }
+  // Gives triangle t the next record, emptied. The records are handed out in the order the
+  // triangles stop being whole, so the passes in triangle order read them nearly in order.
+  TrianglePolygons& new_record(int t) {
+    const int r = next_record_++;
+    whole_[t] = -1 - r;
+    TrianglePolygons& st = state_[r];
+    st.reset();
+    return st;
   }
 
   // Writes whole triangle t's record, as clip() would have left it, before anything changes it.
   void materialize(int t) {
     const int k = whole_[t];
     if (k < 0) return;
-    TrianglePolygons& st = state_[t];
-    st.reset();
-    st.labels.assign(&whole_[t], &whole_[t] + 1);
+    TrianglePolygons& st = new_record(t);
+    st.labels.assign(&k, &k + 1);
     st.polygons.assign(1, TrianglePolygon{k, 0, 7, 7});
-    whole_[t] = -1;
   }
 
   void activate(int t) {
@@ -149,7 +158,7 @@ class LrvdBuilder {
     thread_local Scratch scratch;
     CellClipper& clipper = scratch.clipper;
     std::vector<TrianglePolygon>& polygons = scratch.polygons;
-    TrianglePolygons& st = state_[t];
+    TrianglePolygons& st = record(t);
     st.verts.clear();
     if (st.extras) st.extras->wide.clear();
     // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
@@ -175,7 +184,7 @@ class LrvdBuilder {
   // zero area there (a sliver collapsed to a segment or a point) is no piece of its cell.
   void edges_in_the_limit(int t) const {
     thread_local std::vector<SymbolicVertex> verts;
-    TrianglePolygons& st = state_[t];
+    TrianglePolygons& st = record(t);
     const Triangle& tri = mesh_.triangle(t);
     const std::vector<SymbolicVertex>* wide = st.wide();
     int begin = 0;
@@ -198,7 +207,7 @@ class LrvdBuilder {
   // triangles outgrow the caches, and the passes over them would wait on each.
   void prefetch_polygons(int t) const {
     if (whole_[t] >= 0) return;
-    const TrianglePolygons& st = state_[t];
+    const TrianglePolygons& st = record(t);
     __builtin_prefetch(st.polygons.data());
     __builtin_prefetch(st.verts.data());
   }
@@ -208,14 +217,14 @@ class LrvdBuilder {
   bool add_label(int t, int k) {
     if (whole_[t] == k) return false;
     materialize(t);
-    if (!insert_sorted(state_[t].labels, k)) return false;
+    if (!insert_sorted(record(t).labels, k)) return false;
     clipped_[t] = 0;
     return true;
   }
   bool remove_label(int t, int k) {
     if (!contains(labels_of(t), k)) return false;
     materialize(t);
-    erase_sorted(state_[t].labels, k);
+    erase_sorted(record(t).labels, k);
     clipped_[t] = 0;
     labels_removed_ = true;
     // A neighbour's polygon of k may reach the edge to t: it has to see k gone (forbidden) here,
@@ -235,7 +244,7 @@ class LrvdBuilder {
   void clip_queued_in_parallel() {
     pending_.clear();
     auto consider = [&](int t) {
-      if (!clipped_[t] && (state_[t].labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
+      if (!clipped_[t] && (record(t).labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
     };
     for (int t = sweep_next_; t < mesh_.triangle_count(); ++t)
       if (whole_[t] < 0) consider(t);
@@ -338,7 +347,7 @@ class LrvdBuilder {
         continue;
       }
       if (remove_label(t, k)) {
-        insert_sorted(state_[t].extra().forbidden, k);
+        insert_sorted(record(t).extra().forbidden, k);
         ++stats_.forbidden_labels;
         activate(t);
       }
@@ -381,7 +390,7 @@ class LrvdBuilder {
       stuck_.clear();
       return false;
     }
-    TrianglePolygons& sa = state_[best_t];
+    TrianglePolygons& sa = record(best_t);
     erase_sorted(sa.extra().forbidden, best_k);
     insert_sorted(sa.extra().pinned, best_k);
     add_label(best_t, best_k);
@@ -431,7 +440,7 @@ class LrvdBuilder {
       for (size_t a = begin; a < end; ++a) {
         const int t = stray[a].second;
         materialize(t);
-        TrianglePolygons& st = state_[t];
+        TrianglePolygons& st = record(t);
         if (st.pins(k)) {
           // A piece let back in that became stray since (a third cell's piece came back between
           // it and k's sample) is taken out once more; let back in again, it stays.
@@ -521,7 +530,7 @@ class LrvdBuilder {
     while (!pending.empty()) {
       std::vector<int> still;
       for (int t : pending) {
-        TrianglePolygons& st = state_[t];
+        TrianglePolygons& st = record(t);
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
@@ -559,7 +568,7 @@ class LrvdBuilder {
         if (!shapeless(t)) vertices += 3;
         continue;
       }
-      const TrianglePolygons& st = state_[t];
+      const TrianglePolygons& st = record(t);
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
@@ -577,7 +586,7 @@ class LrvdBuilder {
         flatten_whole(d, t, tri);
         continue;
       }
-      const TrianglePolygons& st = state_[t];
+      const TrianglePolygons& st = record(t);
       if (shapeless(t)) {
         for (const TrianglePolygon& poly : st.polygons) {
           along_.push_back(poly.along);
@@ -628,8 +637,8 @@ class LrvdBuilder {
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  HugePageVector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
-  std::vector<int>& whole_;  // per triangle: its cell while whole (lrvd_workspace.h), else -1
+  HugePageVector<TrianglePolygons>& state_;  // the workspace's records, handed out by new_record()
+  std::vector<int>& whole_;  // per triangle: its cell while whole (lrvd_workspace.h), else -1 - its record
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels
@@ -639,8 +648,9 @@ class LrvdBuilder {
   detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   std::vector<char> near_removal_;
-  std::vector<int> piece_parent_;  // every_cell_in_one_piece(): the union-find over the polygons
-  std::vector<char> cell_present_;  // every_cell_in_one_piece(): per cell, whether it has a piece  // forbid_stray_pieces(): near a stray piece removed this round
+  std::vector<int>& piece_parent_;  // every_cell_in_one_piece(): the union-find over the polygons
+  std::vector<char>& cell_present_;  // every_cell_in_one_piece(): per cell, whether it has a piece  // forbid_stray_pieces(): near a stray piece removed this round
+  int next_record_ = 0;  // the next unused record of state_
   int sweep_next_ = 0;  // propagate()'s first sweep: the triangles from here on are queued
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;

@@ -91,18 +91,21 @@ struct LabelRange {
 //
 // A triangle whose three corners went to one cell k, and whose candidates nothing has changed
 // since, is `whole` (whole[t] = k): its candidates are {k}, its polygon is the whole triangle, and
-// its record in `state` is not read or written until something changes it (materialize). With
-// few samples on a large mesh (a CVT's diagrams at a few hundred vertices) most triangles are
-// whole, and the passes over the triangles skip them.
+// it has no record. The other triangles get records in `state` one after another, in the order
+// they stop being whole (whole[t] = -1 - record). With few samples on a large mesh (a CVT's
+// diagrams at a few hundred vertices) most triangles are whole: the passes over the triangles
+// skip them, and the records of the others lie together instead of scattered over the mesh's.
 struct LrvdWorkspace {
-  HugePageVector<TrianglePolygons> state;  // a large mesh's records: 144 bytes a triangle
-  std::vector<int> whole;  // per triangle: its cell when whole, else -1 (its record holds the truth)
+  HugePageVector<TrianglePolygons> state;  // records, at most one a triangle: 144 bytes each
+  std::vector<int> whole;  // per triangle: its cell when whole, else -1 - its record
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
   std::vector<int> vertex_label, home, conflicts, stuck;
   detail::RegionGrowingWorkspace growth;
   std::vector<unsigned char> along;
+  std::vector<int> piece_parent;  // the connectivity check's union-find, per polygon
+  std::vector<char> cell_present;
 
   void reset(int triangle_count) {
     if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
