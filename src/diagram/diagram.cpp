@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include "common/error.h"
@@ -174,44 +173,30 @@ CellIntegrals integrate_own_cells(const Diagram& diagram, const SurfaceMesh& mes
   const int n = diagram.sample_count;
   // Positions only, no side tests: the range check of context() would be wasted on every evaluation.
   const SymbolicContext ctx{mesh.positions().data(), diagram.sites.data()};
+  // Each polygon's integrals in parallel, then summed per cell in polygon order: the same result
+  // with any number of threads.
   const int np = static_cast<int>(diagram.polygons.size());
+  std::vector<PolygonIntegrals> part(np);
+  tbb::parallel_for(tbb::blocked_range<int>(0, np, 512), [&](const tbb::blocked_range<int>& range) {
+    std::vector<Vec3> points;
+    PolygonCorners corners(diagram, ctx);
+    for (int p = range.begin(); p != range.end(); ++p) {
+      const CellPolygon& poly = diagram.polygons[p];
+      const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
+      if (static_cast<int>(points.size()) < poly.vertex_count) points.resize(poly.vertex_count);
+      corners.relative_to(poly, samples.positions[poly.cell], points);
+      add_fan_integrals(points, poly.vertex_count, rho, part[p]);
+    }
+  });
   CellIntegrals out;
   out.area.assign(n, 0);
   out.centroid.assign(n, Vec3{});
   out.energy.assign(n, 0);
-  auto integrate = [&](int p, std::vector<Vec3>& points, PolygonCorners& corners, PolygonIntegrals& into) {
-    const CellPolygon& poly = diagram.polygons[p];
-    const double rho = triangle_density ? (*triangle_density)[poly.triangle] : 1.0;
-    if (static_cast<int>(points.size()) < poly.vertex_count) points.resize(poly.vertex_count);
-    corners.relative_to(poly, samples.positions[poly.cell], points);
-    add_fan_integrals(points, poly.vertex_count, rho, into);
-  };
-  auto add = [&](int p, const PolygonIntegrals& part) {
+  for (int p = 0; p < np; ++p) {
     const int i = diagram.polygons[p].cell;
-    out.area[i] += part.area;
-    out.centroid[i] += part.moment;
-    out.energy[i] += part.energy;
-  };
-  // Each polygon's integrals, summed per cell in polygon order: the same result with any number
-  // of threads. With several, the polygons' integrals are computed in parallel into an array
-  // first; with one, each is added as soon as computed (the array of a large mesh's polygons
-  // would only be written and read back).
-  if (tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) <= 1) {
-    std::vector<Vec3> points;
-    PolygonCorners corners(diagram, ctx);
-    for (int p = 0; p < np; ++p) {
-      PolygonIntegrals part;
-      integrate(p, points, corners, part);
-      add(p, part);
-    }
-  } else {
-    std::vector<PolygonIntegrals> part(np);
-    tbb::parallel_for(tbb::blocked_range<int>(0, np, 512), [&](const tbb::blocked_range<int>& range) {
-      std::vector<Vec3> points;
-      PolygonCorners corners(diagram, ctx);
-      for (int p = range.begin(); p != range.end(); ++p) integrate(p, points, corners, part[p]);
-    });
-    for (int p = 0; p < np; ++p) add(p, part[p]);
+    out.area[i] += part[p].area;
+    out.centroid[i] += part[p].moment;
+    out.energy[i] += part[p].energy;
   }
   for (int i = 0; i < n; ++i) {
     out.centroid[i] = out.area[i] > 0 ? samples.positions[i] + out.centroid[i] / out.area[i] : samples.positions[i];
