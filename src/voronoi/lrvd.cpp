@@ -471,53 +471,63 @@ class LrvdBuilder {
     return changed;
   }
 
-  // Whether every cell of d is in one piece, by the joins cell_components makes (its union-find,
-  // with the polygons of whole triangles known from whole_ instead of read from the diagram).
-  // The pieces of all cells are their polygons (but those of zero area) less the joins that
-  // merged two sets, and each cell with a polygon has at least one: all are in one piece when
-  // the pieces number the cells that have a polygon.
+  // Whether every cell of d is in one piece, by the joins cell_components makes: a polygon of
+  // cell k in t is joined to k's polygon across an edge of t when one of the two runs along the
+  // edge -- that of the triangle of lesser index -- and neither has zero area. The triangles are
+  // taken in order and each polygon is joined to those across its edges to lesser triangles,
+  // which already have their sets: the polygon adopts the first one's root (no look-up of its
+  // own) and merges the others'. The pieces of all cells are their polygons (but those of zero
+  // area) less the merges, and each cell with a polygon has at least one: all are in one piece
+  // when the pieces number the cells that have a polygon. Whole triangles are read off whole_.
   bool every_cell_in_one_piece(const Diagram& d) {
     const int* offsets = d.triangle_offsets.data();
     const CellPolygon* polygons = d.polygons.data();
     std::vector<int>& parent = piece_parent_;
     parent.resize(d.polygons.size());
-    std::iota(parent.begin(), parent.end(), 0);
     auto find_root = [&](int x) {
       while (parent[x] != x) x = parent[x] = parent[parent[x]];
       return x;
     };
-    std::int64_t pieces = 0;
-    auto join = [&](int p, int r) {
-      const int a = find_root(p), b = find_root(r);
-      if (a == b) return;
-      parent[std::max(a, b)] = std::min(a, b);
-      --pieces;
-    };
-    // The polygon of cell k in triangle `across` that a polygon of k along their edge joins, or -1.
-    auto partner = [&](int across, int k) {
-      if (whole_[across] >= 0) return whole_[across] == k ? offsets[across] : -1;
-      for (int r = offsets[across]; r < offsets[across + 1]; ++r)
-        if (polygons[r].cell == k) return along_[r] & kZeroAreaInTheLimit ? -1 : r;
+    // The polygon of cell k in triangle q < t that joins k's polygon in t across their edge, or -1.
+    auto partner = [&](int q, int t, int k) {
+      if (whole_[q] >= 0) return whole_[q] == k ? offsets[q] : -1;
+      for (int r = offsets[q]; r < offsets[q + 1]; ++r) {
+        if (polygons[r].cell != k) continue;
+        int e = 0;
+        while (mesh_.neighbor(q, e) != t) ++e;
+        return (along_[r] & kZeroAreaInTheLimit) || !(along_[r] & (1u << e)) ? -1 : r;
+      }
       return -1;
     };
     cell_present_.assign(samples_.size(), 0);
+    std::int64_t pieces = 0;
     int cells = 0;
-    auto count_piece = [&](int k) {
-      ++pieces;
-      if (!cell_present_[k]) cell_present_[k] = 1, ++cells;
-    };
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      unsigned upper = 0;  // the edges to a triangle of larger index, so each shared edge once
-      for (int e = 0; e < 3; ++e)
-        if (mesh_.neighbor(t, e) > t) upper |= 1u << e;
+      int lower[3], lower_count = 0;  // the neighbours of lesser index
+      for (int e = 0; e < 3; ++e) {
+        const int q = mesh_.neighbor(t, e);
+        if (q >= 0 && q < t) lower[lower_count++] = q;
+      }
       for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
-        const unsigned along = whole_[t] >= 0 ? 7 : along_[p];
-        if (along & kZeroAreaInTheLimit) continue;
+        if (whole_[t] < 0 && (along_[p] & kZeroAreaInTheLimit)) continue;
         const int k = whole_[t] >= 0 ? whole_[t] : polygons[p].cell;
-        count_piece(k);
-        for (unsigned edges = along & upper; edges; edges &= edges - 1) {
-          const int r = partner(mesh_.neighbor(t, __builtin_ctz(edges)), k);
-          if (r >= 0) join(p, r);
+        int root = -1;
+        for (int a = 0; a < lower_count; ++a) {
+          const int r = partner(lower[a], t, k);
+          if (r < 0) continue;
+          const int b = find_root(r);
+          if (root < 0) {
+            root = b;
+          } else if (b != root) {
+            parent[std::max(root, b)] = std::min(root, b);
+            root = std::min(root, b);
+            --pieces;
+          }
+        }
+        parent[p] = root >= 0 ? root : p;
+        if (root < 0) {
+          ++pieces;
+          if (!cell_present_[k]) cell_present_[k] = 1, ++cells;
         }
       }
     }
