@@ -635,8 +635,13 @@ class LrvdBuilder {
     if (shapeless(t)) {
       d.polygons.push_back({t, whole_[t], at, 0});
     } else {
-      d.vertices.resize(at + 3);
-      for (int c = 0; c < 3; ++c) d.vertices[at + c].v[0] = tri[c];
+      // Copies of one unset corner, then set: the storage is reserved, and a vertex put together
+      // in registers would stall its copy (see unpack()).
+      static const SymbolicVertex unset_corner{};
+      for (int c : tri) {
+        d.vertices.push_back(unset_corner);
+        d.vertices.back().v[0] = c;
+      }
       d.polygons.push_back({t, whole_[t], at, 3});
     }
     d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
