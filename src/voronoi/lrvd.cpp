@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
@@ -38,10 +37,9 @@ constexpr int kPrefetchDistance = 4;
 class LrvdBuilder {
  public:
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
-      : mesh_(mesh), samples_(samples), options_(options), state_(work.state), whole_(work.whole), queue_(work.queue),
+      : mesh_(mesh), samples_(samples), options_(options), tris_(work.triangles), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
-        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along),
-        piece_parent_(work.piece_parent), cell_present_(work.cell_present) {
+        home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
     work.reset(mesh.triangle_count());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
@@ -82,12 +80,12 @@ class LrvdBuilder {
       if (b > c) std::swap(b, c);
       if (a > b) std::swap(a, b);
       if (a == c) {  // one cell: whole, and its one clipping is the whole triangle
-        whole_[t] = a;
+        tris_.set_whole(t, a);
         clipped_[t] = 1;
         ++stats_.clipped_triangles;
         continue;
       }
-      TrianglePolygons& st = new_record(t);
+      TrianglePolygons& st = tris_.new_record(t);
       int distinct[3] = {a, 0, 0}, n = 1;
       if (b != a) distinct[n++] = b;
       if (c != b) distinct[n++] = c;
@@ -101,42 +99,6 @@ class LrvdBuilder {
     // Every triangle is queued, in order: propagate() sweeps them first.
     queued_.assign(nt, 1);
     sweep_next_ = 0;
-  }
-
-  // t's candidates, whether t is whole or not.
-  LabelRange labels_of(int t) const {
-    if (whole_[t] >= 0) return {&whole_[t], &whole_[t] + 1};
-    const auto& labels = record(t).labels;
-    return {labels.data(), labels.data() + labels.size()};
-  }
-  bool forbids(int t, int k) const { return whole_[t] < 0 && record(t).forbids(k); }
-  bool pins(int t, int k) const { return whole_[t] < 0 && record(t).pins(k); }
-  // Calls visit(polygon) for each of t's polygons, whether t is whole or not.
-  template <class Visit>
-  void for_each_polygon(int t, Visit&& visit) const {
-    if (whole_[t] >= 0) return visit(TrianglePolygon{whole_[t], 0, 7, 7});
-    for (const TrianglePolygon& poly : record(t).polygons) visit(poly);
-  }
-
-  // The record of triangle t, which is not whole.
-  TrianglePolygons& record(int t) const { return state_[-1 - whole_[t]]; }
-  // Gives triangle t the next record, emptied. The records are handed out in the order the
-  // triangles stop being whole, so the passes in triangle order read them nearly in order.
-  TrianglePolygons& new_record(int t) {
-    const int r = next_record_++;
-    whole_[t] = -1 - r;
-    TrianglePolygons& st = state_[r];
-    st.reset();
-    return st;
-  }
-
-  // Writes whole triangle t's record, as clip() would have left it, before anything changes it.
-  void materialize(int t) {
-    const int k = whole_[t];
-    if (k < 0) return;
-    TrianglePolygons& st = new_record(t);
-    st.labels.assign(&k, &k + 1);
-    st.polygons.assign(1, TrianglePolygon{k, 0, 7, 7});
   }
 
   void activate(int t) {
@@ -158,7 +120,7 @@ class LrvdBuilder {
     thread_local Scratch scratch;
     CellClipper& clipper = scratch.clipper;
     std::vector<TrianglePolygon>& polygons = scratch.polygons;
-    TrianglePolygons& st = record(t);
+    TrianglePolygons& st = tris_.record(t);
     st.verts.clear();
     if (st.extras) st.extras->wide.clear();
     // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
@@ -184,7 +146,7 @@ class LrvdBuilder {
   // zero area there (a sliver collapsed to a segment or a point) is no piece of its cell.
   void edges_in_the_limit(int t) const {
     thread_local std::vector<SymbolicVertex> verts;
-    TrianglePolygons& st = record(t);
+    TrianglePolygons& st = tris_.record(t);
     const Triangle& tri = mesh_.triangle(t);
     const std::vector<SymbolicVertex>* wide = st.wide();
     int begin = 0;
@@ -206,8 +168,8 @@ class LrvdBuilder {
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
   // triangles outgrow the caches, and the passes over them would wait on each.
   void prefetch_polygons(int t) const {
-    if (whole_[t] >= 0) return;
-    const TrianglePolygons& st = record(t);
+    if (tris_.is_whole(t)) return;
+    const TrianglePolygons& st = tris_.record(t);
     __builtin_prefetch(st.polygons.data());
     __builtin_prefetch(st.verts.data());
   }
@@ -215,23 +177,23 @@ class LrvdBuilder {
   // Labels change only through these two, which mark the triangle's polygons out of date (and
   // note that labels can disappear, which ends the shortcut in propagate()).
   bool add_label(int t, int k) {
-    if (whole_[t] == k) return false;
-    materialize(t);
-    if (!insert_sorted(record(t).labels, k)) return false;
+    if (tris_.whole_cell(t) == k) return false;
+    tris_.materialize(t);
+    if (!insert_sorted(tris_.record(t).labels, k)) return false;
     clipped_[t] = 0;
     return true;
   }
   bool remove_label(int t, int k) {
-    if (!contains(labels_of(t), k)) return false;
-    materialize(t);
-    erase_sorted(record(t).labels, k);
+    if (!contains(tris_.labels(t), k)) return false;
+    tris_.materialize(t);
+    erase_sorted(tris_.record(t).labels, k);
     clipped_[t] = 0;
     labels_removed_ = true;
     // A neighbour's polygon of k may reach the edge to t: it has to see k gone (forbidden) here,
     // else that edge is split differently from both sides.
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
-      if (across >= 0 && contains(labels_of(across), k)) activate(across);
+      if (across >= 0 && contains(tris_.labels(across), k)) activate(across);
     }
     return true;
   }
@@ -244,10 +206,10 @@ class LrvdBuilder {
   void clip_queued_in_parallel() {
     pending_.clear();
     auto consider = [&](int t) {
-      if (!clipped_[t] && (record(t).labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
+      if (!clipped_[t] && (tris_.record(t).labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
     };
     for (int t = sweep_next_; t < mesh_.triangle_count(); ++t)
-      if (whole_[t] < 0) consider(t);
+      if (!tris_.is_whole(t)) consider(t);
     for (int t : queue_) consider(t);
     if (static_cast<int>(pending_.size()) < kParallelClips) return;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
@@ -261,13 +223,13 @@ class LrvdBuilder {
   // affine along the edge, so the points form an interval). It only decides where t is clipped
   // first, never what its polygons are, so no exact predicate is needed.
   bool may_gain_labels(int t) const {
-    const LabelRange labels = labels_of(t);
+    const LabelRange labels = tris_.labels(t);
     const Triangle& tri = mesh_.triangle(t);
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
       if (across < 0) continue;
       const Vec3 &u = mesh_.position(tri[e]), &v = mesh_.position(tri[e == 2 ? 0 : e + 1]);
-      const LabelRange other = labels_of(across);
+      const LabelRange other = tris_.labels(across);
       for (int k : other) {
         if (std::find(labels.begin(), labels.end(), k) != labels.end()) continue;
         const double dku = power_distance(u, k), dkv = power_distance(v, k);
@@ -302,7 +264,7 @@ class LrvdBuilder {
     for (; sweep_next_ < nt; ++sweep_next_) {
       const int t = sweep_next_;
       queued_[t] = 0;
-      if (whole_[t] >= 0) continue;
+      if (tris_.is_whole(t)) continue;
       if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
       pass_on(t);
     }
@@ -324,7 +286,7 @@ class LrvdBuilder {
     }
     const Triangle& tri = mesh_.triangle(t);
     conflicts_.clear();
-    for_each_polygon(t, [&](const TrianglePolygon& poly) {
+    tris_.for_each_polygon(t, [&](const TrianglePolygon& poly) {
       const int k = poly.cell;
       for (int e = 0; e < 3; ++e) {
         const int across = mesh_.neighbor(t, e);
@@ -332,8 +294,8 @@ class LrvdBuilder {
         // The triangle across holds the labels of the edge's end points from the start, and
         // keeps them until a label is first taken away.
         if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
-        if (contains(labels_of(across), k)) continue;
-        if (forbids(across, k)) {
+        if (contains(tris_.labels(across), k)) continue;
+        if (tris_.forbids(across, k)) {
           conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
           continue;
         }
@@ -347,7 +309,7 @@ class LrvdBuilder {
         continue;
       }
       if (remove_label(t, k)) {
-        insert_sorted(record(t).extra().forbidden, k);
+        insert_sorted(tris_.record(t).extra().forbidden, k);
         ++stats_.forbidden_labels;
         activate(t);
       }
@@ -357,7 +319,7 @@ class LrvdBuilder {
   // Whether cell k may be taken out of triangle t: not from its sample's triangle, not from a
   // triangle it was pinned to, and not from a triangle's last label.
   bool removable(int t, int k) const {
-    return t != home_[k] && !pins(t, k) && labels_of(t).size() > 1;
+    return t != home_[k] && !tris_.pins(t, k) && tris_.labels(t).size() > 1;
   }
 
   // After propagate(): a conflict left in a triangle t that cannot drop its cell k (k's own
@@ -375,13 +337,13 @@ class LrvdBuilder {
     // from the other cell of a mutual pair, whose conflict then goes away.
     int best_k = -1, best_t = -1;
     for (int t : stuck_) {
-      for_each_polygon(t, [&](const TrianglePolygon& poly) {
+      tris_.for_each_polygon(t, [&](const TrianglePolygon& poly) {
         const int k = poly.cell;
         if (removable(t, k)) return;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0 || !(poly.reach & (1u << e))) continue;
-          if (contains(labels_of(across), k) || !forbids(across, k)) continue;
+          if (contains(tris_.labels(across), k) || !tris_.forbids(across, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
         }
       });
@@ -390,7 +352,7 @@ class LrvdBuilder {
       stuck_.clear();
       return false;
     }
-    TrianglePolygons& sa = record(best_t);
+    TrianglePolygons& sa = tris_.record(best_t);
     erase_sorted(sa.extra().forbidden, best_k);
     insert_sorted(sa.extra().pinned, best_k);
     add_label(best_t, best_k);
@@ -408,7 +370,7 @@ class LrvdBuilder {
   // (settle_stuck_conflicts) can leave both in two pieces for good. Taken one at a time, the
   // first one's removal lets the second grow onto its own stray piece, which then joins it.
   bool forbid_stray_pieces(const Diagram& diagram) {
-    if (every_cell_in_one_piece(diagram)) return false;
+    if (every_cell_in_one_piece(diagram, mesh_, along_, tris_.whole_cells())) return false;
     const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
@@ -439,8 +401,8 @@ class LrvdBuilder {
       bool removed = false;
       for (size_t a = begin; a < end; ++a) {
         const int t = stray[a].second;
-        materialize(t);
-        TrianglePolygons& st = record(t);
+        tris_.materialize(t);
+        TrianglePolygons& st = tris_.record(t);
         if (st.pins(k)) {
           // A piece let back in that became stray since (a third cell's piece came back between
           // it and k's sample) is taken out once more; let back in again, it stays.
@@ -471,80 +433,17 @@ class LrvdBuilder {
     return changed;
   }
 
-  // Whether every cell of d is in one piece, by the joins cell_components makes: a polygon of
-  // cell k in t is joined to k's polygon across an edge of t when one of the two runs along the
-  // edge -- that of the triangle of lesser index -- and neither has zero area. The triangles are
-  // taken in order and each polygon is joined to those across its edges to lesser triangles,
-  // which already have their sets: the polygon adopts the first one's root (no look-up of its
-  // own) and merges the others'. The pieces of all cells are their polygons (but those of zero
-  // area) less the merges, and each cell with a polygon has at least one: all are in one piece
-  // when the pieces number the cells that have a polygon. Whole triangles are read off whole_.
-  bool every_cell_in_one_piece(const Diagram& d) {
-    const int* offsets = d.triangle_offsets.data();
-    const CellPolygon* polygons = d.polygons.data();
-    std::vector<int>& parent = piece_parent_;
-    parent.resize(d.polygons.size());
-    auto find_root = [&](int x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
-    // The polygon of cell k in triangle q < t that joins k's polygon in t across their edge, or -1.
-    auto partner = [&](int q, int t, int k) {
-      if (whole_[q] >= 0) return whole_[q] == k ? offsets[q] : -1;
-      for (int r = offsets[q]; r < offsets[q + 1]; ++r) {
-        if (polygons[r].cell != k) continue;
-        int e = 0;
-        while (mesh_.neighbor(q, e) != t) ++e;
-        return (along_[r] & kZeroAreaInTheLimit) || !(along_[r] & (1u << e)) ? -1 : r;
-      }
-      return -1;
-    };
-    cell_present_.assign(samples_.size(), 0);
-    std::int64_t pieces = 0;
-    int cells = 0;
-    for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      int lower[3], lower_count = 0;  // the neighbours of lesser index
-      for (int e = 0; e < 3; ++e) {
-        const int q = mesh_.neighbor(t, e);
-        if (q >= 0 && q < t) lower[lower_count++] = q;
-      }
-      for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
-        if (whole_[t] < 0 && (along_[p] & kZeroAreaInTheLimit)) continue;
-        const int k = whole_[t] >= 0 ? whole_[t] : polygons[p].cell;
-        int root = -1;
-        for (int a = 0; a < lower_count; ++a) {
-          const int r = partner(lower[a], t, k);
-          if (r < 0) continue;
-          const int b = find_root(r);
-          if (root < 0) {
-            root = b;
-          } else if (b != root) {
-            parent[std::max(root, b)] = std::min(root, b);
-            root = std::min(root, b);
-            --pieces;
-          }
-        }
-        parent[p] = root >= 0 ? root : p;
-        if (root < 0) {
-          ++pieces;
-          if (!cell_present_[k]) cell_present_[k] = 1, ++cells;
-        }
-      }
-    }
-    return pieces == cells;
-  }
-
   // A triangle left without candidates takes those of its neighbours (minus its forbidden ones),
   // spreading inward from the rest of the surface.
   void refill(std::vector<int> pending) {
     while (!pending.empty()) {
       std::vector<int> still;
       for (int t : pending) {
-        TrianglePolygons& st = record(t);
+        TrianglePolygons& st = tris_.record(t);
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
-          for (int k : labels_of(across))
+          for (int k : tris_.labels(across))
             if (!st.forbids(k)) add_label(t, k);
         }
         if (st.labels.empty()) still.push_back(t);
@@ -573,12 +472,12 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      if (whole_[t] >= 0) {
+      if (tris_.is_whole(t)) {
         polygons += 1;
         if (!shapeless(t)) vertices += 3;
         continue;
       }
-      const TrianglePolygons& st = record(t);
+      const TrianglePolygons& st = tris_.record(t);
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
@@ -592,11 +491,11 @@ class LrvdBuilder {
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
       const Triangle& tri = mesh_.triangle(t);
-      if (whole_[t] >= 0) {
+      if (tris_.is_whole(t)) {
         flatten_whole(d, t, tri);
         continue;
       }
-      const TrianglePolygons& st = record(t);
+      const TrianglePolygons& st = tris_.record(t);
       if (shapeless(t)) {
         for (const TrianglePolygon& poly : st.polygons) {
           along_.push_back(poly.along);
@@ -633,7 +532,7 @@ class LrvdBuilder {
     along_.push_back(7);
     const int at = static_cast<int>(d.vertices.size());
     if (shapeless(t)) {
-      d.polygons.push_back({t, whole_[t], at, 0});
+      d.polygons.push_back({t, tris_.whole_cell(t), at, 0});
     } else {
       // Copies of one unset corner, then set: the storage is reserved, and a vertex put together
       // in registers would stall its copy (see unpack()).
@@ -642,7 +541,7 @@ class LrvdBuilder {
         d.vertices.push_back(unset_corner);
         d.vertices.back().v[0] = c;
       }
-      d.polygons.push_back({t, whole_[t], at, 3});
+      d.polygons.push_back({t, tris_.whole_cell(t), at, 3});
     }
     d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
   }
@@ -652,8 +551,7 @@ class LrvdBuilder {
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  HugePageVector<TrianglePolygons>& state_;  // the workspace's records, handed out by new_record()
-  std::vector<int>& whole_;  // per triangle: its cell while whole (lrvd_workspace.h), else -1 - its record
+  TriangleStates& tris_;  // the workspace's candidates and polygons of every triangle
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels
@@ -662,10 +560,7 @@ class LrvdBuilder {
   std::vector<int>& stuck_;  // triangles that kept a conflict they could not settle by removal
   detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
-  std::vector<char> near_removal_;
-  std::vector<int>& piece_parent_;  // every_cell_in_one_piece(): the union-find over the polygons
-  std::vector<char>& cell_present_;  // every_cell_in_one_piece(): per cell, whether it has a piece  // forbid_stray_pieces(): near a stray piece removed this round
-  int next_record_ = 0;  // the next unused record of state_
+  std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
   int sweep_next_ = 0;  // propagate()'s first sweep: the triangles from here on are queued
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
