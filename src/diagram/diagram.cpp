@@ -300,25 +300,21 @@ bool every_cell_in_one_piece(const Diagram& diagram, const SurfaceMesh& mesh, co
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  // The polygon of cell k in triangle q < t that joins k's polygon in t across their edge, or -1.
-  auto partner = [&](int q, int t, int k) {
-    if (whole_cell(q) >= 0) return whole_cell(q) == k ? offsets[q] : -1;
-    for (int r = offsets[q]; r < offsets[q + 1]; ++r) {
-      if (polygons[r].cell != k) continue;
-      int e = 0;
-      while (mesh.neighbor(q, e) != t) ++e;
-      return (along[r] & kZeroAreaInTheLimit) || !(along[r] & (1u << e)) ? -1 : r;
-    }
-    return -1;
-  };
   std::vector<char> present(diagram.sample_count, 0);
   std::int64_t pieces = 0;
   int cells = 0;
   for (int t = 0; t < mesh.triangle_count(); ++t) {
-    int lower[3], lower_count = 0;  // the neighbours of lesser index
+    // The neighbours of lesser index; for each, the edge it shares with t (in its own numbering)
+    // and where the walk over its polygons stands: the polygons of both triangles come in cell
+    // order, a cell having at most one in a triangle, so the walks only move forward.
+    int lower[3], edge[3], at[3], lower_count = 0;
     for (int e = 0; e < 3; ++e) {
       const int q = mesh.neighbor(t, e);
-      if (q >= 0 && q < t) lower[lower_count++] = q;
+      if (q < 0 || q >= t) continue;
+      lower[lower_count] = q;
+      at[lower_count] = offsets[q];
+      edge[lower_count] = whole_cell(q) >= 0 ? 0 : mesh.neighbor_edge(t, e);
+      ++lower_count;
     }
     const int cell_of_whole = whole_cell(t);
     for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
@@ -326,7 +322,18 @@ bool every_cell_in_one_piece(const Diagram& diagram, const SurfaceMesh& mesh, co
       const int k = cell_of_whole >= 0 ? cell_of_whole : polygons[p].cell;
       int root = -1;
       for (int a = 0; a < lower_count; ++a) {
-        const int r = partner(lower[a], t, k);
+        // k's polygon in the lesser triangle, if it runs along the edge and has an area.
+        const int q = lower[a];
+        int r;
+        if (whole_cell(q) >= 0) {
+          r = whole_cell(q) == k ? offsets[q] : -1;
+        } else {
+          int& w = at[a];
+          while (w < offsets[q + 1] && polygons[w].cell < k) ++w;
+          const bool joins = w < offsets[q + 1] && polygons[w].cell == k && !(along[w] & kZeroAreaInTheLimit) &&
+                             (along[w] & (1u << edge[a]));
+          r = joins ? w : -1;
+        }
         if (r < 0) continue;
         const int b = find_root(r);
         if (root < 0) {

@@ -83,6 +83,7 @@ class LrvdBuilder {
         tris_.set_whole(t, a);
         clipped_[t] = 1;
         ++stats_.clipped_triangles;
+        ++whole_at_start_;
         continue;
       }
       TrianglePolygons& st = tris_.new_record(t);
@@ -370,7 +371,10 @@ class LrvdBuilder {
   // (settle_stuck_conflicts) can leave both in two pieces for good. Taken one at a time, the
   // first one's removal lets the second grow onto its own stray piece, which then joins it.
   bool forbid_stray_pieces(const Diagram& diagram) {
-    if (every_cell_in_one_piece(diagram, mesh_, along_, tris_.whole_cells())) return false;
+    // Asked first where most triangles are whole (few samples on a large mesh), where it costs a
+    // fraction of numbering the pieces; elsewhere it saves too little to pay for itself.
+    if (2 * whole_at_start_ >= mesh_.triangle_count() && every_cell_in_one_piece(diagram, mesh_, along_, tris_.whole_cells()))
+      return false;
     const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
@@ -561,6 +565,7 @@ class LrvdBuilder {
   detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
+  int whole_at_start_ = 0;  // triangles whole after assign_triangles()
   int sweep_next_ = 0;  // propagate()'s first sweep: the triangles from here on are queued
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
