@@ -33,6 +33,10 @@ constexpr int kParallelClips = 256;
 constexpr size_t kGuessFromLabels = 3;
 // How many triangles ahead the passes over the triangles prefetch their polygon lists.
 constexpr int kPrefetchDistance = 4;
+// From this many triangles a sample, triangles inside one cell are kept whole and the others take
+// records one after another (TriangleStates); below it every triangle takes record t, as the
+// whole triangles are too few to pay for the bookkeeping (elk 516, armadillo 4000).
+constexpr int kRecordsInOrderBelow = 64;
 
 class LrvdBuilder {
  public:
@@ -40,7 +44,7 @@ class LrvdBuilder {
       : mesh_(mesh), samples_(samples), options_(options), tris_(work.triangles), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
         home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
-    work.reset(mesh.triangle_count());
+    work.reset(mesh.triangle_count(), mesh.triangle_count() < kRecordsInOrderBelow * samples.size());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
   }
@@ -79,7 +83,7 @@ class LrvdBuilder {
       if (a > b) std::swap(a, b);
       if (b > c) std::swap(b, c);
       if (a > b) std::swap(a, b);
-      if (a == c) {  // one cell: whole, and its one clipping is the whole triangle
+      if (a == c && !tris_.in_order()) {  // one cell: whole, and its one clipping is the whole triangle
         tris_.set_whole(t, a);
         clipped_[t] = 1;
         ++stats_.clipped_triangles;

@@ -97,12 +97,17 @@ struct LabelRange {
 class TriangleStates {
  public:
   //! Every triangle without state (set_whole or new_record each); the records' storage is kept.
-  void reset(int triangle_count) {
+  //! `in_order`: triangle t takes record t, not the next one, and the caller makes no triangle
+  //! whole (where few would be, the bookkeeping costs more than it saves).
+  void reset(int triangle_count, bool in_order) {
     // Room for one record a triangle, so that the records never move during a diagram.
     if (static_cast<int>(records_.size()) < triangle_count) records_.resize(triangle_count);
     whole_.resize(triangle_count);
     next_record_ = 0;
+    in_order_ = in_order;
   }
+  //! Whether triangle t takes record t (reset's `in_order`).
+  bool in_order() const { return in_order_; }
   void set_whole(int t, int k) { whole_[t] = k; }
   bool is_whole(int t) const { return whole_[t] >= 0; }
   //! The cell of a whole triangle, or a negative number.
@@ -111,11 +116,11 @@ class TriangleStates {
   const std::vector<int>& whole_cells() const { return whole_; }
 
   //! The record of a triangle that is not whole.
-  TrianglePolygons& record(int t) { return records_[-1 - whole_[t]]; }
-  const TrianglePolygons& record(int t) const { return records_[-1 - whole_[t]]; }
+  TrianglePolygons& record(int t) { return records_[in_order_ ? t : -1 - whole_[t]]; }
+  const TrianglePolygons& record(int t) const { return records_[in_order_ ? t : -1 - whole_[t]]; }
   //! Gives triangle t the next record, emptied.
   TrianglePolygons& new_record(int t) {
-    const int r = next_record_++;
+    const int r = in_order_ ? t : next_record_++;
     whole_[t] = -1 - r;
     TrianglePolygons& st = records_[r];
     st.reset();
@@ -149,6 +154,7 @@ class TriangleStates {
   HugePageVector<TrianglePolygons> records_;  // 144 bytes each
   std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record
   int next_record_ = 0;
+  bool in_order_ = false;
 };
 
 // Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
@@ -162,8 +168,8 @@ struct LrvdWorkspace {
   detail::RegionGrowingWorkspace growth;
   std::vector<unsigned char> along;
 
-  void reset(int triangle_count) {
-    triangles.reset(triangle_count);  // each triangle's state set by assign_triangles()
+  void reset(int triangle_count, bool records_in_order) {
+    triangles.reset(triangle_count, records_in_order);  // each triangle's state set by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);
