@@ -2,13 +2,17 @@
 // (like those a remesh evaluates most of its diagrams on), then the LRVD and its cell integrals
 // computed again and again on one thread. Prints the shape of the diagram (polygons per triangle,
 // clippings, predicate calls) and the CPU time per diagram and per integration, minimum and mean.
+// Ends with a digest of the last diagram and its integrals (every field, the doubles' bits): two
+// builds that print the same digest computed the same diagram to the last bit.
 // Usage: bench_diagram [MODEL] [N] [REPETITIONS] [CVT_ITERATIONS]   (default: elk 516 300 20)
 // MODEL is one of CGAL's models by name (elk, armadillo, ...) or a mesh file's path; a mesh of
 // kSpatialOrderMinTriangles or more is renumbered along a Morton curve first, as lrvd remesh does.
 // Exit status 1 when the timed diagram fails verification, 2 on bad arguments or an unreadable mesh.
 #include <algorithm>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <string>
 
@@ -25,6 +29,43 @@
 #include "voronoi/lrvd.h"
 
 using namespace lrvd;
+
+namespace {
+
+// FNV-1a over the values given, one after another.
+struct Digest {
+  std::uint64_t h = 1469598103934665603ull;
+  void add(std::uint64_t x) {
+    for (int b = 0; b < 8; ++b) h = (h ^ ((x >> (8 * b)) & 0xff)) * 1099511628211ull;
+  }
+  void add(double x) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    add(bits);
+  }
+  void add(int x) { add(static_cast<std::uint64_t>(static_cast<std::uint32_t>(x))); }
+};
+
+std::uint64_t digest(const Diagram& d, const CellIntegrals& cells) {
+  Digest g;
+  for (int o : d.triangle_offsets) g.add(o);
+  for (const CellPolygon& p : d.polygons) g.add(p.triangle), g.add(p.cell), g.add(p.first_vertex), g.add(p.vertex_count);
+  for (const SymbolicVertex& q : d.vertices) {
+    g.add(static_cast<int>(q.type));
+    for (int x : q.v) g.add(x);
+    for (int x : q.label) g.add(x);
+  }
+  for (unsigned char a : d.polygon_along) g.add(static_cast<int>(a));
+  for (size_t i = 0; i < cells.area.size(); ++i) {
+    g.add(cells.area[i]);
+    for (int c = 0; c < 3; ++c) g.add(cells.centroid[i][c]);
+    g.add(cells.energy[i]);
+  }
+  g.add(cells.total_energy);
+  return g.h;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const std::string model = argc > 1 ? argv[1] : "elk";
@@ -66,11 +107,13 @@ int main(int argc, char** argv) {
 
   reset_predicate_stats();
   double best_diagram = 1e30, best_integrals = 1e30, sum_diagram = 0, sum_integrals = 0, energy = 0;
+  CellIntegrals cells;
   for (int r = 0; r < repetitions; ++r) {
     const double t0 = bench::cpu_seconds();
     diagram = compute_lrvd(mesh, samples);
     const double t1 = bench::cpu_seconds();
-    energy += integrate_cells(diagram, mesh, samples).total_energy;
+    cells = integrate_cells(diagram, mesh, samples);
+    energy += cells.total_energy;
     const double t2 = bench::cpu_seconds();
     best_diagram = std::min(best_diagram, t1 - t0);
     best_integrals = std::min(best_integrals, t2 - t1);
@@ -83,5 +126,6 @@ int main(int argc, char** argv) {
               1e3 * best_diagram, 1e3 * sum_diagram / repetitions, 1e3 * best_integrals,
               1e3 * sum_integrals / repetitions, static_cast<double>(stats.total.calls) / repetitions,
               energy / repetitions);
+  std::printf("digest %016llx\n", static_cast<unsigned long long>(digest(diagram, cells)));
   return check.passed ? 0 : 1;
 }

@@ -1,6 +1,7 @@
 // Diagram helpers: kinds, sites, cell integrals for CVT and cell connected components.
 #include "diagram/diagram.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <numeric>
 
@@ -280,6 +281,77 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, 
     out.polygon_component[p] = r == p ? out.count[polygons[p].cell]++ : out.polygon_component[r];
   }
   return out;
+}
+
+// The triangles are taken in order, and each polygon is joined to those across its edges to
+// triangles of lesser index, which already have their sets: it adopts the first one's root (no
+// look-up of its own) and merges the others'. Each join is the one cell_components makes from the
+// lesser triangle's side: that polygon runs along the edge, and neither has zero area. The pieces
+// of all cells are their polygons (but those of zero area) less the merges, and each cell with a
+// polygon has at least one: all are in one piece when the pieces number the cells with a polygon.
+bool every_cell_in_one_piece(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along,
+                             const std::vector<int>& whole) {
+  const int* offsets = diagram.triangle_offsets.data();
+  const CellPolygon* polygons = diagram.polygons.data();
+  auto whole_cell = [&](int t) { return whole.empty() ? -1 : whole[t]; };
+  thread_local std::vector<int> parent;  // per polygon; a large mesh's, so kept for the next call
+  parent.resize(diagram.polygons.size());
+  auto find_root = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  std::vector<char> present(diagram.sample_count, 0);
+  std::int64_t pieces = 0;
+  int cells = 0;
+  for (int t = 0; t < mesh.triangle_count(); ++t) {
+    // The neighbours of lesser index; for each, the edge it shares with t (in its own numbering)
+    // and where the walk over its polygons stands: the polygons of both triangles come in cell
+    // order, a cell having at most one in a triangle, so the walks only move forward.
+    int lower[3], edge[3], at[3], lower_count = 0;
+    for (int e = 0; e < 3; ++e) {
+      const int q = mesh.neighbor(t, e);
+      if (q < 0 || q >= t) continue;
+      lower[lower_count] = q;
+      at[lower_count] = offsets[q];
+      edge[lower_count] = whole_cell(q) >= 0 ? 0 : mesh.neighbor_edge(t, e);
+      ++lower_count;
+    }
+    const int cell_of_whole = whole_cell(t);
+    for (int p = offsets[t]; p < offsets[t + 1]; ++p) {
+      if (cell_of_whole < 0 && (along[p] & kZeroAreaInTheLimit)) continue;
+      const int k = cell_of_whole >= 0 ? cell_of_whole : polygons[p].cell;
+      int root = -1;
+      for (int a = 0; a < lower_count; ++a) {
+        // k's polygon in the lesser triangle, if it runs along the edge and has an area.
+        const int q = lower[a];
+        int r;
+        if (whole_cell(q) >= 0) {
+          r = whole_cell(q) == k ? offsets[q] : -1;
+        } else {
+          int& w = at[a];
+          while (w < offsets[q + 1] && polygons[w].cell < k) ++w;
+          const bool joins = w < offsets[q + 1] && polygons[w].cell == k && !(along[w] & kZeroAreaInTheLimit) &&
+                             (along[w] & (1u << edge[a]));
+          r = joins ? w : -1;
+        }
+        if (r < 0) continue;
+        const int b = find_root(r);
+        if (root < 0) {
+          root = b;
+        } else if (b != root) {
+          parent[std::max(root, b)] = std::min(root, b);
+          root = std::min(root, b);
+          --pieces;
+        }
+      }
+      parent[p] = root >= 0 ? root : p;
+      if (root < 0) {
+        ++pieces;
+        if (!present[k]) present[k] = 1, ++cells;
+      }
+    }
+  }
+  return pieces == cells;
 }
 
 }  // namespace lrvd

@@ -107,4 +107,12 @@ CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh);
 //! polygon that is no piece), as the clipping that made it knows them.
 CellComponents cell_components(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along);
 
+//! Whether every cell of `diagram` is in one piece, joined as cell_components(diagram, mesh, along)
+//! joins its polygons, without numbering the pieces: what a caller that only asks that needs.
+//! `whole`, when not empty, gives per triangle the cell whose polygon is the whole triangle (its
+//! only polygon, along every edge), or a negative number: such polygons are read from it rather
+//! than from the diagram (the LRVD builder knows them). Same \pre as cell_components.
+bool every_cell_in_one_piece(const Diagram& diagram, const SurfaceMesh& mesh, const std::vector<unsigned char>& along,
+                             const std::vector<int>& whole = {});
+
 }  // namespace lrvd

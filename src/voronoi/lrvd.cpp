@@ -33,14 +33,18 @@ constexpr int kParallelClips = 256;
 constexpr size_t kGuessFromLabels = 3;
 // How many triangles ahead the passes over the triangles prefetch their polygon lists.
 constexpr int kPrefetchDistance = 4;
+// From this many triangles a sample, triangles inside one cell are kept whole and the others take
+// records one after another (TriangleStates); below it every triangle takes record t, as the
+// whole triangles are too few to pay for the bookkeeping (elk 516, armadillo 4000).
+constexpr int kRecordsInOrderBelow = 64;
 
 class LrvdBuilder {
  public:
   LrvdBuilder(const SurfaceMesh& mesh, const Samples& samples, const LrvdOptions& options, LrvdWorkspace& work)
-      : mesh_(mesh), samples_(samples), options_(options), state_(work.state), queue_(work.queue),
+      : mesh_(mesh), samples_(samples), options_(options), tris_(work.triangles), queue_(work.queue),
         queued_(work.queued), clipped_(work.clipped), pending_(work.pending), vertex_label_(work.vertex_label),
         home_(work.home), conflicts_(work.conflicts), stuck_(work.stuck), growth_(work.growth), along_(work.along) {
-    work.reset(mesh.triangle_count());
+    work.reset(mesh.triangle_count(), mesh.triangle_count() < kRecordsInOrderBelow * samples.size());
     sites_ = make_sites(samples, options.weighted);
     ctx_ = checked_context(mesh.positions().data(), mesh.positions().size(), sites_.data(), sites_.size());
   }
@@ -71,15 +75,22 @@ class LrvdBuilder {
 
   // §3.3 and §3.5: L(t) = labels of t's vertices and the samples inside t.
   void assign_triangles() {
-    for (int t = 0; t < mesh_.triangle_count(); ++t) {
+    const int nt = mesh_.triangle_count();
+    for (int t = 0; t < nt; ++t) {
       // The corners' labels, sorted and distinct, as add_label() would leave them.
-      TrianglePolygons& st = state_[t];
-      st.reset();
       const Triangle& tri = mesh_.triangle(t);
       int a = vertex_label_[tri[0]], b = vertex_label_[tri[1]], c = vertex_label_[tri[2]];
       if (a > b) std::swap(a, b);
       if (b > c) std::swap(b, c);
       if (a > b) std::swap(a, b);
+      if (a == c && !tris_.in_order()) {  // one cell: whole, and its one clipping is the whole triangle
+        tris_.set_whole(t, a);
+        clipped_[t] = 1;
+        ++stats_.clipped_triangles;
+        ++whole_at_start_;
+        continue;
+      }
+      TrianglePolygons& st = tris_.new_record(t);
       int distinct[3] = {a, 0, 0}, n = 1;
       if (b != a) distinct[n++] = b;
       if (c != b) distinct[n++] = c;
@@ -90,7 +101,9 @@ class LrvdBuilder {
       home_[i] = samples_.triangles[i];
       add_label(home_[i], i);
     }
-    for (int t = 0; t < mesh_.triangle_count(); ++t) activate(t);
+    // Every triangle is queued, in order: propagate() sweeps them first.
+    queued_.assign(nt, 1);
+    sweep_next_ = 0;
   }
 
   void activate(int t) {
@@ -112,7 +125,7 @@ class LrvdBuilder {
     thread_local Scratch scratch;
     CellClipper& clipper = scratch.clipper;
     std::vector<TrianglePolygon>& polygons = scratch.polygons;
-    TrianglePolygons& st = state_[t];
+    TrianglePolygons& st = tris_.record(t);
     st.verts.clear();
     if (st.extras) st.extras->wide.clear();
     // A fresh workspace (one diagram of a large mesh, as MPS computes) would otherwise grow the
@@ -138,7 +151,7 @@ class LrvdBuilder {
   // zero area there (a sliver collapsed to a segment or a point) is no piece of its cell.
   void edges_in_the_limit(int t) const {
     thread_local std::vector<SymbolicVertex> verts;
-    TrianglePolygons& st = state_[t];
+    TrianglePolygons& st = tris_.record(t);
     const Triangle& tri = mesh_.triangle(t);
     const std::vector<SymbolicVertex>* wide = st.wide();
     int begin = 0;
@@ -160,7 +173,8 @@ class LrvdBuilder {
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
   // triangles outgrow the caches, and the passes over them would wait on each.
   void prefetch_polygons(int t) const {
-    const TrianglePolygons& st = state_[t];
+    if (tris_.is_whole(t)) return;
+    const TrianglePolygons& st = tris_.record(t);
     __builtin_prefetch(st.polygons.data());
     __builtin_prefetch(st.verts.data());
   }
@@ -168,19 +182,23 @@ class LrvdBuilder {
   // Labels change only through these two, which mark the triangle's polygons out of date (and
   // note that labels can disappear, which ends the shortcut in propagate()).
   bool add_label(int t, int k) {
-    if (!insert_sorted(state_[t].labels, k)) return false;
+    if (tris_.whole_cell(t) == k) return false;
+    tris_.materialize(t);
+    if (!insert_sorted(tris_.record(t).labels, k)) return false;
     clipped_[t] = 0;
     return true;
   }
   bool remove_label(int t, int k) {
-    if (!erase_sorted(state_[t].labels, k)) return false;
+    if (!contains(tris_.labels(t), k)) return false;
+    tris_.materialize(t);
+    erase_sorted(tris_.record(t).labels, k);
     clipped_[t] = 0;
     labels_removed_ = true;
     // A neighbour's polygon of k may reach the edge to t: it has to see k gone (forbidden) here,
     // else that edge is split differently from both sides.
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
-      if (across >= 0 && contains(state_[across].labels, k)) activate(across);
+      if (across >= 0 && contains(tris_.labels(across), k)) activate(across);
     }
     return true;
   }
@@ -192,8 +210,12 @@ class LrvdBuilder {
   // whichever triangles are clipped ahead.
   void clip_queued_in_parallel() {
     pending_.clear();
-    for (int t : queue_)
-      if (!clipped_[t] && (state_[t].labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
+    auto consider = [&](int t) {
+      if (!clipped_[t] && (tris_.record(t).labels.size() < kGuessFromLabels || !may_gain_labels(t))) pending_.push_back(t);
+    };
+    for (int t = sweep_next_; t < mesh_.triangle_count(); ++t)
+      if (!tris_.is_whole(t)) consider(t);
+    for (int t : queue_) consider(t);
     if (static_cast<int>(pending_.size()) < kParallelClips) return;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pending_.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t w = range.begin(); w != range.end(); ++w) clip(pending_[w]);
@@ -206,13 +228,13 @@ class LrvdBuilder {
   // affine along the edge, so the points form an interval). It only decides where t is clipped
   // first, never what its polygons are, so no exact predicate is needed.
   bool may_gain_labels(int t) const {
-    const auto& labels = state_[t].labels;
+    const LabelRange labels = tris_.labels(t);
     const Triangle& tri = mesh_.triangle(t);
     for (int e = 0; e < 3; ++e) {
       const int across = mesh_.neighbor(t, e);
       if (across < 0) continue;
       const Vec3 &u = mesh_.position(tri[e]), &v = mesh_.position(tri[e == 2 ? 0 : e + 1]);
-      const auto& other = state_[across].labels;
+      const LabelRange other = tris_.labels(across);
       for (int k : other) {
         if (std::find(labels.begin(), labels.end(), k) != labels.end()) continue;
         const double dku = power_distance(u, k), dkv = power_distance(v, k);
@@ -241,45 +263,60 @@ class LrvdBuilder {
   // candidate of the triangle across that edge, so both sides split the edge alike.
   void propagate() {
     clip_queued_in_parallel();
+    // The first sweep over every triangle passes nothing on from a whole triangle: the triangles
+    // across hold its cell, that of its edges' end points, and no label has been taken away yet.
+    const int nt = mesh_.triangle_count();
+    for (; sweep_next_ < nt; ++sweep_next_) {
+      const int t = sweep_next_;
+      queued_[t] = 0;
+      if (tris_.is_whole(t)) continue;
+      if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
+      pass_on(t);
+    }
     while (!queue_.empty()) {
       const int t = queue_.front();
       queue_.pop_front();
       queued_[t] = 0;
       if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
-      if (!clipped_[t]) {
-        clip(t);
-        ++stats_.clipped_triangles;
-      }
-      const TrianglePolygons& st = state_[t];
-      const Triangle& tri = mesh_.triangle(t);
-      conflicts_.clear();
-      for (const TrianglePolygon& poly : st.polygons) {
-        const int k = poly.cell;
-        for (int e = 0; e < 3; ++e) {
-          const int across = mesh_.neighbor(t, e);
-          if (across < 0 || !(poly.reach & (1u << e))) continue;
-          // The triangle across holds the labels of the edge's end points from the start, and
-          // keeps them until a label is first taken away.
-          if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
-          if (contains(state_[across].labels, k)) continue;
-          if (state_[across].forbids(k)) {
-            conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
-            continue;
-          }
-          add_label(across, k);
-          activate(across);
-        }
-      }
-      for (int k : conflicts_) {
-        if (!removable(t, k)) {
-          stuck_.push_back(t);
+      pass_on(t);
+    }
+  }
+
+  // Clips t if its polygons are out of date, and adds each cell whose polygon reaches an edge of
+  // t to the triangle across (or takes it out of t where it was cut off across).
+  void pass_on(int t) {
+    if (!clipped_[t]) {
+      clip(t);
+      ++stats_.clipped_triangles;
+    }
+    const Triangle& tri = mesh_.triangle(t);
+    conflicts_.clear();
+    tris_.for_each_polygon(t, [&](const TrianglePolygon& poly) {
+      const int k = poly.cell;
+      for (int e = 0; e < 3; ++e) {
+        const int across = mesh_.neighbor(t, e);
+        if (across < 0 || !(poly.reach & (1u << e))) continue;
+        // The triangle across holds the labels of the edge's end points from the start, and
+        // keeps them until a label is first taken away.
+        if (!labels_removed_ && (vertex_label_[tri[e]] == k || vertex_label_[tri[(e + 1) % 3]] == k)) continue;
+        if (contains(tris_.labels(across), k)) continue;
+        if (tris_.forbids(across, k)) {
+          conflicts_.push_back(k);  // k was cut off across this edge: keep it off here too
           continue;
         }
-        if (remove_label(t, k)) {
-          insert_sorted(state_[t].extra().forbidden, k);
-          ++stats_.forbidden_labels;
-          activate(t);
-        }
+        add_label(across, k);
+        activate(across);
+      }
+    });
+    for (int k : conflicts_) {
+      if (!removable(t, k)) {
+        stuck_.push_back(t);
+        continue;
+      }
+      if (remove_label(t, k)) {
+        insert_sorted(tris_.record(t).extra().forbidden, k);
+        ++stats_.forbidden_labels;
+        activate(t);
       }
     }
   }
@@ -287,7 +324,7 @@ class LrvdBuilder {
   // Whether cell k may be taken out of triangle t: not from its sample's triangle, not from a
   // triangle it was pinned to, and not from a triangle's last label.
   bool removable(int t, int k) const {
-    return t != home_[k] && !state_[t].pins(k) && state_[t].labels.size() > 1;
+    return t != home_[k] && !tris_.pins(t, k) && tris_.labels(t).size() > 1;
   }
 
   // After propagate(): a conflict left in a triangle t that cannot drop its cell k (k's own
@@ -305,24 +342,22 @@ class LrvdBuilder {
     // from the other cell of a mutual pair, whose conflict then goes away.
     int best_k = -1, best_t = -1;
     for (int t : stuck_) {
-      const TrianglePolygons& st = state_[t];
-      for (const TrianglePolygon& poly : st.polygons) {
+      tris_.for_each_polygon(t, [&](const TrianglePolygon& poly) {
         const int k = poly.cell;
-        if (removable(t, k)) continue;
+        if (removable(t, k)) return;
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0 || !(poly.reach & (1u << e))) continue;
-          const TrianglePolygons& sa = state_[across];
-          if (contains(sa.labels, k) || !sa.forbids(k)) continue;
+          if (contains(tris_.labels(across), k) || !tris_.forbids(across, k)) continue;
           if (best_k < 0 || std::tie(k, across) < std::tie(best_k, best_t)) std::tie(best_k, best_t) = std::tie(k, across);
         }
-      }
+      });
     }
     if (best_k < 0) {
       stuck_.clear();
       return false;
     }
-    TrianglePolygons& sa = state_[best_t];
+    TrianglePolygons& sa = tris_.record(best_t);
     erase_sorted(sa.extra().forbidden, best_k);
     insert_sorted(sa.extra().pinned, best_k);
     add_label(best_t, best_k);
@@ -340,6 +375,10 @@ class LrvdBuilder {
   // (settle_stuck_conflicts) can leave both in two pieces for good. Taken one at a time, the
   // first one's removal lets the second grow onto its own stray piece, which then joins it.
   bool forbid_stray_pieces(const Diagram& diagram) {
+    // Asked first where most triangles are whole (few samples on a large mesh), where it costs a
+    // fraction of numbering the pieces; elsewhere it saves too little to pay for itself.
+    if (2 * whole_at_start_ >= mesh_.triangle_count() && every_cell_in_one_piece(diagram, mesh_, along_, tris_.whole_cells()))
+      return false;
     const CellComponents comps = cell_components(diagram, mesh_, along_);
     std::vector<int> home_component(samples_.size(), -1);
     for (size_t p = 0; p < diagram.polygons.size(); ++p) {
@@ -370,7 +409,8 @@ class LrvdBuilder {
       bool removed = false;
       for (size_t a = begin; a < end; ++a) {
         const int t = stray[a].second;
-        TrianglePolygons& st = state_[t];
+        tris_.materialize(t);
+        TrianglePolygons& st = tris_.record(t);
         if (st.pins(k)) {
           // A piece let back in that became stray since (a third cell's piece came back between
           // it and k's sample) is taken out once more; let back in again, it stays.
@@ -407,11 +447,11 @@ class LrvdBuilder {
     while (!pending.empty()) {
       std::vector<int> still;
       for (int t : pending) {
-        TrianglePolygons& st = state_[t];
+        TrianglePolygons& st = tris_.record(t);
         for (int e = 0; e < 3; ++e) {
           const int across = mesh_.neighbor(t, e);
           if (across < 0) continue;
-          for (int k : state_[across].labels)
+          for (int k : tris_.labels(across))
             if (!st.forbids(k)) add_label(t, k);
         }
         if (st.labels.empty()) still.push_back(t);
@@ -440,7 +480,12 @@ class LrvdBuilder {
     d.triangle_offsets.assign(1, 0);
     size_t polygons = 0, vertices = 0;
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
-      const TrianglePolygons& st = state_[t];
+      if (tris_.is_whole(t)) {
+        polygons += 1;
+        if (!shapeless(t)) vertices += 3;
+        continue;
+      }
+      const TrianglePolygons& st = tris_.record(t);
       // The packed vertices refer to the labels t was clipped with.
       if (!clipped_[t]) throw std::logic_error("LRVD: a triangle's polygons are out of date when flattened");
       polygons += st.polygons.size();
@@ -453,8 +498,12 @@ class LrvdBuilder {
     along_.clear();
     for (int t = 0; t < mesh_.triangle_count(); ++t) {
       if (t + kPrefetchDistance < mesh_.triangle_count()) prefetch_polygons(t + kPrefetchDistance);
-      const TrianglePolygons& st = state_[t];
       const Triangle& tri = mesh_.triangle(t);
+      if (tris_.is_whole(t)) {
+        flatten_whole(d, t, tri);
+        continue;
+      }
+      const TrianglePolygons& st = tris_.record(t);
       if (shapeless(t)) {
         for (const TrianglePolygon& poly : st.polygons) {
           along_.push_back(poly.along);
@@ -486,12 +535,31 @@ class LrvdBuilder {
     }
   }
 
+  // flatten() of a whole triangle: one polygon, the triangle's corners.
+  void flatten_whole(Diagram& d, int t, const Triangle& tri) {
+    along_.push_back(7);
+    const int at = static_cast<int>(d.vertices.size());
+    if (shapeless(t)) {
+      d.polygons.push_back({t, tris_.whole_cell(t), at, 0});
+    } else {
+      // Copies of one unset corner, then set: the storage is reserved, and a vertex put together
+      // in registers would stall its copy (see unpack()).
+      static const SymbolicVertex unset_corner{};
+      for (int c : tri) {
+        d.vertices.push_back(unset_corner);
+        d.vertices.back().v[0] = c;
+      }
+      d.polygons.push_back({t, tris_.whole_cell(t), at, 3});
+    }
+    d.triangle_offsets.push_back(static_cast<int>(d.polygons.size()));
+  }
+
   const SurfaceMesh& mesh_;
   const Samples& samples_;
   LrvdOptions options_;
   std::vector<Site> sites_;
   SymbolicContext ctx_;
-  HugePageVector<TrianglePolygons>& state_;  // the workspace's, indexed by triangle
+  TriangleStates& tris_;  // the workspace's candidates and polygons of every triangle
   std::deque<int>& queue_;
   std::vector<char>& queued_;
   std::vector<char>& clipped_;  // t's polygons are those of its current labels
@@ -501,6 +569,8 @@ class LrvdBuilder {
   detail::RegionGrowingWorkspace& growth_;
   std::vector<unsigned char>& along_;  // flatten(): polygon_edges().along of each diagram polygon
   std::vector<char> near_removal_;  // forbid_stray_pieces(): near a stray piece removed this round
+  int whole_at_start_ = 0;  // triangles whole after assign_triangles()
+  int sweep_next_ = 0;  // propagate()'s first sweep: the triangles from here on are queued
   bool labels_removed_ = false;  // a label was taken from a triangle (connectivity restoration)
   DiagramStats stats_;
 };

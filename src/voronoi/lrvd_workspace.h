@@ -77,10 +77,90 @@ struct TrianglePolygons {
   }
 };
 
+// A triangle's candidate list as a range: its record's list, or its whole cell alone.
+struct LabelRange {
+  const int* first;
+  const int* last;
+  const int* begin() const { return first; }
+  const int* end() const { return last; }
+  size_t size() const { return static_cast<size_t>(last - first); }
+};
+
+// The candidates and polygons of every triangle during one diagram computation.
+//
+// A triangle whose three corners went to one cell k, and whose candidates nothing has changed
+// since, is whole: its candidates are {k}, its polygon is the whole triangle, and it has no
+// record. The other triangles get records one after another, in the order they stop being
+// whole. With few samples on a large mesh (a CVT's diagrams at a few hundred vertices) most
+// triangles are whole: the passes over the triangles skip them, and the records of the others
+// lie together instead of scattered over an array the size of the mesh's.
+class TriangleStates {
+ public:
+  //! Every triangle without state (set_whole or new_record each); the records' storage is kept.
+  //! `in_order`: triangle t takes record t, not the next one, and the caller makes no triangle
+  //! whole (where few would be, the bookkeeping costs more than it saves).
+  void reset(int triangle_count, bool in_order) {
+    // Room for one record a triangle, so that the records never move during a diagram.
+    if (static_cast<int>(records_.size()) < triangle_count) records_.resize(triangle_count);
+    whole_.resize(triangle_count);
+    next_record_ = 0;
+    in_order_ = in_order;
+  }
+  //! Whether triangle t takes record t (reset's `in_order`).
+  bool in_order() const { return in_order_; }
+  void set_whole(int t, int k) { whole_[t] = k; }
+  bool is_whole(int t) const { return whole_[t] >= 0; }
+  //! The cell of a whole triangle, or a negative number.
+  int whole_cell(int t) const { return whole_[t]; }
+  //! Per triangle, its cell when whole, else a negative number (every_cell_in_one_piece's `whole`).
+  const std::vector<int>& whole_cells() const { return whole_; }
+
+  //! The record of a triangle that is not whole.
+  TrianglePolygons& record(int t) { return records_[in_order_ ? t : -1 - whole_[t]]; }
+  const TrianglePolygons& record(int t) const { return records_[in_order_ ? t : -1 - whole_[t]]; }
+  //! Gives triangle t the next record, emptied.
+  TrianglePolygons& new_record(int t) {
+    const int r = in_order_ ? t : next_record_++;
+    whole_[t] = -1 - r;
+    TrianglePolygons& st = records_[r];
+    st.reset();
+    return st;
+  }
+  //! Gives whole triangle t a record as the clipping would have left it (nothing if not whole).
+  void materialize(int t) {
+    const int k = whole_[t];
+    if (k < 0) return;
+    TrianglePolygons& st = new_record(t);
+    st.labels.assign(&k, &k + 1);
+    st.polygons.assign(1, TrianglePolygon{k, 0, 7, 7});
+  }
+
+  //! t's candidates, sorted.
+  LabelRange labels(int t) const {
+    if (whole_[t] >= 0) return {&whole_[t], &whole_[t] + 1};
+    const auto& labels = record(t).labels;
+    return {labels.data(), labels.data() + labels.size()};
+  }
+  bool forbids(int t, int k) const { return whole_[t] < 0 && record(t).forbids(k); }
+  bool pins(int t, int k) const { return whole_[t] < 0 && record(t).pins(k); }
+  //! Calls visit(polygon) for each of t's polygons.
+  template <class Visit>
+  void for_each_polygon(int t, Visit&& visit) const {
+    if (whole_[t] >= 0) return visit(TrianglePolygon{whole_[t], 0, 7, 7});
+    for (const TrianglePolygon& poly : record(t).polygons) visit(poly);
+  }
+
+ private:
+  HugePageVector<TrianglePolygons> records_;  // 144 bytes each
+  std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record
+  int next_record_ = 0;
+  bool in_order_ = false;
+};
+
 // Storage of one diagram computation, kept per thread between calls: a CVT computes hundreds of
 // diagrams of one mesh, and reusing the per-triangle lists saves most of the allocations.
 struct LrvdWorkspace {
-  HugePageVector<TrianglePolygons> state;  // a large mesh's records: 144 bytes a triangle
+  TriangleStates triangles;
   std::vector<char> queued, clipped;
   std::vector<int> pending;
   std::deque<int> queue;
@@ -88,8 +168,8 @@ struct LrvdWorkspace {
   detail::RegionGrowingWorkspace growth;
   std::vector<unsigned char> along;
 
-  void reset(int triangle_count) {
-    if (static_cast<int>(state.size()) < triangle_count) state.resize(triangle_count);  // reset by assign_triangles()
+  void reset(int triangle_count, bool records_in_order) {
+    triangles.reset(triangle_count, records_in_order);  // each triangle's state set by assign_triangles()
     queued.assign(triangle_count, 0);
     stuck.clear();
     clipped.assign(triangle_count, 0);

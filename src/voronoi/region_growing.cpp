@@ -16,10 +16,14 @@ void assign_vertices_to_cells(const SurfaceMesh& mesh, const Samples& samples, c
   work.claims.assign(nv, VertexClaim{});
   work.heap.clear();
   work.seeds.clear();
+  // The least entry queued for v so far is (power distance to best_sample, best_sample): the
+  // distance is computed again rather than kept, which halves the records the growth misses on.
   auto better = [&](double d, int i, int v) {
     VertexClaim& c = work.claims[v];
-    if (d > c.best || (d == c.best && c.best_sample >= 0 && i >= c.best_sample)) return false;
-    c.best = d;
+    if (c.best_sample >= 0) {
+      const double best = power_distance(mesh.position(v), c.best_sample);
+      if (d > best || (d == best && i >= c.best_sample)) return false;
+    }
     c.best_sample = i;
     return true;
   };

@@ -2,7 +2,6 @@
 // grown over the edge graph from the samples' triangles in order of power distance, reaches it first.
 #pragma once
 
-#include <limits>
 #include <vector>
 
 #include "mesh/surface_mesh.h"
@@ -12,12 +11,12 @@
 
 namespace lrvd::detail {
 
-// A vertex during the growth: the least entry queued for it and the sample it went to (-1 while
-// none). One record, not three arrays: the growth visits the vertices in the order of the
-// distances, all over the mesh, and each visit would miss the cache once per array.
+// A vertex during the growth: the sample of the least entry queued for it (whose distance is
+// computed again from the vertex's position when needed) and the sample it went to (-1 while
+// none). One record, not two arrays, and eight bytes: the growth visits the vertices in the order
+// of the distances, all over the mesh, and misses the cache on each visit's records.
 struct VertexClaim {
-  double best = std::numeric_limits<double>::infinity();
-  int best_sample = -1;
+  int best_sample = -1;  // the sample of the least entry queued for the vertex, -1 while none
   int label = -1;
 };
 
