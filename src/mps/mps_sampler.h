@@ -195,16 +195,15 @@ class Sampler {
   //! not depend on the triangle grown from: one growth from all of them gives the union.
   void region_of(const Vec3& p, double w) {
     if (seeds_.size() == 1 || !disks_.facing_cut()) {
-      region_ = disks_.grow(p, seeds_.data(), static_cast<int>(seeds_.size()), w);
-      if (seeds_.size() == 1) return;
-      std::sort(region_.begin(), region_.end());
-      return;
+      region_ = disks_.grow(p, seeds_.data(), static_cast<int>(seeds_.size()), w);  // each triangle once
+    } else {
+      region_ = disks_.grow(p, seeds_[0], w);
+      for (size_t k = 1; k < seeds_.size(); ++k) {
+        const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
+        region_.insert(region_.end(), more.begin(), more.end());
+      }
     }
-    region_ = disks_.grow(p, seeds_[0], w);
-    for (size_t k = 1; k < seeds_.size(); ++k) {
-      const std::vector<int>& more = disks_.grow(p, seeds_[k], w);
-      region_.insert(region_.end(), more.begin(), more.end());
-    }
+    if (seeds_.size() == 1) return;
     std::sort(region_.begin(), region_.end());
     region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
   }
