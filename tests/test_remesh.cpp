@@ -206,6 +206,30 @@ TEST_CASE("The dual of a CVT on the stress meshes is a manifold of the input's t
   }
 }
 
+TEST_CASE("Defects left by every run: the runs again with Lloyd steps in the repair rounds mend a thin tube at 30", "[cvt][remesh]") {
+  // The thin tube at scale 0.5 and 30 vertices: about two cells fit round its section at a uniform
+  // density, and every run with L-BFGS in its rounds ends with defects (measured); the runs again
+  // with Lloyd steps end without.
+  const SurfaceMesh input = make_stress_mesh("thin_tube", 0.5);
+  RemeshOptions without;
+  without.lloyd_rounds_retry = false;
+  const RemeshResult before = remesh_to(input, 30, 1, without);
+  INFO(before.defects.describe());
+  REQUIRE_FALSE(before.defects.empty());
+  REQUIRE_FALSE(before.path.lloyd_rounds);
+  REQUIRE_FALSE(verify_remesh(input, before.dual.positions, before.dual.triangles, 30).passed);
+
+  const RemeshResult after = remesh_to(input, 30, 1);
+  const RemeshVerification check = verify_remesh(input, after.dual.positions, after.dual.triangles, 30);
+  INFO(check.summary());
+  REQUIRE(check.passed);
+  REQUIRE(after.path.lloyd_rounds);
+  REQUIRE(after.defects.empty());
+  // The retry's work is counted on top of the runs before it, which took all their rounds.
+  REQUIRE(after.repair_rounds > before.repair_rounds);
+  REQUIRE(after.diagram_evaluations > before.diagram_evaluations);
+}
+
 TEST_CASE("The kept state is untangled again with each longer reach and the fewest crossings kept: a folded sheet at 300", "[cvt][remesh]") {
   // Without repair rounds (or the other runs) the folded sheet's first CVT at 300 is kept with its
   // defects, topological ones among them; at the end it is fitted and untangled with a reach of half
@@ -337,6 +361,7 @@ TEST_CASE("A cap on a sharp tip gets a larger cell in a third run: CGAL's tricer
   const SurfaceMesh input = cgal_mesh("triceratops.off");
   RemeshOptions two_runs;
   two_runs.tip_caps_retry = false;
+  two_runs.lloyd_rounds_retry = false;  // which mends it too
   const RemeshResult before = remesh_to(input, 200, 1, two_runs);
   REQUIRE_FALSE(verify_remesh(input, before.dual.positions, before.dual.triangles, 200).passed);
   const Remeshed r = remesh(input, 200);
@@ -432,6 +457,7 @@ TEST_CASE("Components left at the fewest samples their topology needs get two mo
   const Samples start = sample_by_component(bones, 200, 1, bones.minimum_vertex_counts());
   RemeshOptions without;
   without.reallocation_retry = false;
+  without.lloyd_rounds_retry = false;
   const RemeshResult failed = remesh_cvt(bones, bones, start, without);
   REQUIRE_FALSE(failed.defects.empty());
   REQUIRE(failed.path.samples_reallocated == 0);

@@ -111,8 +111,12 @@ class RemeshDriver {
 
   // The first run from the initial samples, and its retries while defects are left: the run again
   // with samples kept to their sheets, then with the density lowered on caps at sharp tips.
-  void runs() { kept_ = runs_from(initial_, kept_defects_); }
+  void runs() {
+    kept_start_ = initial_;
+    kept_ = runs_from(initial_, kept_defects_);
+  }
   void reallocation_retry();
+  void lloyd_rounds_retry();
   void fit();
   void untangle_further();
   RemeshResult finish();
@@ -156,13 +160,17 @@ class RemeshDriver {
   // On the CVT's mesh, whose components the samples' triangles name (the reference's cross alike).
   const InputCrossings inherited_;
   const ClosestPointIndex index_;  // one for every CVT and repair round
-  // The third run starts from the second's first CVT (the same samples, options and result), kept
-  // here, not computed again.
+  // The third run starts from the second's first CVT (the same samples, options and result), and
+  // the runs again with Lloyd rounds from the first and second runs' first CVTs: kept here for the
+  // samples they started from, not computed again.
   struct Start {
     RemeshResult result;
     DualDefects defects;
   };
-  std::optional<Start> sheets_start_;
+  std::optional<Start> plain_start_, sheets_start_;
+  std::vector<Vec3> starts_of_;  // the positions of the samples both started from
+  bool lloyd_rounds_ = false;    // the repair rounds take Lloyd steps (RemeshOptions::lloyd_rounds_retry)
+  Samples kept_start_;           // the samples the runs that gave kept_ started from
   // Runs tried, and those that stopped at a round that would have raised the density everywhere.
   int runs_ = 0, saturated_runs_ = 0;
   RemeshResult kept_;         // the state kept over every run
@@ -173,7 +181,11 @@ class RemeshDriver {
 // RemeshOptions::switch_after, a run that stalls pauses and the next takes its turn; the paused runs
 // go on, in order, to their last round only if no later run ends without defects.
 RemeshResult RemeshDriver::runs_from(const Samples& start, DualDefects& defects) {
-  sheets_start_.reset();
+  if (start.positions != starts_of_) {
+    plain_start_.reset();
+    sheets_start_.reset();
+    starts_of_ = start.positions;
+  }
   std::deque<Run> runs;  // a deque: a run stays where it is while the next ones start
   runs.push_back(start_run(start, false, false));
   // The fewest defects any run has reached: a run pauses when it goes switch_after rounds without
@@ -291,6 +303,24 @@ void RemeshDriver::reallocation_retry() {
   again.path.samples_reallocated = added;
   keep_if_fewer(std::move(again), std::move(again_defects), kept_, kept_defects_);
   kept_.path.reallocation_tried = added;
+  if (kept_.path.samples_reallocated == added) kept_start_ = std::move(moved);
+}
+
+// Defects left after every run: the runs again from the start of the kept result, their repair
+// rounds by Lloyd steps (RemeshOptions::lloyd_rounds_retry). Their first CVTs are the runs' before.
+void RemeshDriver::lloyd_rounds_retry() {
+  if (kept_defects_.empty() || !options_.lloyd_rounds_retry || options_.repair_rounds == 0 ||
+      options_.cvt.optimizer != CvtOptimizer::Lbfgs)
+    return;
+  progress(fmt::format("defects left after {} rounds: the runs again with Lloyd steps in the repair rounds",
+                       kept_.repair_rounds));
+  lloyd_rounds_ = true;
+  DualDefects again_defects;
+  RemeshResult again = runs_from(kept_start_, again_defects);
+  again.path.samples_reallocated = kept_.path.samples_reallocated;
+  again.path.reallocation_tried = kept_.path.reallocation_tried;
+  again.path.lloyd_rounds = true;
+  keep_if_fewer(std::move(again), std::move(again_defects), kept_, kept_defects_);
 }
 
 // The run's first state: the first CVT of `start`, its dual and the dual's defects, settled. The
@@ -298,9 +328,10 @@ void RemeshDriver::reallocation_retry() {
 void RemeshDriver::first_cvt(Run& r, const Samples& start) {
   r.first = options_.cvt;
   r.first.keep_to_sheets = r.keep_to_sheets;
-  if (r.keep_to_sheets && sheets_start_) {
-    r.result = sheets_start_->result;
-    r.defects = sheets_start_->defects;
+  std::optional<Start>& cached = r.keep_to_sheets ? sheets_start_ : plain_start_;
+  if (cached) {
+    r.result = cached->result;
+    r.defects = cached->defects;
     r.result.total_iterations = r.result.diagram_evaluations = 0;  // the counters count work done
     return;
   }
@@ -313,7 +344,7 @@ void RemeshDriver::first_cvt(Run& r, const Samples& start) {
   r.result.dual = dual_of(r.result.cvt);
   r.defects = find_defects(r.result.dual, r.result.cvt);
   settle(r.result, r.defects);
-  if (r.keep_to_sheets && options_.tip_caps_retry) sheets_start_ = Start{r.result, r.defects};
+  if ((r.keep_to_sheets && options_.tip_caps_retry) || options_.lloyd_rounds_retry) cached = Start{r.result, r.defects};
 }
 
 // The rounds' options and density, the first CVT's progress line, and its state as the best so far.
@@ -321,6 +352,7 @@ void RemeshDriver::begin_rounds(Run& r) {
   r.again = r.first;
   r.again.iterations = options_.repair_iterations;
   r.again.lloyd_warmup = 1;
+  if (lloyd_rounds_) r.again.optimizer = CvtOptimizer::Lloyd;
   if (r.again.triangle_density.empty())
     r.again.triangle_density = options_.cvt.density == CvtDensity::Curvature
                                    ? curvature_density(mesh_, initial_.size())
@@ -617,6 +649,7 @@ RemeshResult remesh_cvt(const SurfaceMesh& reference, const SurfaceMesh& mesh, c
   RemeshDriver driver(reference, mesh, initial, options);
   driver.runs();
   driver.reallocation_retry();
+  driver.lloyd_rounds_retry();
   driver.fit();
   driver.untangle_further();
   return driver.finish();

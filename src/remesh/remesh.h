@@ -66,6 +66,13 @@ struct RemeshOptions {
   //! two more samples on each such component, moved from the components with the most to spare,
   //! and keep that if it leaves fewer defects
   bool reallocation_retry = true;
+  //! when every run (and the reallocation's) ended with defects, all the runs again from the kept
+  //! result's start with Lloyd steps instead of L-BFGS in the repair rounds (`repair_iterations`
+  //! of them, one diagram each), kept if they leave fewer defects. A Lloyd step lowers the energy
+  //! whatever the raised density does to it, where L-BFGS's line searches fail near thin parts and
+  //! sheets (feline 200: 969 of 2,153 diagrams in line searches of 6 to 20 halvings). Outputs the
+  //! runs before mend are unchanged; on the hard rows of docs/results.md it mends 5 of 12 failing.
+  bool lloyd_rounds_retry = true;
   //! Lloyd steps on the state a run keeps when its dual has no defect (L-BFGS only): L-BFGS moves
   //! the sites in space and puts them on the surface at the end, which can leave two samples a
   //! tenth of the cell size apart with slivers between them (Igea at 20000: Qmin 0.29); a Lloyd
@@ -97,6 +104,8 @@ struct RemeshPath {
   int samples_reallocated = 0;    //!< the result is from samples moved between components (RemeshOptions::reallocation_retry)
   //! Samples moved between components for the retry, whether or not its result was kept (0: no retry).
   int reallocation_tried = 0;
+  //! The result is from the runs again with Lloyd steps in the repair rounds (RemeshOptions::lloyd_rounds_retry).
+  bool lloyd_rounds = false;
   //! The kept state's dual had crossings alone and was fitted and untangled during the repair
   //! rounds (RemeshOptions::untangle): it is neither polished nor relaxed, nor fitted again.
   bool fitted_in_rounds = false;

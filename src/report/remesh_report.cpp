@@ -182,6 +182,7 @@ void write_remesh_report(RemeshRun& run, const Input& input, const RemeshSetting
   report["tip_caps_lowered"] = remeshed.path.tip_caps_lowered;
   report["samples_reallocated"] = remeshed.path.samples_reallocated;
   report["reallocation_tried"] = remeshed.path.reallocation_tried;
+  report["lloyd_rounds"] = remeshed.path.lloyd_rounds;
   report["runs"] = remeshed.path.runs;
   // The kept state took RemeshOptions::polish_steps Lloyd steps after L-BFGS.
   report["polished"] = remeshed.path.polished;
