@@ -69,9 +69,10 @@ struct RemeshOptions {
   //! when every run (and the reallocation's) ended with defects, all the runs again from the kept
   //! result's start with Lloyd steps instead of L-BFGS in the repair rounds (`repair_iterations`
   //! of them, one diagram each), kept if they leave fewer defects. A Lloyd step lowers the energy
-  //! whatever the raised density does to it, where L-BFGS's line searches fail near thin parts and
-  //! sheets (feline 200: 969 of 2,153 diagrams in line searches of 6 to 20 halvings). Outputs the
-  //! runs before mend are unchanged; on the hard rows of docs/results.md it mends 5 of 12 failing.
+  //! whatever the raised density does to it, where L-BFGS's line searches fail near thin parts
+  //! and close sheets (feline 200: 969 of its 2,153 diagrams in line searches that halved the step
+  //! 5 to 19 times). The outputs the runs before mend are unchanged; of the 57 hard-row runs of
+  //! docs/results.md, it mends 5 of the 12 that failed.
   bool lloyd_rounds_retry = true;
   //! Lloyd steps on the state a run keeps when its dual has no defect (L-BFGS only): L-BFGS moves
   //! the sites in space and puts them on the surface at the end, which can leave two samples a
