@@ -443,6 +443,7 @@ TEST_CASE("lrvd remesh gives exactly N vertices and reports quality and verifica
   REQUIRE(j["kept_to_sheets"] == false);  // valid at the first run: no second run with samples kept to sheets
   REQUIRE(j["runs"] == 1);
   REQUIRE(j["reallocation_tried"] == 0);
+  REQUIRE(j["lloyd_rounds"] == false);  // no defects left, so no runs again with Lloyd rounds
   REQUIRE(j["density_eased"] == false);  // no repair rounds, so no density to ease back
   REQUIRE(j["priority"] == "distance");
   REQUIRE(j["relaxed"]["rounds"] == 0);
