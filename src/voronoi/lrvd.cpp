@@ -171,8 +171,11 @@ class LrvdBuilder {
   }
 
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
-  // triangles outgrow the caches, and the passes over them would wait on each.
-  void prefetch_polygons(int t) const {
+  // triangles outgrow the caches, and the passes over them would wait on each. Always inlined: GCC
+  // counts a prefetch as no side effect, so a call it did not inline is a call to a pure function
+  // returning nothing, and it deletes every such call (with the branch on whole triangles the
+  // function grew past what its early inliner takes, and the passes lost every prefetch).
+  [[gnu::always_inline]] void prefetch_polygons(int t) const {
     if (tris_.is_whole(t)) return;
     const TrianglePolygons& st = tris_.record(t);
     __builtin_prefetch(st.polygons.data());
