@@ -102,10 +102,7 @@ class TriangleStates {
   void reset(int triangle_count, bool in_order) {
     // Room for one record a triangle, so that the records never move during a diagram.
     if (static_cast<int>(records_.size()) < triangle_count) records_.resize(triangle_count);
-    if (in_order)
-      whole_.assign(triangle_count, -1);  // read only by whole_cells(): no triangle is whole
-    else
-      whole_.resize(triangle_count);
+    if (!in_order) whole_.resize(triangle_count);  // in order, whole_ is not read
     next_record_ = 0;
     in_order_ = in_order;
   }
@@ -117,8 +114,12 @@ class TriangleStates {
   bool is_whole(int t) const { return !in_order_ && whole_[t] >= 0; }
   //! The cell of a whole triangle, or a negative number.
   int whole_cell(int t) const { return in_order_ ? -1 : whole_[t]; }
-  //! Per triangle, its cell when whole, else a negative number (every_cell_in_one_piece's `whole`).
-  const std::vector<int>& whole_cells() const { return whole_; }
+  //! Per triangle, its cell when whole, else a negative number; empty in order, where no triangle
+  //! is whole (every_cell_in_one_piece's `whole`).
+  const std::vector<int>& whole_cells() const {
+    static const std::vector<int> none;
+    return in_order_ ? none : whole_;
+  }
 
   //! The record of a triangle that is not whole.
   TrianglePolygons& record(int t) { return records_[in_order_ ? t : -1 - whole_[t]]; }
@@ -167,7 +168,7 @@ class TriangleStates {
 
  private:
   HugePageVector<TrianglePolygons> records_;  // 144 bytes each
-  std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record (in order: -1)
+  std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record (not in order)
   int next_record_ = 0;
   bool in_order_ = false;
 };
