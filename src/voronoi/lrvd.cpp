@@ -268,19 +268,23 @@ class LrvdBuilder {
     clip_queued_in_parallel();
     // The first sweep over every triangle passes nothing on from a whole triangle: the triangles
     // across hold its cell, that of its edges' end points, and no label has been taken away yet.
+    // One loop over both, so that pass_on has one caller and is inlined into it.
     const int nt = mesh_.triangle_count();
-    for (; sweep_next_ < nt; ++sweep_next_) {
-      const int t = sweep_next_;
-      queued_[t] = 0;
-      if (tris_.is_whole(t)) continue;
-      if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
-      pass_on(t);
-    }
-    while (!queue_.empty()) {
-      const int t = queue_.front();
-      queue_.pop_front();
-      queued_[t] = 0;
-      if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
+    for (;;) {
+      int t;
+      if (sweep_next_ < nt) {
+        t = sweep_next_++;
+        queued_[t] = 0;
+        if (tris_.is_whole(t)) continue;
+        if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
+      } else if (!queue_.empty()) {
+        t = queue_.front();
+        queue_.pop_front();
+        queued_[t] = 0;
+        if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
+      } else {
+        break;
+      }
       pass_on(t);
     }
   }
