@@ -171,8 +171,11 @@ class LrvdBuilder {
   }
 
   // Starts loading triangle t's polygon lists, read a few triangles later: the lists of a mesh's
-  // triangles outgrow the caches, and the passes over them would wait on each.
-  void prefetch_polygons(int t) const {
+  // triangles outgrow the caches, and the passes over them would wait on each. Always inlined: GCC
+  // counts a prefetch as no side effect, so a call it did not inline is a call to a pure function
+  // returning nothing, and it deletes every such call (with the branch on whole triangles the
+  // function grew past what its early inliner takes, and the passes lost every prefetch).
+  [[gnu::always_inline]] void prefetch_polygons(int t) const {
     if (tris_.is_whole(t)) return;
     const TrianglePolygons& st = tris_.record(t);
     __builtin_prefetch(st.polygons.data());
@@ -265,19 +268,23 @@ class LrvdBuilder {
     clip_queued_in_parallel();
     // The first sweep over every triangle passes nothing on from a whole triangle: the triangles
     // across hold its cell, that of its edges' end points, and no label has been taken away yet.
+    // One loop over both, so that pass_on has one caller and is inlined into it.
     const int nt = mesh_.triangle_count();
-    for (; sweep_next_ < nt; ++sweep_next_) {
-      const int t = sweep_next_;
-      queued_[t] = 0;
-      if (tris_.is_whole(t)) continue;
-      if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
-      pass_on(t);
-    }
-    while (!queue_.empty()) {
-      const int t = queue_.front();
-      queue_.pop_front();
-      queued_[t] = 0;
-      if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
+    for (;;) {
+      int t;
+      if (sweep_next_ < nt) {
+        t = sweep_next_++;
+        queued_[t] = 0;
+        if (tris_.is_whole(t)) continue;
+        if (t + kPrefetchDistance < nt) prefetch_polygons(t + kPrefetchDistance);
+      } else if (!queue_.empty()) {
+        t = queue_.front();
+        queue_.pop_front();
+        queued_[t] = 0;
+        if (static_cast<int>(queue_.size()) > kPrefetchDistance) prefetch_polygons(queue_[kPrefetchDistance]);
+      } else {
+        break;
+      }
       pass_on(t);
     }
   }

@@ -102,33 +102,39 @@ class TriangleStates {
   void reset(int triangle_count, bool in_order) {
     // Room for one record a triangle, so that the records never move during a diagram.
     if (static_cast<int>(records_.size()) < triangle_count) records_.resize(triangle_count);
-    whole_.resize(triangle_count);
+    if (!in_order) whole_.resize(triangle_count);  // in order, whole_ is not read
     next_record_ = 0;
     in_order_ = in_order;
   }
   //! Whether triangle t takes record t (reset's `in_order`).
   bool in_order() const { return in_order_; }
   void set_whole(int t, int k) { whole_[t] = k; }
-  bool is_whole(int t) const { return whole_[t] >= 0; }
+  // In order, whole_ is not read per triangle: the passes over the triangles ask these all the
+  // time, and the flag is in a cache line they hold anyway.
+  bool is_whole(int t) const { return !in_order_ && whole_[t] >= 0; }
   //! The cell of a whole triangle, or a negative number.
-  int whole_cell(int t) const { return whole_[t]; }
-  //! Per triangle, its cell when whole, else a negative number (every_cell_in_one_piece's `whole`).
-  const std::vector<int>& whole_cells() const { return whole_; }
+  int whole_cell(int t) const { return in_order_ ? -1 : whole_[t]; }
+  //! Per triangle, its cell when whole, else a negative number; empty in order, where no triangle
+  //! is whole (every_cell_in_one_piece's `whole`).
+  const std::vector<int>& whole_cells() const {
+    static const std::vector<int> none;
+    return in_order_ ? none : whole_;
+  }
 
   //! The record of a triangle that is not whole.
   TrianglePolygons& record(int t) { return records_[in_order_ ? t : -1 - whole_[t]]; }
   const TrianglePolygons& record(int t) const { return records_[in_order_ ? t : -1 - whole_[t]]; }
   //! Gives triangle t the next record, emptied.
   TrianglePolygons& new_record(int t) {
-    const int r = in_order_ ? t : next_record_++;
-    whole_[t] = -1 - r;
+    int r = t;
+    if (!in_order_) whole_[t] = -1 - (r = next_record_++);
     TrianglePolygons& st = records_[r];
     st.reset();
     return st;
   }
   //! Gives whole triangle t a record as the clipping would have left it (nothing if not whole).
   void materialize(int t) {
-    const int k = whole_[t];
+    const int k = whole_cell(t);
     if (k < 0) return;
     TrianglePolygons& st = new_record(t);
     st.labels.assign(&k, &k + 1);
@@ -137,22 +143,32 @@ class TriangleStates {
 
   //! t's candidates, sorted.
   LabelRange labels(int t) const {
-    if (whole_[t] >= 0) return {&whole_[t], &whole_[t] + 1};
+    if (is_whole(t)) return {&whole_[t], &whole_[t] + 1};
     const auto& labels = record(t).labels;
     return {labels.data(), labels.data() + labels.size()};
   }
-  bool forbids(int t, int k) const { return whole_[t] < 0 && record(t).forbids(k); }
-  bool pins(int t, int k) const { return whole_[t] < 0 && record(t).pins(k); }
+  bool forbids(int t, int k) const { return !is_whole(t) && record(t).forbids(k); }
+  bool pins(int t, int k) const { return !is_whole(t) && record(t).pins(k); }
   //! Calls visit(polygon) for each of t's polygons.
+  //! One call of visit in the code, so that the compiler inlines it (propagation calls this for
+  //! every triangle it passes on; two calls left the visitor a function of its own).
   template <class Visit>
   void for_each_polygon(int t, Visit&& visit) const {
-    if (whole_[t] >= 0) return visit(TrianglePolygon{whole_[t], 0, 7, 7});
-    for (const TrianglePolygon& poly : record(t).polygons) visit(poly);
+    TrianglePolygon whole;
+    const TrianglePolygon *first = &whole, *last = &whole + 1;
+    if (is_whole(t)) {
+      whole = TrianglePolygon{whole_[t], 0, 7, 7};
+    } else {
+      const auto& polygons = record(t).polygons;
+      first = polygons.data();
+      last = first + polygons.size();
+    }
+    for (const TrianglePolygon* poly = first; poly != last; ++poly) visit(*poly);
   }
 
  private:
   HugePageVector<TrianglePolygons> records_;  // 144 bytes each
-  std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record
+  std::vector<int> whole_;  // per triangle: its cell when whole, else -1 - its record (not in order)
   int next_record_ = 0;
   bool in_order_ = false;
 };
