@@ -23,6 +23,8 @@ import subprocess
 import sys
 import tempfile
 
+from mesh_sources import source_path
+
 BEGIN_MARK = "<!-- hard_rows.py table: begin -->"
 END_MARK = "<!-- hard_rows.py table: end -->"
 
@@ -47,19 +49,6 @@ SEEDS = (1, 2, 3)
 
 def row_id(row):
     return row[0].replace("CGAL ", "").replace(" ", "-")
-
-
-def source_path(args, row, workdir):
-    _, kind, name, _ = row
-    if kind == "stress":
-        path = os.path.join(workdir, name + ".off")
-        if not os.path.exists(path):
-            subprocess.run([args.lrvd, "stress", name, "-o", path], check=True, stdout=subprocess.DEVNULL)
-        return path
-    path = os.path.join(args.cgal if kind == "cgal" else args.shared, name)
-    if not os.path.exists(path):
-        sys.exit(f"{path} not found: give --cgal or --shared (row {row[0]})")
-    return path
 
 
 def run_one(lrvd, path, n, seed):
@@ -114,7 +103,7 @@ def main():
     runs = json.load(open(args.json)) if os.path.exists(args.json) else {}
     with tempfile.TemporaryDirectory() as workdir:
         todo = [(row, s) for row in rows for s in SEEDS if f"{row_id(row)}:{s}" not in runs]
-        paths = {row_id(row): source_path(args, row, workdir) for row, _ in todo}
+        paths = {row_id(row): source_path(args, row[1], row[2], workdir, row[0]) for row, _ in todo}
         with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
             futures = {pool.submit(run_one, args.lrvd, paths[row_id(row)], row[3], s): (row, s) for row, s in todo}
             for future in concurrent.futures.as_completed(futures):

@@ -31,6 +31,8 @@ import sys
 import tempfile
 import time
 
+from mesh_sources import source_path
+
 BEGIN_MARK = "<!-- peer_remesh.py table: begin -->"
 END_MARK = "<!-- peer_remesh.py table: end -->"
 
@@ -149,19 +151,6 @@ def measure_row(args, row, source, workdir):
     return result
 
 
-def source_path(args, row, workdir):
-    _, _, _, kind, name, _ = row
-    if kind == "stress":
-        path = os.path.join(workdir, name + ".off")
-        if not os.path.exists(path):
-            subprocess.run([args.lrvd, "stress", name, "-o", path], check=True, stdout=subprocess.DEVNULL)
-        return path
-    path = os.path.join(args.cgal if kind == "cgal" else args.shared, name)
-    if not os.path.exists(path):
-        sys.exit(f"{path} not found: give --cgal or --shared (row {row[0]})")
-    return path
-
-
 def output_cell(entry, n):
     if "output" not in entry:
         return entry.get("error", "–")
@@ -263,7 +252,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="peer_remesh_") as workdir:
         for row in select_rows(args.rows) if args.rows else []:
             print(f"{row[0]} (threads {args.threads}, load {os.getloadavg()[0]:.1f})", flush=True)
-            measured.append(measure_row(args, row, source_path(args, row, workdir), workdir))
+            measured.append(measure_row(args, row, source_path(args, row[3], row[4], workdir, row[0]), workdir))
             if "ratio" in measured[-1]:
                 print(f"  ratio of medians (lrvd / vorpalite): {measured[-1]['ratio']:.2f}", flush=True)
     previous = {"rows": []}
