@@ -20,7 +20,6 @@ import concurrent.futures
 import json
 import os
 import subprocess
-import sys
 import tempfile
 
 from mesh_sources import source_path
