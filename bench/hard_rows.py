@@ -34,7 +34,7 @@ SHARED = ["feline.off", "dragon_100k.off", "happy_buddha_51k.off", "horse_97k.pl
 ROWS = (
     [(f"{os.path.splitext(f)[0].replace('_bun_zipper', '')} 200", "shared", f, 200) for f in SHARED]
     + [(f"{os.path.splitext(f)[0].replace('_bun_zipper', '')} 1000", "shared", f, 1000) for f in SHARED if f != "gargoyle_100k.off"]
-    + [(f"{m} {n}", "cgal", f"{m}.off" if m != "knot" else "knot1.off", n) for m in ("elk", "armadillo", "knot")
+    + [(f"{m} {n}", "cgal", f"{m}.off", n) for m in ("elk", "armadillo", "knot")
        for n in (300, 516, 1000)]
     + [(f"{m} {n}", "stress", m, n) for m, counts in (("comb", (80, 100, 140)), ("thin_plate", (50, 100)),
                                                       ("folded_sheet", (100, 200)), ("open_cup", (100, 200)),
