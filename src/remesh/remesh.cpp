@@ -160,15 +160,16 @@ class RemeshDriver {
   // On the CVT's mesh, whose components the samples' triangles name (the reference's cross alike).
   const InputCrossings inherited_;
   const ClosestPointIndex index_;  // one for every CVT and repair round
-  // The third run starts from the second's first CVT (the same samples, options and result), and
-  // the runs again with Lloyd rounds from the first and second runs' first CVTs: kept here for the
-  // samples they started from, not computed again.
+  // The third run, and the second of the runs again with Lloyd rounds, start from the second run's
+  // first CVT (the same samples, options and result), kept here for the samples it started from,
+  // not computed again. (The first run's is not kept: only a remesh that ends with defects would
+  // use it, and every remesh would pay for the copy.)
   struct Start {
     RemeshResult result;
     DualDefects defects;
   };
-  std::optional<Start> plain_start_, sheets_start_;
-  std::vector<Vec3> starts_of_;  // the positions of the samples both started from
+  std::optional<Start> sheets_start_;
+  std::vector<Vec3> sheets_start_of_;  // the positions of the samples it started from
   bool lloyd_rounds_ = false;    // the repair rounds take Lloyd steps (RemeshOptions::lloyd_rounds_retry)
   Samples kept_start_;           // the samples the runs that gave kept_ started from
   // Runs tried, and those that stopped at a round that would have raised the density everywhere.
@@ -181,10 +182,9 @@ class RemeshDriver {
 // RemeshOptions::switch_after, a run that stalls pauses and the next takes its turn; the paused runs
 // go on, in order, to their last round only if no later run ends without defects.
 RemeshResult RemeshDriver::runs_from(const Samples& start, DualDefects& defects) {
-  if (start.positions != starts_of_) {
-    plain_start_.reset();
+  if (start.positions != sheets_start_of_) {
     sheets_start_.reset();
-    starts_of_ = start.positions;
+    sheets_start_of_ = start.positions;
   }
   std::deque<Run> runs;  // a deque: a run stays where it is while the next ones start
   runs.push_back(start_run(start, false, false));
@@ -307,7 +307,7 @@ void RemeshDriver::reallocation_retry() {
 }
 
 // Defects left after every run: the runs again from the start of the kept result, their repair
-// rounds by Lloyd steps (RemeshOptions::lloyd_rounds_retry). Their first CVTs are the runs' before.
+// rounds by Lloyd steps (RemeshOptions::lloyd_rounds_retry).
 void RemeshDriver::lloyd_rounds_retry() {
   if (kept_defects_.empty() || !options_.lloyd_rounds_retry || options_.repair_rounds == 0 ||
       options_.cvt.optimizer != CvtOptimizer::Lbfgs)
@@ -328,10 +328,9 @@ void RemeshDriver::lloyd_rounds_retry() {
 void RemeshDriver::first_cvt(Run& r, const Samples& start) {
   r.first = options_.cvt;
   r.first.keep_to_sheets = r.keep_to_sheets;
-  std::optional<Start>& cached = r.keep_to_sheets ? sheets_start_ : plain_start_;
-  if (cached) {
-    r.result = cached->result;
-    r.defects = cached->defects;
+  if (r.keep_to_sheets && sheets_start_) {
+    r.result = sheets_start_->result;
+    r.defects = sheets_start_->defects;
     r.result.total_iterations = r.result.diagram_evaluations = 0;  // the counters count work done
     return;
   }
@@ -344,7 +343,7 @@ void RemeshDriver::first_cvt(Run& r, const Samples& start) {
   r.result.dual = dual_of(r.result.cvt);
   r.defects = find_defects(r.result.dual, r.result.cvt);
   settle(r.result, r.defects);
-  if ((r.keep_to_sheets && options_.tip_caps_retry) || options_.lloyd_rounds_retry) cached = Start{r.result, r.defects};
+  if (r.keep_to_sheets && (options_.tip_caps_retry || options_.lloyd_rounds_retry)) sheets_start_ = Start{r.result, r.defects};
 }
 
 // The rounds' options and density, the first CVT's progress line, and its state as the best so far.
