@@ -111,10 +111,7 @@ class RemeshDriver {
 
   // The first run from the initial samples, and its retries while defects are left: the run again
   // with samples kept to their sheets, then with the density lowered on caps at sharp tips.
-  void runs() {
-    kept_start_ = initial_;
-    kept_ = runs_from(initial_, kept_defects_);
-  }
+  void runs() { kept_ = runs_from(initial_, kept_defects_); }
   void reallocation_retry();
   void lloyd_rounds_retry();
   void fit();
@@ -171,7 +168,7 @@ class RemeshDriver {
   std::optional<Start> sheets_start_;
   std::vector<Vec3> sheets_start_of_;  // the positions of the samples it started from
   bool lloyd_rounds_ = false;    // the repair rounds take Lloyd steps (RemeshOptions::lloyd_rounds_retry)
-  Samples kept_start_;           // the samples the runs that gave kept_ started from
+  Samples reallocated_;          // the reallocation's samples (RemeshOptions::reallocation_retry), if it ran
   // Runs tried, and those that stopped at a round that would have raised the density everywhere.
   int runs_ = 0, saturated_runs_ = 0;
   RemeshResult kept_;         // the state kept over every run
@@ -303,7 +300,7 @@ void RemeshDriver::reallocation_retry() {
   again.path.samples_reallocated = added;
   keep_if_fewer(std::move(again), std::move(again_defects), kept_, kept_defects_);
   kept_.path.reallocation_tried = added;
-  if (kept_.path.samples_reallocated == added) kept_start_ = std::move(moved);
+  reallocated_ = std::move(moved);
 }
 
 // Defects left after every run: the runs again from the start of the kept result, their repair
@@ -316,7 +313,7 @@ void RemeshDriver::lloyd_rounds_retry() {
                        kept_.repair_rounds));
   lloyd_rounds_ = true;
   DualDefects again_defects;
-  RemeshResult again = runs_from(kept_start_, again_defects);
+  RemeshResult again = runs_from(kept_.path.samples_reallocated > 0 ? reallocated_ : initial_, again_defects);
   again.path.samples_reallocated = kept_.path.samples_reallocated;
   again.path.reallocation_tried = kept_.path.reallocation_tried;
   again.path.lloyd_rounds = true;
