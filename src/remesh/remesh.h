@@ -68,8 +68,8 @@ struct RemeshOptions {
   bool reallocation_retry = true;
   //! when every run (and the reallocation's) ended with defects, all the runs again from the kept
   //! result's start with Lloyd steps instead of L-BFGS in the repair rounds (`repair_iterations`
-  //! of them, one diagram each), kept if they leave fewer defects. A Lloyd step lowers the energy
-  //! whatever the raised density does to it, where L-BFGS's line searches fail near thin parts
+  //! of them, one diagram each), kept if they leave fewer defects. A Lloyd step (each sample to its
+  //! cell's centroid) needs no line search, where L-BFGS's line searches fail near thin parts
   //! and close sheets (feline 200: 969 of its 2,153 diagrams in line searches that halved the step
   //! 5 to 19 times). The outputs the runs before mend are unchanged; on the hard rows of
   //! docs/results.md (seeds 1-3), 116 of 129 runs end valid instead of 110.
